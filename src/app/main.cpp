@@ -1,0 +1,65 @@
+// dspdem: batch command-line front end. Thin: all work is in the libraries.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "io/case_config.hpp"
+#include "time/run.hpp"
+
+using namespace dspdem;
+
+int main(int argc, char** argv) {
+  CLI::App app{"dspdem: deformable spheropolyhedral DEM with cohesive joints (batch, off-screen)"};
+  app.require_subcommand(1);
+  bool quiet = false, verbose = false;
+  app.add_flag("-q,--quiet", quiet, "Only warnings and errors");
+  app.add_flag("-v,--verbose", verbose, "Debug output (includes gmsh's log)");
+
+  auto* run = app.add_subcommand("run", "Run a case: writes run.pvd, frames/, series.csv, summary.json into --out");
+  std::string case_file, out_dir;
+  std::vector<std::string> sets;
+  bool progress = false, no_progress = false;
+  run->add_option("case", case_file, "Case file (TOML)")->required();
+  run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
+  run->add_option("--set", sets, "Override a case key: section.key=value (repeatable; value in TOML syntax)");
+  run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
+  run->add_flag("--no-progress", no_progress, "Never show the progress line");
+
+  auto* keys = app.add_subcommand("keys", "Print every case-file key (type, default, range, unit, meaning) as Markdown");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  log::set_level(quiet ? log::Level::Quiet : verbose ? log::Level::Debug : log::Level::Info);
+
+  try {
+    if (*keys) {
+      fmt::print("{}", case_schema_markdown());
+      return 0;
+    }
+    if (*run) {
+      const CaseConfig c = read_case(case_file, sets);
+      RunOptions opt;
+      opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;
+      const bool in_ci = std::getenv("CI") != nullptr;
+      opt.progress = !no_progress && (progress || (isatty(STDERR_FILENO) && !in_ci && !quiet));
+      return run_case(c, opt);
+    }
+  } catch (const NumericalError& e) {
+    fmt::print(stderr, "error: numerical failure: {}\n", e.what());
+    return 3;
+  } catch (const Error& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: unexpected failure: {}\n", e.what());
+    return 4;
+  }
+  return 0;
+}

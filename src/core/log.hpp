@@ -1,0 +1,30 @@
+// Minimal leveled logging to stderr. Quiet mode keeps CI logs short.
+#pragma once
+#include <fmt/format.h>
+
+#include <cstdio>
+
+namespace dspdem::log {
+
+enum class Level { Quiet = 0, Info = 1, Debug = 2 };
+
+Level level();
+void set_level(Level l);
+
+template <typename... Args>
+void info(fmt::format_string<Args...> f, Args&&... args) {
+  if (level() >= Level::Info) fmt::print(stderr, "{}\n", fmt::format(f, std::forward<Args>(args)...));
+}
+
+template <typename... Args>
+void debug(fmt::format_string<Args...> f, Args&&... args) {
+  if (level() >= Level::Debug) fmt::print(stderr, "{}\n", fmt::format(f, std::forward<Args>(args)...));
+}
+
+/// Warnings are always printed: they say something the user should act on.
+template <typename... Args>
+void warn(fmt::format_string<Args...> f, Args&&... args) {
+  fmt::print(stderr, "warning: {}\n", fmt::format(f, std::forward<Args>(args)...));
+}
+
+}  // namespace dspdem::log

@@ -1,0 +1,75 @@
+// A case, as read from its TOML file: every value resolved, validated and in SI units.
+// The schema (keys, types, defaults, ranges, units, documentation) is in case_schema.cpp
+// and is printed by `dspdem keys`; cases/README.md holds the same table.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "fem/fem_model.hpp"
+
+namespace dspdem {
+
+struct BodyConfig {
+  std::string name;
+  std::vector<std::string> groups;
+  std::string material;
+  Kinematics kinematics = Kinematics::Corotational;
+};
+
+struct BoundaryConfig {
+  enum class Type { Fixed, Velocity, Force } type = Type::Fixed;
+  std::string group;
+  bool dof[3] = {true, true, true};
+  Vec3 value = Vec3::Zero();
+  Real ramp = 0;  ///< linear ramp time from zero [s]
+  std::string where;  ///< file:line for messages
+};
+
+struct InitialConfig {
+  std::string group;
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();
+  Vec3 center = Vec3::Zero();
+  std::string where;
+};
+
+struct MonitorConfig {
+  enum class Type { Reaction, Displacement, DisplacementDifference, MaxDisplacement, Velocity } type;
+  std::string name, group, group2;
+  int component = 3;  ///< 0,1,2 = x,y,z; 3 = magnitude
+  std::string where;
+};
+
+struct CaseConfig {
+  std::string path;         ///< the case file
+  std::string dir;          ///< its directory (relative paths are resolved against it)
+  std::string name, description;
+  std::string mesh_file;    ///< absolute or relative to dir
+  Vec3 gravity = Vec3::Zero();
+  std::vector<Material> materials;
+  std::vector<BodyConfig> bodies;
+  std::vector<BoundaryConfig> boundaries;
+  std::vector<InitialConfig> initial;
+  std::vector<MonitorConfig> monitors;
+  // time
+  Real t_end = 0, dt = 0, safety = 0.9;
+  bool allow_unstable = false;
+  long max_steps = 0;
+  // output
+  Real frame_interval = 0, series_interval = 0;
+  std::vector<std::string> fields;
+  bool compress = true;
+  // checks
+  Real energy_blowup_factor = 10;
+  std::string resolved_toml;  ///< the case with every default filled in
+};
+
+/// Reads and validates a case. `overrides` are "section.key=value" strings (values in TOML
+/// syntax; bare words are taken as strings). Throws Error with file, line and key.
+CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// The schema as a Markdown table (for `dspdem keys` and cases/README.md).
+std::string case_schema_markdown();
+
+}  // namespace dspdem

@@ -1,0 +1,434 @@
+// Strict TOML case reader: every key is looked up in the schema; unknown keys, wrong types
+// and out-of-range values are errors naming file, line, section and key.
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/case_config.hpp"
+#include "io/case_schema.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+using schema::Type;
+
+struct Ctx {
+  std::string file;
+  std::string where(const toml::source_region& src) const {
+    if (src.begin.line == 0) return file + " (--set)";
+    return fmt::format("{}:{}", file, src.begin.line);
+  }
+};
+
+const schema::Key& find_key(const std::string& section, const std::string& key) {
+  for (const auto& k : schema::keys())
+    if (section == k.section && key == k.key) return k;
+  static const schema::Key none{"", "", Type::Real, nullptr, 0, 0, false, false, "", nullptr, ""};
+  return none;
+}
+
+std::string allowed_keys(const std::string& section) {
+  std::string s;
+  for (const auto& k : schema::keys())
+    if (section == k.section) s += (s.empty() ? "" : ", ") + std::string(k.key);
+  return s;
+}
+
+/// Reads the keys of one table against the schema section `pattern`; `label` is how the
+/// table is named in messages ("[materials.rock]", "[[bodies]] #2").
+class Section {
+ public:
+  Section(const Ctx& ctx, toml::table& t, std::string pattern, std::string label)
+      : ctx_(ctx), t_(t), pattern_(std::move(pattern)), label_(std::move(label)) {}
+
+  bool has(const std::string& key) const { return t_.contains(key); }
+  std::string where(const std::string& key) const {
+    const toml::node* n = t_.get(key);
+    return ctx_.where(n ? n->source() : t_.source());
+  }
+  std::string where() const { return ctx_.where(t_.source()); }
+
+  Real real(const std::string& key) {
+    const auto& k = spec(key, Type::Real);
+    const toml::node* n = get_or_default(k);
+    if (!n) return NAN;
+    std::optional<double> v = n->value<double>();
+    if (!v || !(n->is_integer() || n->is_floating_point()))
+      fail("{}: {} key '{}' must be a number, got {}", where(key), label_, key, type_of(*n));
+    check_range(k, *v, key);
+    return *v;
+  }
+  long integer(const std::string& key) {
+    const auto& k = spec(key, Type::Int);
+    const toml::node* n = get_or_default(k);
+    if (!n->is_integer()) fail("{}: {} key '{}' must be an integer, got {}", where(key), label_, key, type_of(*n));
+    const long v = static_cast<long>(*n->value<int64_t>());
+    check_range(k, static_cast<double>(v), key);
+    return v;
+  }
+  bool boolean(const std::string& key) {
+    const auto& k = spec(key, Type::Bool);
+    const toml::node* n = get_or_default(k);
+    if (!n->is_boolean()) fail("{}: {} key '{}' must be true or false, got {}", where(key), label_, key, type_of(*n));
+    return *n->value<bool>();
+  }
+  std::string str(const std::string& key) {
+    const auto& k = spec(key, Type::String);
+    const toml::node* n = get_or_default(k);
+    if (!n) return {};
+    if (!n->is_string()) fail("{}: {} key '{}' must be a string, got {}", where(key), label_, key, type_of(*n));
+    std::string v = *n->value<std::string>();
+    check_choice(k, v, key);
+    return v;
+  }
+  Vec3 vec3(const std::string& key) {
+    const auto& k = spec(key, Type::Vec3);
+    const toml::node* n = get_or_default(k);
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3)
+      fail("{}: {} key '{}' must be an array of 3 numbers [x, y, z]", where(key), label_, key);
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) {
+      auto d = a->get(i)->value<double>();
+      if (!d || !std::isfinite(*d)) fail("{}: {} key '{}' entry {} must be a finite number", where(key), label_, key, i + 1);
+      v(i) = *d;
+    }
+    return v;
+  }
+  std::vector<std::string> strings(const std::string& key) {
+    const auto& k = spec(key, Type::StringList);
+    const toml::node* n = get_or_default(k);
+    const toml::array* a = n->as_array();
+    if (!a) fail("{}: {} key '{}' must be a list of strings", where(key), label_, key);
+    std::vector<std::string> out;
+    for (const auto& e : *a) {
+      if (!e.is_string()) fail("{}: {} key '{}' must be a list of strings", where(key), label_, key);
+      out.push_back(*e.value<std::string>());
+      check_choice(k, out.back(), key);
+    }
+    return out;
+  }
+  /// Errors on any key the schema does not know.
+  void finish() const {
+    for (const auto& [key, node] : t_) {
+      const std::string ks(key.str());
+      if (find_key(pattern_, ks).key[0] == '\0')
+        fail("{}: {} has unknown key '{}' (known keys: {})", ctx_.where(node.source()), label_, ks,
+             allowed_keys(pattern_));
+    }
+  }
+
+ private:
+  const schema::Key& spec(const std::string& key, Type t) const {
+    const auto& k = find_key(pattern_, key);
+    if (k.key[0] == '\0' || k.type != t) fail("internal: schema has no {} key '{}.{}'", schema::type_name(t), pattern_, key);
+    return k;
+  }
+  /// The node for a key, inserting the schema default when absent (so the resolved case
+  /// shows it). Required keys that are missing are errors; "auto" keys return nullptr.
+  const toml::node* get_or_default(const schema::Key& k) {
+    if (const toml::node* n = t_.get(k.key)) return n;
+    if (!k.def) fail("{}: {} is missing required key '{}' ({})", where(), label_, k.key, k.doc);
+    if (std::string(k.def) == "auto") return nullptr;
+    toml::table parsed = toml::parse(std::string("v = ") + k.def);
+    t_.insert(k.key, *parsed.get("v"));
+    return t_.get(k.key);
+  }
+  void check_range(const schema::Key& k, double v, const std::string& key) const {
+    const bool lo_ok = k.lo_open ? v > k.lo : v >= k.lo;
+    const bool hi_ok = k.hi_open ? v < k.hi : v <= k.hi;
+    if (!std::isfinite(v) || !lo_ok || !hi_ok)
+      fail("{}: {} key '{}' = {} is out of range: must be {}{}", where(key), label_, key, v, schema::range_text(k),
+           k.unit[0] ? fmt::format(" ({})", k.unit) : "");
+  }
+  void check_choice(const schema::Key& k, const std::string& v, const std::string& key) const {
+    if (!k.choices) return;
+    std::stringstream ss(k.choices);
+    std::string c;
+    while (std::getline(ss, c, '|'))
+      if (c == v) return;
+    fail("{}: {} key '{}' = \"{}\" is not one of: {}", where(key), label_, key, v, k.choices);
+  }
+  static std::string type_of(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string: return "a string";
+      case toml::node_type::integer: return "an integer";
+      case toml::node_type::floating_point: return "a number";
+      case toml::node_type::boolean: return "a boolean";
+      case toml::node_type::array: return "an array";
+      case toml::node_type::table: return "a table";
+      default: return "a date/time";
+    }
+  }
+  const Ctx& ctx_;
+  toml::table& t_;
+  std::string pattern_, label_;
+};
+
+toml::table& sub_table(const Ctx& ctx, toml::table& root, const std::string& name) {
+  toml::node* n = root.get(name);
+  if (!n) {
+    root.insert(name, toml::table{});
+    n = root.get(name);
+  }
+  toml::table* t = n->as_table();
+  if (!t) fail("{}: '{}' must be a table [{}]", ctx.where(n->source()), name, name);
+  return *t;
+}
+
+toml::array* array_of_tables(const Ctx& ctx, toml::table& root, const std::string& name) {
+  toml::node* n = root.get(name);
+  if (!n) return nullptr;
+  toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) fail("{}: '{}' must be an array of tables [[{}]]", ctx.where(n->source()), name, name);
+  return a;
+}
+
+void apply_override(toml::table& root, const std::string& ov) {
+  const auto eq = ov.find('=');
+  DSPDEM_CHECK(eq != std::string::npos && eq > 0, "--set '{}': expected section.key=value", ov);
+  const std::string path = ov.substr(0, eq), text = ov.substr(eq + 1);
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  DSPDEM_CHECK(parts.size() >= 2, "--set '{}': the key needs a section, e.g. time.end=0.01", ov);
+  toml::node* value = nullptr;
+  toml::table holder;
+  try {
+    holder = toml::parse("v = " + text);
+  } catch (const toml::parse_error&) {
+    holder.insert("v", text);  // a bare word is a string
+  }
+  value = holder.get("v");
+  toml::node* cur = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    if (toml::array* a = cur->as_array()) {
+      char* end = nullptr;
+      const long idx = std::strtol(p.c_str(), &end, 10);
+      DSPDEM_CHECK(*end == '\0' && idx >= 0 && static_cast<std::size_t>(idx) < a->size(),
+                   "--set '{}': '{}' is not an index of that array (size {})", ov, p, a->size());
+      cur = a->get(static_cast<std::size_t>(idx));
+      continue;
+    }
+    toml::table* t = cur->as_table();
+    DSPDEM_CHECK(t != nullptr, "--set '{}': '{}' is not a table", ov, p);
+    if (!t->contains(p)) t->insert(p, toml::table{});
+    cur = t->get(p);
+  }
+  toml::table* t = cur->as_table();
+  DSPDEM_CHECK(t != nullptr, "--set '{}': the parent of the key is not a table", ov);
+  t->insert_or_assign(parts.back(), *value);
+}
+
+int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 : c == "z" ? 2 : 3; }
+}  // namespace
+
+CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides) {
+  DSPDEM_CHECK(fs::exists(path), "case file '{}' does not exist", path);
+  Ctx ctx{path};
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    fail("{}:{}:{}: TOML syntax error: {}", path, e.source().begin.line, e.source().begin.column, e.description());
+  }
+  for (const auto& ov : overrides) apply_override(root, ov);
+
+  for (const auto& [key, node] : root) {
+    const std::string k(key.str());
+    bool known = false;
+    for (const char* s : schema::sections()) {
+      std::string base(s);
+      if (auto p = base.find_first_of(".["); p != std::string::npos) base = base.substr(0, p);
+      known = known || base == k;
+    }
+    if (!known) {
+      std::string list;
+      for (const char* s : schema::sections()) list += (list.empty() ? "" : ", ") + std::string(s);
+      fail("{}: unknown section or key '{}' (known: {})", ctx.where(node.source()), k, list);
+    }
+  }
+
+  CaseConfig c;
+  c.path = path;
+  c.dir = fs::absolute(path).parent_path().string();
+  {
+    Section s(ctx, sub_table(ctx, root, "case"), "case", "[case]");
+    c.name = s.has("name") ? s.str("name") : fs::path(path).stem().string();
+    c.description = s.str("description");
+    s.finish();
+  }
+  {
+    Section s(ctx, sub_table(ctx, root, "mesh"), "mesh", "[mesh]");
+    c.mesh_file = s.str("file");
+    const fs::path p(c.mesh_file);
+    if (p.is_relative()) c.mesh_file = (fs::path(c.dir) / p).lexically_normal().string();
+    s.finish();
+  }
+  {
+    Section s(ctx, sub_table(ctx, root, "physics"), "physics", "[physics]");
+    c.gravity = s.vec3("gravity");
+    s.finish();
+  }
+  {
+    toml::table& mats = sub_table(ctx, root, "materials");
+    DSPDEM_CHECK(!mats.empty(), "{}: no [materials.<name>] table: at least one material is needed", path);
+    for (auto& [name, node] : mats) {
+      const std::string mname(name.str());
+      toml::table* t = node.as_table();
+      if (!t) fail("{}: materials.{} must be a table", ctx.where(node.source()), mname);
+      Section s(ctx, *t, "materials.<name>", "[materials." + mname + "]");
+      Material m;
+      m.name = mname;
+      m.density = s.real("density");
+      m.E = s.real("E");
+      m.nu = s.real("nu");
+      m.alpha = s.real("damping_alpha");
+      m.beta = s.real("damping_beta");
+      const Real ratio = s.real("damping_ratio");
+      const std::string mode = s.str("damping_mode");
+      if (ratio > 0) {
+        if (!s.has("damping_frequency"))
+          fail("{}: [materials.{}] damping_ratio > 0 needs damping_frequency (Hz)", s.where("damping_ratio"), mname);
+        const Real w = 2 * M_PI * s.real("damping_frequency");
+        if (mode == "mass") m.alpha += 2 * ratio * w;
+        else m.beta += 2 * ratio / w;
+      } else if (s.has("damping_frequency")) {
+        s.real("damping_frequency");
+      }
+      s.finish();
+      c.materials.push_back(m);
+    }
+  }
+  auto material_index = [&](const std::string& name, const std::string& where) {
+    for (std::size_t i = 0; i < c.materials.size(); ++i)
+      if (c.materials[i].name == name) return static_cast<Index>(i);
+    std::string list;
+    for (const auto& m : c.materials) list += (list.empty() ? "" : ", ") + m.name;
+    fail("{}: material '{}' is not defined (defined: {})", where, name, list);
+  };
+  if (toml::array* a = array_of_tables(ctx, root, "bodies")) {
+    int i = 0;
+    for (auto& n : *a) {
+      Section s(ctx, *n.as_table(), "bodies[]", fmt::format("[[bodies]] #{}", ++i));
+      BodyConfig b;
+      b.name = s.str("name");
+      b.groups = s.strings("groups");
+      DSPDEM_CHECK(!b.groups.empty(), "{}: [[bodies]] '{}' lists no groups", s.where("groups"), b.name);
+      b.material = s.str("material");
+      material_index(b.material, s.where("material"));
+      b.kinematics = s.str("kinematics") == "small_strain" ? Kinematics::SmallStrain : Kinematics::Corotational;
+      for (const auto& o : c.bodies)
+        DSPDEM_CHECK(o.name != b.name, "{}: body name '{}' used twice", s.where("name"), b.name);
+      s.finish();
+      c.bodies.push_back(b);
+    }
+  }
+  DSPDEM_CHECK(!c.bodies.empty(), "{}: no [[bodies]]: at least one body is needed", path);
+  if (toml::array* a = array_of_tables(ctx, root, "boundary")) {
+    int i = 0;
+    for (auto& n : *a) {
+      Section s(ctx, *n.as_table(), "boundary[]", fmt::format("[[boundary]] #{}", ++i));
+      BoundaryConfig b;
+      b.where = s.where();
+      b.group = s.str("group");
+      const std::string type = s.str("type");
+      b.type = type == "fixed" ? BoundaryConfig::Type::Fixed
+               : type == "velocity" ? BoundaryConfig::Type::Velocity
+                                    : BoundaryConfig::Type::Force;
+      const std::string dofs = s.str("dofs");
+      DSPDEM_CHECK(!dofs.empty() && dofs.find_first_not_of("xyz") == std::string::npos,
+                   "{}: [[boundary]] #{} key 'dofs' = \"{}\" must be made of x, y, z", s.where("dofs"), i, dofs);
+      for (int d = 0; d < 3; ++d) b.dof[d] = dofs.find("xyz"[d]) != std::string::npos;
+      b.value = s.vec3("value");
+      b.ramp = s.real("ramp");
+      s.finish();
+      c.boundaries.push_back(b);
+    }
+  }
+  if (toml::array* a = array_of_tables(ctx, root, "initial")) {
+    int i = 0;
+    for (auto& n : *a) {
+      Section s(ctx, *n.as_table(), "initial[]", fmt::format("[[initial]] #{}", ++i));
+      InitialConfig ic;
+      ic.where = s.where();
+      ic.group = s.str("group");
+      ic.velocity = s.vec3("velocity");
+      ic.angular_velocity = s.vec3("angular_velocity");
+      ic.center = s.vec3("center");
+      s.finish();
+      c.initial.push_back(ic);
+    }
+  }
+  {
+    Section s(ctx, sub_table(ctx, root, "time"), "time", "[time]");
+    c.t_end = s.real("end");
+    c.dt = s.real("dt");
+    c.safety = s.real("safety");
+    c.allow_unstable = s.boolean("allow_unstable");
+    c.max_steps = s.integer("max_steps");
+    s.finish();
+  }
+  {
+    Section s(ctx, sub_table(ctx, root, "output"), "output", "[output]");
+    c.frame_interval = s.has("frame_interval") ? s.real("frame_interval") : c.t_end / 20;
+    c.series_interval = s.has("series_interval") ? s.real("series_interval") : c.frame_interval / 10;
+    c.fields = s.strings("fields");
+    c.compress = s.boolean("compress");
+    s.finish();
+  }
+  if (toml::array* a = array_of_tables(ctx, root, "monitors")) {
+    int i = 0;
+    for (auto& n : *a) {
+      Section s(ctx, *n.as_table(), "monitors[]", fmt::format("[[monitors]] #{}", ++i));
+      MonitorConfig m;
+      m.where = s.where();
+      m.name = s.str("name");
+      const std::string type = s.str("type");
+      using MT = MonitorConfig::Type;
+      m.type = type == "reaction" ? MT::Reaction
+               : type == "displacement" ? MT::Displacement
+               : type == "displacement_difference" ? MT::DisplacementDifference
+               : type == "velocity" ? MT::Velocity
+                                    : MT::MaxDisplacement;
+      if (s.has("group")) m.group = s.str("group");
+      else DSPDEM_CHECK(m.type == MT::MaxDisplacement, "{}: [[monitors]] '{}' needs a group", s.where(), m.name);
+      if (s.has("group2")) m.group2 = s.str("group2");
+      else DSPDEM_CHECK(m.type != MT::DisplacementDifference, "{}: [[monitors]] '{}' needs group2", s.where(), m.name);
+      m.component = component_index(s.str("component"));
+      for (const auto& o : c.monitors)
+        DSPDEM_CHECK(o.name != m.name, "{}: monitor name '{}' used twice", s.where("name"), m.name);
+      s.finish();
+      c.monitors.push_back(m);
+    }
+  }
+  {
+    Section s(ctx, sub_table(ctx, root, "checks"), "checks", "[checks]");
+    c.energy_blowup_factor = s.real("energy_blowup_factor");
+    s.finish();
+  }
+  std::ostringstream os;
+  os << "# Resolved from " << path << " (every default filled in)\n" << root << "\n";
+  c.resolved_toml = os.str();
+  return c;
+}
+
+std::string case_schema_markdown() {
+  std::string out = "| section | key | type | default | range | unit | meaning |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& k : schema::keys()) {
+    std::string range = schema::range_text(k);
+    for (auto& ch : range)
+      if (ch == '|') ch = '/';
+    out += fmt::format("| `{}` | `{}` | {} | {} | {} | {} | {} |\n", k.section, k.key, schema::type_name(k.type),
+                       k.def ? fmt::format("`{}`", k.def) : "required", range, k.unit, k.doc);
+  }
+  return out;
+}
+
+}  // namespace dspdem

@@ -1,0 +1,68 @@
+#include "io/staging.hpp"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+
+namespace dspdem {
+namespace fs = std::filesystem;
+
+Staging::Staging(const std::string& out_dir) : out_(out_dir) {
+  std::error_code ec;
+  fs::create_directories(out_, ec);
+  DSPDEM_CHECK(!ec && fs::is_directory(out_), "output directory '{}' cannot be created: {}", out_, ec.message());
+  stage_ = (fs::path(out_) / fmt::format(".staging-{}", getpid())).string();
+  fs::remove_all(stage_, ec);
+  fs::create_directories(stage_, ec);
+  DSPDEM_CHECK(!ec, "cannot create staging folder '{}': {}", stage_, ec.message());
+}
+
+Staging::~Staging() {
+  if (done_) return;
+  std::error_code ec;
+  fs::remove_all(stage_, ec);
+}
+
+void Staging::commit() {
+  std::vector<fs::path> old;
+  for (const auto& entry : fs::directory_iterator(stage_)) {
+    const fs::path dst = fs::path(out_) / entry.path().filename();
+    if (fs::exists(dst)) {
+      const fs::path aside = fs::path(out_) / (".old-" + entry.path().filename().string());
+      fs::remove_all(aside);
+      fs::rename(dst, aside);
+      old.push_back(aside);
+    }
+    fs::rename(entry.path(), dst);
+  }
+  for (const auto& p : old) fs::remove_all(p);
+  fs::remove_all(stage_);
+  // A successful run supersedes an earlier failure's partial outputs.
+  fs::remove_all(fs::path(out_) / "failed_run");
+  done_ = true;
+}
+
+std::string Staging::keep_failed() {
+  const fs::path dst = fs::path(out_) / "failed_run";
+  fs::remove_all(dst);
+  fs::rename(stage_, dst);
+  done_ = true;
+  return dst.string();
+}
+
+void write_file_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    DSPDEM_CHECK(f.good(), "cannot write '{}'", tmp);
+    f << text;
+    f.flush();
+    DSPDEM_CHECK(f.good(), "error while writing '{}'", tmp);
+  }
+  fs::rename(tmp, path);
+}
+
+}  // namespace dspdem

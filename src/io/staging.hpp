@@ -1,0 +1,34 @@
+// Writes a run's outputs into a hidden staging folder inside the output directory and
+// moves them into place only when the run completes, so a failed or interrupted run never
+// destroys an earlier run's results. A failed run's partial outputs are kept apart in
+// DIR/failed_run/.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace dspdem {
+
+class Staging {
+ public:
+  explicit Staging(const std::string& out_dir);
+  ~Staging();  ///< removes the staging folder if neither commit() nor keep_failed() ran
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+
+  const std::string& path() const { return stage_; }
+  const std::string& out_dir() const { return out_; }
+  /// Moves every entry of the staging folder into the output directory, replacing entries
+  /// of the same name (old ones are removed only after the new ones are in place).
+  void commit();
+  /// Renames the staging folder to DIR/failed_run (replacing an older one); returns its path.
+  std::string keep_failed();
+
+ private:
+  std::string out_, stage_;
+  bool done_ = false;
+};
+
+/// Writes `text` to `path` through a temporary file and a rename.
+void write_file_atomic(const std::string& path, const std::string& text);
+
+}  // namespace dspdem

@@ -1,0 +1,124 @@
+#include "io/vtu_writer.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "fem/linear_elastic.hpp"
+#include "io/staging.hpp"
+
+namespace dspdem {
+
+Real max_principal(const Real* s) {
+  Mat3 m;
+  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  Eigen::SelfAdjointEigenSolver<Mat3> es(m, Eigen::EigenvaluesOnly);
+  return es.eigenvalues()(2);
+}
+
+namespace {
+bool wants(const FrameData& f, const char* name) {
+  return std::find(f.fields.begin(), f.fields.end(), name) != f.fields.end();
+}
+
+vtkNew<vtkDoubleArray> vec_array(const char* name, vtkIdType n, int nc) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(nc);
+  a->SetNumberOfTuples(n);
+  return a;
+}
+}  // namespace
+
+void write_vtu(const std::string& path, const FrameData& f) {
+  const Mesh& mesh = *f.mesh;
+  const vtkIdType nn = mesh.n_nodes();
+  vtkNew<vtkUnstructuredGrid> grid;
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(nn);
+  for (vtkIdType i = 0; i < nn; ++i) pts->SetPoint(i, f.x[3 * i], f.x[3 * i + 1], f.x[3 * i + 2]);
+  grid->SetPoints(pts);
+  const vtkIdType ne = mesh.n_elements();
+  grid->Allocate(ne);
+  for (const auto& b : mesh.blocks) {
+    const int npe = b.npe();
+    const int vtk_type = b.type == CellType::Tet4 ? 10 /*VTK_TETRA*/ : 12 /*VTK_HEXAHEDRON*/;
+    vtkIdType ids[8];
+    for (Index e = 0; e < b.size(); ++e) {
+      for (int i = 0; i < npe; ++i) ids[i] = b.conn[static_cast<std::size_t>(e) * npe + i];
+      grid->InsertNextCell(vtk_type, npe, ids);
+    }
+  }
+  if (wants(f, "displacement")) {
+    auto a = vec_array("displacement", nn, 3);
+    for (vtkIdType i = 0; i < 3 * nn; ++i) a->SetValue(i, f.x[i] - f.x0[i]);
+    grid->GetPointData()->AddArray(a);
+  }
+  if (wants(f, "velocity")) {
+    auto a = vec_array("velocity", nn, 3);
+    for (vtkIdType i = 0; i < 3 * nn; ++i) a->SetValue(i, f.v[i]);
+    grid->GetPointData()->AddArray(a);
+  }
+  if (f.stress && wants(f, "stress")) {
+    auto a = vec_array("stress", ne, 6);  // ParaView reads 6 components as a symmetric tensor
+    for (vtkIdType i = 0; i < 6 * ne; ++i) a->SetValue(i, f.stress[i]);
+    grid->GetCellData()->AddArray(a);
+  }
+  if (f.stress && wants(f, "von_mises")) {
+    auto a = vec_array("von_mises", ne, 1);
+    for (vtkIdType e = 0; e < ne; ++e) {
+      const Real* s = f.stress + 6 * e;
+      Mat3 m;
+      m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+      a->SetValue(e, von_mises(m));
+    }
+    grid->GetCellData()->AddArray(a);
+  }
+  if (f.stress && wants(f, "max_principal")) {
+    auto a = vec_array("max_principal", ne, 1);
+    for (vtkIdType e = 0; e < ne; ++e) a->SetValue(e, max_principal(f.stress + 6 * e));
+    grid->GetCellData()->AddArray(a);
+  }
+  auto int_array = [&](const char* name, const Index* src) {
+    vtkNew<vtkIntArray> a;
+    a->SetName(name);
+    a->SetNumberOfTuples(ne);
+    for (vtkIdType e = 0; e < ne; ++e) a->SetValue(e, src[e]);
+    grid->GetCellData()->AddArray(a);
+  };
+  if (f.body && wants(f, "body")) int_array("body", f.body);
+  if (f.material && wants(f, "material")) int_array("material", f.material);
+
+  const std::string tmp = path + ".tmp.vtu";
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetFileName(tmp.c_str());
+  w->SetInputData(grid);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  if (f.compress) w->SetCompressorTypeToZLib();
+  else w->SetCompressorTypeToNone();
+  DSPDEM_CHECK(w->Write() == 1, "could not write frame '{}'", tmp);
+  std::filesystem::rename(tmp, path);
+}
+
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {
+  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
+  for (const auto& [t, file] : frames)
+    s += fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", t, file);
+  s += "  </Collection>\n</VTKFile>\n";
+  write_file_atomic(path, s);
+}
+
+}  // namespace dspdem

@@ -1,0 +1,34 @@
+// One frame of a run as a VTK XML unstructured grid (.vtu), zlib-compressed, appended
+// binary; and the ParaView collection (.pvd) that lists frames with their real times.
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/types.hpp"
+#include "mesh/mesh.hpp"
+
+namespace dspdem {
+
+struct FrameData {
+  const Mesh* mesh = nullptr;
+  const Real* x = nullptr;       ///< current positions (the grid's points)
+  const Real* x0 = nullptr;      ///< reference positions (for displacement)
+  const Real* v = nullptr;
+  const Real* stress = nullptr;  ///< 6 per element (xx yy zz xy yz xz), global element order
+  const Index* body = nullptr;
+  const Index* material = nullptr;
+  std::vector<std::string> fields;
+  bool compress = true;
+};
+
+/// Writes the frame to `path` (through a temporary name). Throws Error on failure.
+void write_vtu(const std::string& path, const FrameData& f);
+
+/// Writes a .pvd collection: (time, relative file) pairs.
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames);
+
+/// Largest principal value of a symmetric stress given as xx yy zz xy yz xz.
+Real max_principal(const Real* s);
+
+}  // namespace dspdem

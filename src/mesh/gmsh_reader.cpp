@@ -1,0 +1,198 @@
+#include "mesh/gmsh_reader.hpp"
+
+#include <gmsh.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <unordered_map>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+
+namespace dspdem {
+
+namespace {
+constexpr int kGmshTet4 = 4;
+constexpr int kGmshHex8 = 5;
+constexpr int kGmshTri3 = 2;
+constexpr int kGmshQuad4 = 3;
+
+std::string gmsh_last_error() {
+  std::string err;
+  try {
+    gmsh::logger::getLastError(err);
+  } catch (...) {
+  }
+  return err;
+}
+}  // namespace
+
+// gmsh sets the OpenMP thread count to its own General.NumThreads (1) on initialise and
+// on some calls; the solver's count is restored when the session ends.
+GmshSession::GmshSession() : omp_threads_(omp_get_max_threads()) {
+  // gmsh 4.8 has no isInitialized(); the library stays initialised for the process.
+  static const bool initialised = [] {
+    gmsh::initialize(0, nullptr, false);
+    return true;
+  }();
+  (void)initialised;
+  gmsh::option::setNumber("General.Terminal", log::level() >= log::Level::Debug ? 1 : 0);
+  gmsh::clear();
+}
+
+GmshSession::~GmshSession() {
+  try {
+    gmsh::clear();
+  } catch (...) {
+  }
+  omp_set_num_threads(omp_threads_);
+}
+
+Mesh mesh_from_gmsh_model(const std::string& source) {
+  Mesh mesh;
+  mesh.source = source;
+
+  // Volume cells first: they decide which nodes the model uses.
+  std::vector<std::pair<int, int>> vols;
+  gmsh::model::getEntities(vols, 3);
+  DSPDEM_CHECK(!vols.empty(), "mesh '{}': no volume entities (a 3D mesh is needed)", source);
+
+  ElementBlock tets{CellType::Tet4, {}, {}}, hexes{CellType::Hex8, {}, {}};
+  std::unordered_map<std::size_t, Index> node_index;
+  std::vector<std::size_t> used_tags;
+  auto local = [&](std::size_t tag) {
+    auto [it, inserted] = node_index.try_emplace(tag, static_cast<Index>(used_tags.size()));
+    if (inserted) used_tags.push_back(tag);
+    return it->second;
+  };
+  // entity tag -> (block, first, count) ranges so volume groups can list their elements
+  struct Range { int block; Index first, count; };
+  std::unordered_map<int, std::vector<Range>> entity_ranges;
+
+  for (auto [dim, tag] : vols) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> etags, ntags;
+    gmsh::model::mesh::getElements(types, etags, ntags, dim, tag);
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      ElementBlock* blk = nullptr;
+      int b = -1;
+      if (types[k] == kGmshTet4) { blk = &tets; b = 0; }
+      else if (types[k] == kGmshHex8) { blk = &hexes; b = 1; }
+      else {
+        std::string name; int d, order, nn, npn; std::vector<double> lc;
+        gmsh::model::mesh::getElementProperties(types[k], name, d, order, nn, lc, npn);
+        fail("mesh '{}': volume {} holds {} element(s) of type '{}' (e.g. tag {}); only linear tetrahedra "
+             "and hexahedra are supported", source, tag, etags[k].size(), name, etags[k].empty() ? 0 : etags[k][0]);
+      }
+      const int npe = blk->npe();
+      entity_ranges[tag].push_back({b, blk->size(), static_cast<Index>(etags[k].size())});
+      for (std::size_t e = 0; e < etags[k].size(); ++e) {
+        blk->tag.push_back(etags[k][e]);
+        for (int i = 0; i < npe; ++i) blk->conn.push_back(local(ntags[k][e * npe + i]));
+      }
+    }
+  }
+  DSPDEM_CHECK(tets.size() + hexes.size() > 0, "mesh '{}': no tetrahedra or hexahedra found", source);
+  mesh.blocks.push_back(std::move(tets));
+  mesh.blocks.push_back(std::move(hexes));
+
+  // Coordinates of the used nodes only: geometry points not attached to cells carry no mass.
+  {
+    std::vector<std::size_t> tags;
+    std::vector<double> coord, param;
+    gmsh::model::mesh::getNodes(tags, coord, param, -1, -1, false, false);
+    mesh.x.assign(3 * used_tags.size(), 0.0);
+    std::vector<char> seen(used_tags.size(), 0);
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      auto it = node_index.find(tags[i]);
+      if (it == node_index.end()) continue;
+      for (int d = 0; d < 3; ++d) mesh.x[3 * it->second + d] = coord[3 * i + d];
+      seen[it->second] = 1;
+    }
+    for (std::size_t i = 0; i < seen.size(); ++i)
+      DSPDEM_CHECK(seen[i], "mesh '{}': element refers to node {} which has no coordinates", source, used_tags[i]);
+    mesh.node_tag = std::move(used_tags);
+  }
+
+  // Physical groups.
+  std::vector<std::pair<int, int>> phys;
+  gmsh::model::getPhysicalGroups(phys);
+  for (auto [dim, ptag] : phys) {
+    Group g;
+    g.dim = dim;
+    gmsh::model::getPhysicalName(dim, ptag, g.name);
+    if (g.name.empty()) g.name = std::to_string(ptag);
+    DSPDEM_CHECK(mesh.find_group(g.name) == nullptr, "mesh '{}': physical group name '{}' used twice", source,
+                 g.name);
+    std::vector<int> ents;
+    gmsh::model::getEntitiesForPhysicalGroup(dim, ptag, ents);
+    if (dim == 3) {
+      g.elements.resize(mesh.blocks.size());
+      for (int ent : ents)
+        for (const auto& r : entity_ranges[ent])
+          for (Index e = r.first; e < r.first + r.count; ++e) g.elements[r.block].push_back(e);
+      for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
+        for (Index e : g.elements[b]) {
+          const auto& blk = mesh.blocks[b];
+          for (int i = 0; i < blk.npe(); ++i) g.nodes.push_back(blk.conn[static_cast<std::size_t>(e) * blk.npe() + i]);
+        }
+    } else {
+      std::vector<std::size_t> ntags;
+      std::vector<double> coord;
+      gmsh::model::mesh::getNodesForPhysicalGroup(dim, ptag, ntags, coord);
+      for (auto t : ntags) {
+        auto it = node_index.find(t);
+        if (it != node_index.end()) g.nodes.push_back(it->second);
+      }
+      if (dim == 2) {
+        for (int ent : ents) {
+          std::vector<int> types;
+          std::vector<std::vector<std::size_t>> etags, en;
+          gmsh::model::mesh::getElements(types, etags, en, 2, ent);
+          for (std::size_t k = 0; k < types.size(); ++k) {
+            auto* dst = types[k] == kGmshTri3 ? &g.tri : types[k] == kGmshQuad4 ? &g.quad : nullptr;
+            if (!dst) continue;
+            for (auto t : en[k]) {
+              auto it = node_index.find(t);
+              DSPDEM_CHECK(it != node_index.end(), "mesh '{}': surface group '{}' has a face node {} not on any cell",
+                           source, g.name, t);
+              dst->push_back(it->second);
+            }
+          }
+        }
+      }
+    }
+    std::sort(g.nodes.begin(), g.nodes.end());
+    g.nodes.erase(std::unique(g.nodes.begin(), g.nodes.end()), g.nodes.end());
+    mesh.groups.push_back(std::move(g));
+  }
+  check_element_volumes(mesh);
+  return mesh;
+}
+
+Mesh read_gmsh(const std::string& path) {
+  namespace fs = std::filesystem;
+  DSPDEM_CHECK(fs::exists(path), "mesh file '{}' does not exist", path);
+  const auto ext = fs::path(path).extension().string();
+  DSPDEM_CHECK(ext == ".msh" || ext == ".geo", "mesh file '{}': expected a .msh or .geo file", path);
+  GmshSession session;
+  try {
+    gmsh::open(path);
+  } catch (...) {
+    fail("mesh file '{}': gmsh could not read it: {}", path, gmsh_last_error());
+  }
+  const std::string err = gmsh_last_error();
+  DSPDEM_CHECK(err.empty(), "mesh file '{}': gmsh reported: {}", path, err);
+  if (ext == ".geo") {
+    std::vector<std::pair<int, int>> vols;
+    gmsh::model::getEntities(vols, 3);
+    std::vector<std::size_t> t;
+    std::vector<double> c, p;
+    gmsh::model::mesh::getNodes(t, c, p, 3, -1, true, false);
+    if (t.empty()) gmsh::model::mesh::generate(3);
+  }
+  return mesh_from_gmsh_model(path);
+}
+
+}  // namespace dspdem

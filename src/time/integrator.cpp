@@ -1,0 +1,191 @@
+#include "time/integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace dspdem {
+
+Real Energy::largest() const {
+  return std::max({std::abs(kinetic), std::abs(internal), std::abs(external_work), std::abs(damping), std::abs(initial)});
+}
+
+Real Energy::balance_error() const {
+  const Real l = largest();
+  return l > 0 ? std::abs(balance()) / l : 0.0;
+}
+
+Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
+  DSPDEM_CHECK(dt > 0 && std::isfinite(dt), "time step must be positive, got {}", dt);
+  const std::size_t nd = 3 * static_cast<std::size_t>(m.fem.n_nodes);
+  x_ = m.fem.x0;
+  v_ = m.v0;
+  f_.assign(nd, 0.0);
+  f_ext_.assign(nd, 0.0);
+  reaction_.assign(nd, 0.0);
+  inv_mass_.resize(m.fem.n_nodes);
+  for (Index i = 0; i < m.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / m.fem.mass[i];
+  constrained_.assign(nd, 0);
+  for (const auto& c : m.constraints) {
+    constrained_[c.dof] = 1;
+    v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
+  }
+  compute_forces(v_);
+  const Energy e = energy();
+  e0_ = e.kinetic + e.internal;
+}
+
+void Integrator::compute_forces(const std::vector<Real>& vel) {
+  const ForceStatus st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data());
+  if (st.inverted_element >= 0)
+    throw NumericalError(fmt::format("element {} inverted (det F = {:.3g}) at step {}, t = {:.6g} s; the time step "
+                                     "may be too large or the element too distorted",
+                                     element_tag(st.inverted_element), st.min_detF, n_, t_),
+                         n_, t_);
+  const Index nn = m_.fem.n_nodes;
+  const Real* mass = m_.fem.mass.data();
+  const Real* alpha = m_.fem.node_alpha.data();
+  const Vec3 g = m_.gravity;
+  Real mass_dpower = 0;
+  // External force array: gravity + loads; reactions are added below at constrained dofs.
+  for (Index i = 0; i < nn; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
+      f_ext_[k] = mass[i] * g(d);
+      const Real fd = -alpha[i] * mass[i] * vel[k];
+      mass_dpower -= fd * vel[k];
+      f_[k] += fd;
+    }
+  }
+  for (const auto& l : m_.loads) f_ext_[l.dof] += l.value * ramp_factor(t_, l.ramp);
+  for (std::size_t k = 0; k < f_.size(); ++k) f_[k] += f_ext_[k];
+  // Reaction = the force the support must supply so the dof follows its prescribed motion.
+  for (const auto& c : m_.constraints) {
+    const Real a = c.value * ramp_rate(t_, c.ramp);
+    const Real r = mass[c.dof / 3] * a - f_[c.dof];
+    reaction_[c.dof] = r;
+    f_ext_[c.dof] += r;
+    f_[c.dof] += r;
+  }
+  dpower_ = mass_dpower + (m_.fem.any_stiffness_damping ? deterministic_sum(m_.fem.elem_dpower) : 0.0);
+}
+
+void Integrator::kick(Real h, Real t_target) {
+  const std::size_t nd = v_.size();
+  const Real* im = inv_mass_.data();
+  for (std::size_t k = 0; k < nd; ++k) v_[k] += h * f_[k] * im[k / 3];
+  for (const auto& c : m_.constraints) v_[c.dof] = c.value * ramp_factor(t_target, c.ramp);
+}
+
+void Integrator::step() {
+  const Real h = dt_;
+  kick(0.5 * h, t_ + 0.5 * h);
+  // Drift, with the first half of the trapezoidal external work.
+  Real w = 0;
+  for (std::size_t k = 0; k < x_.size(); ++k) {
+    const Real dx = h * v_[k];
+    x_[k] += dx;
+    w += 0.5 * f_ext_[k] * dx;
+  }
+  t_ += h;
+  ++n_;
+  compute_forces(v_);  // v_ holds the mid-step velocity: damping is lagged by h/2
+  damp_ += h * dpower_;
+  for (std::size_t k = 0; k < x_.size(); ++k) w += 0.5 * f_ext_[k] * h * v_[k];
+  w_ext_ += w;
+  kick(0.5 * h, t_);
+  bool finite = std::isfinite(w);
+  for (std::size_t k = 0; k < v_.size() && finite; ++k) finite = std::isfinite(v_[k]) && std::isfinite(x_[k]);
+  if (!finite) non_finite_state();
+}
+
+void Integrator::non_finite_state() const {
+  Index node = -1;
+  for (std::size_t k = 0; k < v_.size() && node < 0; ++k)
+    if (!std::isfinite(v_[k]) || !std::isfinite(x_[k])) node = static_cast<Index>(k / 3);
+  // Name an element that holds the node, so the message points at the mesh.
+  std::size_t elem_tag = 0;
+  for (const auto& b : m_.fem.blocks)
+    for (std::size_t i = 0; i < b.conn.size() && elem_tag == 0; ++i)
+      if (b.conn[i] == node) elem_tag = m_.fem.elem_tag[b.elem[i / b.npe()]];
+  throw NumericalError(fmt::format("non-finite position or velocity at node {} (element {}) at step {}, t = {:.6g} s; "
+                                   "the time step is probably too large",
+                                   node >= 0 ? m_.mesh.node_tag[node] : 0, elem_tag, n_, t_),
+                       n_, t_);
+}
+
+Energy Integrator::energy() const {
+  Energy e;
+  const Index nn = m_.fem.n_nodes;
+  std::vector<Real> ke(nn);
+  for (Index i = 0; i < nn; ++i) {
+    const Real* v = &v_[3 * static_cast<std::size_t>(i)];
+    ke[i] = 0.5 * m_.fem.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  e.kinetic = deterministic_sum(ke);
+  e.internal = deterministic_sum(m_.fem.elem_energy);
+  e.external_work = w_ext_;
+  e.damping = damp_;
+  e.initial = e0_;
+  return e;
+}
+
+void Integrator::check_energy(Real factor) const {
+  const Energy e = energy();
+  const Real budget = e.initial + std::abs(e.external_work) + e.damping;
+  const Real floor = 1e-9 * std::max<Real>(1.0, budget);
+  if (e.kinetic + e.internal > factor * budget + floor) {
+    Index worst = 0;
+    for (Index k = 1; k < m_.fem.n_elements; ++k)
+      if (m_.fem.elem_energy[k] > m_.fem.elem_energy[worst]) worst = k;
+    throw NumericalError(fmt::format("energy blow-up at step {}, t = {:.6g} s: kinetic + internal = {:.4g} J exceeds "
+                                     "{} x (initial + work + dissipated = {:.4g} J); largest strain energy in element {}",
+                                     n_, t_, e.kinetic + e.internal, factor, budget, element_tag(worst)),
+                         n_, t_);
+  }
+}
+
+Real Integrator::monitor(const MonitorSet& ms) const {
+  using T = MonitorConfig::Type;
+  const int c = ms.cfg.component;
+  auto pick = [c](const Vec3& v) { return c < 3 ? v(c) : v.norm(); };
+  auto mean_of = [&](const std::vector<Index>& nodes, bool disp) {
+    Vec3 s = Vec3::Zero();
+    for (Index n : nodes)
+      for (int d = 0; d < 3; ++d) {
+        const std::size_t k = 3 * static_cast<std::size_t>(n) + d;
+        s(d) += disp ? x_[k] - m_.fem.x0[k] : v_[k];
+      }
+    return Vec3(s / static_cast<Real>(nodes.size()));
+  };
+  switch (ms.cfg.type) {
+    case T::Reaction: {
+      Vec3 r = Vec3::Zero();
+      for (std::size_t k = 0; k < reaction_.size(); ++k)
+        if (ms.dof_in_group[k]) r(k % 3) += reaction_[k];
+      return pick(r);
+    }
+    case T::Displacement: return pick(mean_of(ms.nodes, true));
+    case T::Velocity: return pick(mean_of(ms.nodes, false));
+    case T::DisplacementDifference: return pick(Vec3(mean_of(ms.nodes2, true) - mean_of(ms.nodes, true)));
+    case T::MaxDisplacement: {
+      Real mx = 0;
+      for (Index n : ms.nodes) {
+        Vec3 u;
+        for (int d = 0; d < 3; ++d) u(d) = x_[3 * n + d] - m_.fem.x0[3 * n + d];
+        mx = std::max(mx, std::abs(pick(u)));
+      }
+      return mx;
+    }
+  }
+  return 0;
+}
+
+void Integrator::stresses(std::vector<Real>& out) {
+  out.assign(6 * static_cast<std::size_t>(m_.fem.n_elements), 0.0);
+  std::vector<Real> scratch(f_.size());
+  internal_forces(m_.fem, x_.data(), v_.data(), scratch.data(), out.data());
+}
+
+}  // namespace dspdem

@@ -1,0 +1,54 @@
+// A case turned into arrays the time loop can run: mesh, FEM blocks, nodal constraints,
+// loads, initial velocities and monitor node sets.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "fem/fem_model.hpp"
+#include "io/case_config.hpp"
+#include "mesh/mesh.hpp"
+
+namespace dspdem {
+
+/// A prescribed-velocity degree of freedom (fixed = zero velocity).
+struct Constraint {
+  Index dof;        ///< 3 * node + component
+  Real value;       ///< target velocity [m/s]
+  Real ramp;        ///< ramp time [s]
+};
+
+/// A nodal force component from a force boundary condition.
+struct NodalLoad {
+  Index dof;
+  Real value;  ///< full force [N]
+  Real ramp;
+};
+
+struct MonitorSet {
+  MonitorConfig cfg;
+  std::vector<Index> nodes, nodes2;
+  std::vector<char> dof_in_group;  ///< reaction monitors: 3 x n_nodes mask
+};
+
+struct Model {
+  Mesh mesh;
+  std::vector<Material> materials;
+  FemModel fem;
+  std::vector<Constraint> constraints;
+  std::vector<NodalLoad> loads;
+  std::vector<Real> v0;
+  Vec3 gravity = Vec3::Zero();
+  std::vector<MonitorSet> monitors;
+  std::vector<std::string> body_names;
+};
+
+/// Ramp factor of a boundary value at time t: min(1, t / ramp), or 1 without a ramp.
+inline Real ramp_factor(Real t, Real ramp) { return ramp > 0 ? std::min<Real>(1.0, t / ramp) : 1.0; }
+/// Its time derivative (for the inertia part of reactions).
+inline Real ramp_rate(Real t, Real ramp) { return ramp > 0 && t < ramp ? 1.0 / ramp : 0.0; }
+
+/// Builds the model from a case and a mesh. Throws Error naming the case key for groups or
+/// bodies that do not match the mesh.
+Model build_model(const CaseConfig& c, Mesh mesh);
+
+}  // namespace dspdem

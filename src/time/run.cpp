@@ -1,0 +1,204 @@
+#include "time/run.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "fem/stable_dt.hpp"
+#include "io/staging.hpp"
+#include "io/vtu_writer.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "time/integrator.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_signal(int) { g_interrupted = 1; }
+
+std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') o += '\\', o += ch;
+    else if (ch == '\n') o += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20) o += ' ';
+    else o += ch;
+  }
+  return o;
+}
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s)) return "?";
+  if (s < 120) return fmt::format("{:.0f}s", s);
+  if (s < 7200) return fmt::format("{:.0f}m{:02.0f}s", std::floor(s / 60), std::fmod(s, 60));
+  return fmt::format("{:.0f}h{:02.0f}m", std::floor(s / 3600), std::fmod(s / 60, 60));
+}
+
+class Series {
+ public:
+  Series(const std::string& path, const Model& m) : f_(path) {
+    DSPDEM_CHECK(f_.good(), "cannot write '{}'", path);
+    f_ << "time,step,kinetic,internal,external_work,damping,balance_error";
+    for (const auto& ms : m.monitors) f_ << ',' << ms.cfg.name;
+    f_ << '\n';
+  }
+  void row(const Integrator& it, const Model& m) {
+    const Energy e = it.energy();
+    f_ << fmt::format("{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.4g}", it.time(), it.steps(), e.kinetic,
+                      e.internal, e.external_work, e.damping, e.balance_error());
+    for (const auto& ms : m.monitors) f_ << fmt::format(",{:.10g}", it.monitor(ms));
+    f_ << '\n';
+    f_.flush();
+  }
+
+ private:
+  std::ofstream f_;
+};
+}  // namespace
+
+int run_case(const CaseConfig& c, const RunOptions& opt) {
+  Timer wall;
+  log::info("dspdem run: case '{}' ({})", c.name, c.path);
+  Mesh mesh = read_gmsh(c.mesh_file);
+  Model model = build_model(c, std::move(mesh));
+  const FemModel& fem = model.fem;
+  log::info("  mesh {}: {} nodes, {} elements", c.mesh_file, fem.n_nodes, fem.n_elements);
+
+  const StableStep crit = element_stable_step(fem, model.materials);
+  const std::size_t lim_tag = fem.elem_tag[crit.element];
+  Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
+  log::info("  critical step {:.4g} s, limited by {} {} (body '{}'); using dt = {:.4g} s{}", crit.dt, crit.limiter,
+            lim_tag, model.body_names[fem.elem_body[crit.element]], dt, c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
+  if (c.dt > crit.dt) {
+    if (!c.allow_unstable)
+      fail("{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, use dt = 0 "
+           "for automatic, or set time.allow_unstable = true to study the instability",
+           c.path, c.dt, crit.dt, lim_tag);
+    log::warn("[time] dt = {:.4g} s is {:.2f} x the critical step {:.4g} s (element {}): expect the run to be stopped "
+              "by the stability checks", c.dt, c.dt / crit.dt, crit.dt, lim_tag);
+  }
+  long n_steps = static_cast<long>(std::ceil(c.t_end / dt - 1e-9));
+  if (c.max_steps > 0) n_steps = std::min(n_steps, c.max_steps);
+
+  Staging stage(opt.out_dir);
+  const std::string frames_dir = (fs::path(stage.path()) / "frames").string();
+  fs::create_directories(frames_dir);
+  write_file_atomic((fs::path(stage.path()) / "case.resolved.toml").string(), c.resolved_toml);
+  Series series((fs::path(stage.path()) / "series.csv").string(), model);
+  std::vector<std::pair<double, std::string>> frames;
+  const std::string pvd = (fs::path(stage.path()) / "run.pvd").string();
+
+  Integrator it(model, dt);
+  std::vector<Real> stress;
+  auto write_frame = [&]() {
+    it.stresses(stress);
+    FrameData fd;
+    fd.mesh = &model.mesh;
+    fd.x = it.x().data();
+    fd.x0 = fem.x0.data();
+    fd.v = it.v().data();
+    fd.stress = stress.data();
+    fd.body = fem.elem_body.data();
+    fd.material = fem.elem_material.data();
+    fd.fields = c.fields;
+    fd.compress = c.compress;
+    const std::string name = fmt::format("frame_{:04d}.vtu", frames.size());
+    write_vtu((fs::path(frames_dir) / name).string(), fd);
+    frames.emplace_back(it.time(), "frames/" + name);
+    write_pvd(pvd, frames);
+  };
+
+  auto write_summary = [&](const std::string& dir, const std::string& status, const std::string& message) {
+    const Energy e = it.energy();
+    const double ws = wall.seconds();
+    std::string s = "{\n";
+    auto kv = [&s](const std::string& k, const std::string& v) { s += fmt::format("  \"{}\": {},\n", k, v); };
+    kv("case", '"' + json_escape(c.name) + '"');
+    kv("case_file", '"' + json_escape(c.path) + '"');
+    kv("status", '"' + status + '"');
+    kv("message", '"' + json_escape(message) + '"');
+    kv("steps", std::to_string(it.steps()));
+    kv("dt", json_number(dt));
+    kv("dt_critical", json_number(crit.dt));
+    kv("dt_limiter", '"' + crit.limiter + '"');
+    kv("dt_limiting_element", std::to_string(lim_tag));
+    kv("t_end", json_number(it.time()));
+    kv("wall_s", json_number(ws));
+    kv("threads", std::to_string(omp_get_max_threads()));
+    kv("nodes", std::to_string(fem.n_nodes));
+    kv("elements", std::to_string(fem.n_elements));
+    kv("frames", std::to_string(frames.size()));
+    kv("element_steps_per_s", json_number(ws > 0 ? static_cast<double>(it.steps()) * fem.n_elements / ws : 0.0));
+    s += fmt::format(
+        "  \"energy\": {{\"kinetic\": {}, \"internal\": {}, \"external_work\": {}, \"damping\": {}, \"initial\": {}, "
+        "\"balance_error\": {}}}\n}}\n",
+        json_number(e.kinetic), json_number(e.internal), json_number(e.external_work), json_number(e.damping),
+        json_number(e.initial), json_number(e.balance_error()));
+    write_file_atomic((fs::path(dir) / "summary.json").string(), s);
+  };
+
+  g_interrupted = 0;
+  auto old_int = std::signal(SIGINT, on_signal);
+  auto old_term = std::signal(SIGTERM, on_signal);
+  struct Restore {
+    decltype(old_int) a, b;
+    ~Restore() { std::signal(SIGINT, a), std::signal(SIGTERM, b); }
+  } restore{old_int, old_term};
+
+  const bool tty_progress = opt.progress;
+  try {
+    write_frame();
+    series.row(it, model);
+    Real next_frame = c.frame_interval, next_series = c.series_interval;
+    Timer loop;
+    double last_report = 0;
+    for (long s = 0; s < n_steps; ++s) {
+      it.step();
+      const bool last = s + 1 == n_steps;
+      const Real t = it.time();
+      if (t >= next_series - 1e-12 * c.t_end || last) {
+        it.check_energy(c.energy_blowup_factor);
+        series.row(it, model);
+        while (next_series <= t + 1e-12 * c.t_end) next_series += c.series_interval;
+      }
+      if (t >= next_frame - 1e-12 * c.t_end || last) {
+        write_frame();
+        while (next_frame <= t + 1e-12 * c.t_end) next_frame += c.frame_interval;
+      }
+      if (g_interrupted) throw NumericalError(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
+      if (tty_progress && loop.seconds() - last_report > 0.5) {
+        last_report = loop.seconds();
+        const double rate = static_cast<double>(s + 1) / last_report;
+        fmt::print(stderr, "\r  step {}/{}  t = {:.4g} s  {:.0f} steps/s  ETA {}   ", s + 1, n_steps, t, rate,
+                   format_duration(static_cast<double>(n_steps - s - 1) / rate));
+      }
+    }
+    if (tty_progress) fmt::print(stderr, "\n");
+  } catch (const NumericalError& e) {
+    if (tty_progress) fmt::print(stderr, "\n");
+    write_summary(stage.path(), "failed", e.what());
+    write_pvd(pvd, frames);
+    const std::string kept = stage.keep_failed();
+    throw NumericalError(fmt::format("{}\n  partial results (frames up to the failure) kept in {}", e.what(), kept),
+                         e.step, e.time);
+  }
+  write_summary(stage.path(), "completed", "");
+  stage.commit();
+  const Energy e = it.energy();
+  log::info("  {} steps to t = {:.6g} s in {:.2f} s ({:.3g} element-steps/s, {} threads); energy balance error {:.2e}",
+            it.steps(), it.time(), wall.seconds(), static_cast<double>(it.steps()) * fem.n_elements / wall.seconds(),
+            omp_get_max_threads(), e.balance_error());
+  log::info("  results in {}/ (run.pvd, {} frames, series.csv, summary.json)", opt.out_dir, frames.size());
+  return 0;
+}
+
+}  // namespace dspdem
