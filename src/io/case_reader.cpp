@@ -369,7 +369,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
   {
     Section s(ctx, sub_table(ctx, root, "time"), "time", "[time]");
     c.t_end = s.real("end");
-    c.dt = s.real("dt");
+    c.dt = s.has("dt") ? s.real("dt") : 0.0;  // 0: automatic
     c.safety = s.real("safety");
     c.allow_unstable = s.boolean("allow_unstable");
     c.max_steps = s.integer("max_steps");

@@ -80,7 +80,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
             lim_tag, model.body_names[fem.elem_body[crit.element]], dt, c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
   if (c.dt > crit.dt) {
     if (!c.allow_unstable)
-      fail("{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, use dt = 0 "
+      fail("{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, remove it "
            "for automatic, or set time.allow_unstable = true to study the instability",
            c.path, c.dt, crit.dt, lim_tag);
     log::warn("[time] dt = {:.4g} s is {:.2f} x the critical step {:.4g} s (element {}): expect the run to be stopped "
