@@ -1,0 +1,200 @@
+// End-to-end tests of the dspdem executable: outputs of a good run, bad inputs rejected
+// with a clear message and non-zero exit, earlier results never destroyed.
+#include <gmsh.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <vtkCellData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "mesh/gmsh_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Result {
+  int code;
+  std::string out;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(DSPDEM_BIN) + " " + args + " 2>&1";
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return p == std::string::npos ? s : s.replace(p, from.size(), to);
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dspdem_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "meshes");
+    fs::copy_file(fs::path(DSPDEM_SOURCE_DIR) / "cases/meshes/cantilever_hex.geo", dir_ / "meshes/cantilever_hex.geo");
+    good_ = slurp(fs::path(DSPDEM_SOURCE_DIR) / "cases/cantilever.toml");
+    // Short: 2 ms, 3 frames.
+    good_ = replace(good_, "end = 0.05", "end = 2.0e-3");
+    good_ = replace(good_, "frame_interval = 2.5e-3", "frame_interval = 1.0e-3");
+  }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  fs::path dir_;
+  std::string good_;
+};
+}  // namespace
+
+TEST_F(Cli, GoodRunWritesCompleteOutputs) {
+  const fs::path c = write("good.toml", good_), out = dir_ / "out";
+  // popen gives a pipe, not a terminal: no progress line expected.
+  const Result r2 = run("run " + c.string() + " --out " + out.string());
+  ASSERT_EQ(r2.code, 0) << r2.out;
+  EXPECT_NE(r2.out.find(out.string()), std::string::npos) << "results folder not printed";
+  EXPECT_EQ(r2.out.find("ETA"), std::string::npos) << "progress line printed off a terminal";
+  const std::string summary = slurp(out / "summary.json");
+  for (const char* key : {"\"case\"", "\"steps\"", "\"dt\"", "\"t_end\"", "\"wall_s\"", "\"nodes\"", "\"elements\"",
+                          "\"element_steps_per_s\"", "\"kinetic\"", "\"internal\"", "\"external_work\"", "\"damping\"",
+                          "\"balance_error\""})
+    EXPECT_NE(summary.find(key), std::string::npos) << key;
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos);
+  // PVD lists 3 frames with real times.
+  const std::string pvd = slurp(out / "run.pvd");
+  const std::regex dataset("<DataSet");
+  EXPECT_EQ(std::distance(std::sregex_iterator(pvd.begin(), pvd.end(), dataset), std::sregex_iterator()), 3);
+  EXPECT_NE(pvd.find("timestep=\"0.001"), std::string::npos) << pvd;
+  // The last frame reads back with VTK: all points, cells and fields, zlib-compressed.
+  const fs::path vtu = out / "frames/frame_0002.vtu";
+  ASSERT_TRUE(fs::exists(vtu));
+  EXPECT_NE(slurp(vtu).find("vtkZLibDataCompressor"), std::string::npos);
+  vtkNew<vtkXMLUnstructuredGridReader> rd;
+  rd->SetFileName(vtu.c_str());
+  rd->Update();
+  vtkUnstructuredGrid* g = rd->GetOutput();
+  EXPECT_EQ(g->GetNumberOfPoints(), 1025);
+  EXPECT_EQ(g->GetNumberOfCells(), 640);
+  for (const char* a : {"displacement", "velocity"}) EXPECT_NE(g->GetPointData()->GetArray(a), nullptr) << a;
+  for (const char* a : {"stress", "von_mises", "max_principal", "body", "material"})
+    EXPECT_NE(g->GetCellData()->GetArray(a), nullptr) << a;
+  EXPECT_EQ(g->GetCellData()->GetArray("stress")->GetNumberOfComponents(), 6);
+  // series.csv: header with the monitors and one row per series step.
+  const std::string csv = slurp(out / "series.csv");
+  EXPECT_EQ(csv.rfind("time,step,kinetic,internal,external_work,damping,balance_error,tip_uy,clamp_reaction_y", 0), 0u);
+  EXPECT_TRUE(fs::exists(out / "case.resolved.toml"));
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_EQ(e.path().filename().string().rfind(".staging", 0), std::string::npos) << "staging folder left behind";
+}
+
+TEST_F(Cli, Msh4FileWrittenByGmshReadsEndToEnd) {
+  {
+    dspdem::GmshSession s;
+    gmsh::open((dir_ / "meshes/cantilever_hex.geo").string());
+    gmsh::model::mesh::generate(3);
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::write((dir_ / "meshes/beam.msh").string());
+  }
+  const fs::path c = write("msh.toml", replace(good_, "meshes/cantilever_hex.geo", "meshes/beam.msh"));
+  const Result r = run("run " + c.string() + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("1025 nodes, 640 elements"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(run("run " + write("good.toml", good_).string() + " --out " + out.string()).code, 0);
+  const std::string before = slurp(out / "summary.json"), pvd_before = slurp(out / "run.pvd");
+
+  // An inverted tetrahedron (nodes 1 3 2 4), as a gmsh 2.2 ASCII file.
+  write("meshes/inverted.msh",
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"beam\"\n$EndPhysicalNames\n"
+        "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 3 2 4\n$EndElements\n");
+  struct Bad {
+    std::string name, text, args;
+    std::vector<std::string> expect;
+  };
+  const std::vector<Bad> cases = {
+      {"syntax", replace(good_, "nu = 0.2", "nu = 0.2 0.3"), "", {"syntax.toml:", "syntax error"}},
+      {"unknown_key", replace(good_, "nu = 0.2", "nu = 0.2\npoisson = 0.2"), "", {"unknown key 'poisson'"}},
+      {"E", replace(good_, "E = 30.0e9", "E = -1.0"), "", {"'E'", "out of range"}},
+      {"nu", replace(good_, "nu = 0.2", "nu = 0.5"), "", {"'nu'", "out of range"}},
+      {"density", replace(good_, "density = 2400.0", "density = -2400.0"), "", {"'density'"}},
+      {"dt", replace(good_, "end = 2.0e-3", "end = 2.0e-3\ndt = 0.0"), "", {"'dt'"}},
+      {"dt_unstable", good_, "--set time.dt=1.0", {"exceeds the critical step", "element"}},
+      {"missing_mesh", replace(good_, "meshes/cantilever_hex.geo", "meshes/none.msh"), "", {"none.msh", "does not exist"}},
+      {"inverted", replace(good_, "meshes/cantilever_hex.geo", "meshes/inverted.msh"), "", {"inverted", "element tags: 1"}},
+      {"unknown_group", replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""), "",
+       {"'top'", "clamp, tip"}},
+  };
+  for (const auto& b : cases) {
+    const fs::path c = write(b.name + ".toml", b.text);
+    const Result r = run("run " + c.string() + " --out " + out.string() + " " + b.args);
+    EXPECT_EQ(r.code, 2) << b.name << ": " << r.out;
+    EXPECT_NE(r.out.find("error:"), std::string::npos) << b.name << ": " << r.out;
+    for (const auto& e : b.expect) EXPECT_NE(r.out.find(e), std::string::npos) << b.name << ": '" << e << "' in " << r.out;
+    EXPECT_EQ(slurp(out / "summary.json"), before) << b.name << " changed earlier results";
+    EXPECT_EQ(slurp(out / "run.pvd"), pvd_before) << b.name << " changed earlier results";
+  }
+}
+
+TEST_F(Cli, NumericalFailureNamesStepAndElementAndKeepsEarlierResults) {
+  const fs::path out = dir_ / "out";
+  const fs::path c = write("good.toml", good_);
+  ASSERT_EQ(run("run " + c.string() + " --out " + out.string()).code, 0);
+  const std::string before = slurp(out / "summary.json");
+  const Result r = run("run " + c.string() + " --out " + out.string() + " --set time.dt=1.2e-5 --set time.allow_unstable=true");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("element [0-9]+"))) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("step [0-9]+, t = "))) << r.out;
+  EXPECT_EQ(slurp(out / "summary.json"), before);
+  EXPECT_NE(slurp(out / "failed_run/summary.json").find("\"status\": \"failed\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "failed_run/frames/frame_0000.vtu"));
+}
+
+TEST_F(Cli, ProgressLineOnRequest) {
+  const Result r = run("run " + write("good.toml", good_).string() + " --out " + (dir_ / "out").string() + " --progress");
+  ASSERT_EQ(r.code, 0) << r.out;
+  // The loop reports every 0.5 s of wall time; a 2 ms case may finish before the first
+  // report, so ask for a longer one.
+  const Result r2 = run("run " + write("long.toml", good_).string() + " --out " + (dir_ / "out").string() +
+                        " --progress --set time.end=0.05");
+  ASSERT_EQ(r2.code, 0) << r2.out;
+  for (const char* s : {"step ", "t = ", "steps/s", "ETA"}) EXPECT_NE(r2.out.find(s), std::string::npos) << s << " in " << r2.out;
+}
+
+TEST_F(Cli, HelpListsSubcommands) {
+  const Result r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("run"), std::string::npos);
+  EXPECT_NE(r.out.find("keys"), std::string::npos);
+}
+
+TEST(Docs, CasesReadmeHoldsTheSchemaTable) {
+  // cases/README.md must carry `dspdem keys` verbatim, so the documentation cannot drift.
+  const Result r = run("keys");
+  ASSERT_EQ(r.code, 0);
+  const std::string doc = slurp(fs::path(DSPDEM_SOURCE_DIR) / "cases/README.md");
+  EXPECT_NE(doc.find(r.out), std::string::npos) << "regenerate the table with: build/dspdem keys";
+}

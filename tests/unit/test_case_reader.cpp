@@ -1,0 +1,93 @@
+// Case-file validation: every error names the file, the line and the key.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "io/case_config.hpp"
+
+using namespace dspdem;
+
+namespace {
+namespace fs = std::filesystem;
+
+const char* kGood = R"([case]
+name = "t"
+[mesh]
+file = "box.msh"
+[materials.rock]
+density = 2500.0
+E = 30.0e9
+nu = 0.2
+[[bodies]]
+name = "b"
+groups = ["all"]
+material = "rock"
+[time]
+end = 1.0e-3
+)";
+
+std::string write_case(const std::string& text) {
+  static int n = 0;
+  const fs::path dir = fs::temp_directory_path() / "dspdem_case_reader";
+  fs::create_directories(dir);
+  const fs::path p = dir / ("case" + std::to_string(n++) + ".toml");
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return s.replace(p, from.size(), to);
+}
+
+// Expects read_case to throw with every fragment in the message.
+void expect_error(const std::string& text, const std::vector<std::string>& fragments,
+                  const std::vector<std::string>& overrides = {}) {
+  const std::string path = write_case(text);
+  try {
+    read_case(path, overrides);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+    EXPECT_NE(msg.find(path), std::string::npos) << "file not named: " << msg;
+  }
+}
+}  // namespace
+
+TEST(CaseReader, GoodCaseResolvesDefaults) {
+  const CaseConfig c = read_case(write_case(kGood));
+  EXPECT_EQ(c.name, "t");
+  EXPECT_DOUBLE_EQ(c.materials[0].E, 30e9);
+  EXPECT_DOUBLE_EQ(c.safety, 0.9);
+  EXPECT_DOUBLE_EQ(c.dt, 0.0);  // automatic
+  EXPECT_DOUBLE_EQ(c.frame_interval, 1e-3 / 20);
+  EXPECT_NE(c.resolved_toml.find("safety = 0.9"), std::string::npos);
+}
+
+TEST(CaseReader, SyntaxErrorHasLine) { expect_error(replace(kGood, "nu = 0.2", "nu = = 0.2"), {":8:", "syntax"}); }
+TEST(CaseReader, UnknownKey) { expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\nYoung = 3"), {":9:", "Young", "materials.rock"}); }
+TEST(CaseReader, UnknownSection) { expect_error(std::string(kGood) + "[solver]\nx = 1\n", {":15:", "solver"}); }
+TEST(CaseReader, NonPositiveE) { expect_error(replace(kGood, "E = 30.0e9", "E = 0.0"), {":7:", "'E'", "range"}); }
+TEST(CaseReader, NuTooLarge) { expect_error(replace(kGood, "nu = 0.2", "nu = 0.5"), {":8:", "'nu'", "(-1, 0.5)"}); }
+TEST(CaseReader, NuTooSmall) { expect_error(replace(kGood, "nu = 0.2", "nu = -1.0"), {":8:", "'nu'"}); }
+TEST(CaseReader, NegativeDensity) { expect_error(replace(kGood, "density = 2500.0", "density = -1.0"), {":6:", "'density'"}); }
+TEST(CaseReader, NonPositiveDt) { expect_error(std::string(kGood) + "dt = 0.0\n", {":15:", "'dt'", "> 0"}); }
+TEST(CaseReader, WrongType) { expect_error(replace(kGood, "E = 30.0e9", "E = \"stiff\""), {":7:", "'E'", "number"}); }
+TEST(CaseReader, MissingRequired) { expect_error(replace(kGood, "E = 30.0e9\n", ""), {"missing", "'E'"}); }
+TEST(CaseReader, UnknownMaterial) { expect_error(replace(kGood, "material = \"rock\"", "material = \"granite\""), {":12:", "granite"}); }
+TEST(CaseReader, BadChoice) {
+  expect_error(std::string(kGood) + "[[monitors]]\nname = \"m\"\ntype = \"stress\"\n", {":17:", "'type'", "reaction"});
+}
+TEST(CaseReader, OverrideIsValidated) {
+  expect_error(kGood, {"--set", "'nu'"}, {"materials.rock.nu=0.7"});
+  const CaseConfig c = read_case(write_case(kGood), {"time.end=2e-3", "case.name=renamed"});
+  EXPECT_DOUBLE_EQ(c.t_end, 2e-3);
+  EXPECT_EQ(c.name, "renamed");
+}
+TEST(CaseReader, MissingFile) {
+  EXPECT_THROW(read_case("/nonexistent/case.toml"), Error);
+}
