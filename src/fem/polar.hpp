@@ -16,7 +16,7 @@ inline bool polar_rotation(const Mat3& F, Mat3& R) {
     const Mat3 Rn = 0.5 * (R + R.inverse().transpose());
     const Real change = (Rn - R).squaredNorm();
     R = Rn;
-    if (change < 1e-28) break;
+    if (change < 1e-20) break;  // |change| < 1e-10: the error left is ~|change|^2 / 2
   }
   return true;
 }
