@@ -206,3 +206,34 @@ TEST(Determinism, SameResultForAnyThreadCount) {
   ASSERT_EQ(a.size(), b.size());
   EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin()));
 }
+
+TEST(Ledger, GravityReactionAndMonitorsAtRest) {
+  // A block on a fixed base under gravity, heavily mass-damped to rest: the base reaction
+  // equals the weight (0.1 %: the residual motion is below that), the energy balance
+  // closes (1e-3 of the largest term), and the monitors report what the state says.
+  CaseConfig c = simple_case(1e9, 0.25, 2000);
+  c.gravity = Vec3(0, -9.81, 0);
+  c.materials[0].alpha = 2000.0;
+  c.boundaries.push_back(fixed("ymin"));
+  MonitorConfig r;
+  r.type = MonitorConfig::Type::Reaction, r.name = "r", r.group = "ymin", r.component = 1;
+  MonitorConfig d;
+  d.type = MonitorConfig::Type::DisplacementDifference, d.name = "d", d.group = "ymin", d.group2 = "ymax", d.component = 1;
+  MonitorConfig mx;
+  mx.type = MonitorConfig::Type::MaxDisplacement, mx.name = "mx", mx.component = 3;
+  c.monitors = {r, d, mx};
+  Model m = build_model(c, box_mesh(CellType::Hex8, 3, 6, 3, Vec3(0.3, 0.6, 0.3)));
+  Integrator it(m, 0.9 * critical_dt(m));
+  while (it.time() < 0.05) it.step();
+  const Real weight = 2000 * 0.3 * 0.6 * 0.3 * 9.81;
+  EXPECT_NEAR(it.monitor(m.monitors[0]) / weight, 1.0, 1e-3);
+  // Self-weight shortening of a laterally free column: rho g H^2 / (2 E). Within 5 %: the
+  // clamped base restrains Poisson contraction there and stiffens the column slightly.
+  const Real shortening = 2000 * 9.81 * 0.6 * 0.6 / (2 * 1e9);
+  EXPECT_NEAR(-it.monitor(m.monitors[1]) / shortening, 1.0, 0.05);
+  EXPECT_GE(it.monitor(m.monitors[2]), -it.monitor(m.monitors[1]));
+  EXPECT_LT(it.energy().balance_error(), 1e-3);
+  RecordProperty("reaction_over_weight", sci(it.monitor(m.monitors[0]) / weight));
+  RecordProperty("shortening_over_estimate", sci(-it.monitor(m.monitors[1]) / shortening));
+  RecordProperty("balance_error", sci(it.energy().balance_error()));
+}
