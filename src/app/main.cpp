@@ -8,7 +8,8 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
-#include "time/run.hpp"
+#include "app/mesh_command.hpp"
+#include "app/run_command.hpp"
 
 using namespace dspdem;
 
@@ -29,6 +30,13 @@ int main(int argc, char** argv) {
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
 
+  auto* mesh = app.add_subcommand("mesh", "Mesh a case: writes DIR/<case>.msh and DIR/quality.json");
+  std::string mesh_case_file, mesh_out;
+  std::vector<std::string> mesh_sets;
+  mesh->add_option("case", mesh_case_file, "Case file (TOML)")->required();
+  mesh->add_option("-o,--out", mesh_out, "Output directory (default: results/<case name>/mesh)");
+  mesh->add_option("--set", mesh_sets, "Override a case key: section.key=value (repeatable)");
+
   auto* keys = app.add_subcommand("keys", "Print every case-file key (type, default, range, unit, meaning) as Markdown");
 
   try {
@@ -42,6 +50,10 @@ int main(int argc, char** argv) {
     if (*keys) {
       fmt::print("{}", case_schema_markdown());
       return 0;
+    }
+    if (*mesh) {
+      const CaseConfig c = read_case(mesh_case_file, mesh_sets);
+      return mesh_command(c, mesh_out.empty() ? (std::filesystem::path("results") / c.name / "mesh").string() : mesh_out);
     }
     if (*run) {
       const CaseConfig c = read_case(case_file, sets);

@@ -2,6 +2,7 @@
 // The schema (keys, types, defaults, ranges, units, documentation) is in case_schema.cpp
 // and is printed by `dspdem keys`; cases/README.md holds the same table.
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@ struct BodyConfig {
   std::vector<std::string> groups;
   std::string material;
   Kinematics kinematics = Kinematics::Corotational;
+  bool split_components = false;
 };
 
 struct BoundaryConfig {
@@ -45,7 +47,11 @@ struct CaseConfig {
   std::string path;         ///< the case file
   std::string dir;          ///< its directory (relative paths are resolved against it)
   std::string name, description;
-  std::string mesh_file;    ///< absolute or relative to dir
+  std::string mesh_file;    ///< absolute or relative to dir (empty when a generator is used)
+  std::string mesh_generator;                     ///< generator name (empty when a file is used)
+  std::map<std::string, double> mesh_num;         ///< its numeric parameters
+  std::map<std::string, std::string> mesh_str;    ///< its text parameters
+  bool mesh_cache = true;
   Vec3 gravity = Vec3::Zero();
   std::vector<Material> materials;
   std::vector<BodyConfig> bodies;

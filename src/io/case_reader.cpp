@@ -113,10 +113,12 @@ class Section {
     }
     return out;
   }
-  /// Errors on any key the schema does not know.
-  void finish() const {
+  /// Errors on any key the schema does not know (`sub_table` names a nested table that
+  /// is read separately).
+  void finish(const std::string& sub_table = "") const {
     for (const auto& [key, node] : t_) {
       const std::string ks(key.str());
+      if (!sub_table.empty() && ks == sub_table) continue;
       if (find_key(pattern_, ks).key[0] == '\0')
         fail("{}: {} has unknown key '{}' (known keys: {})", ctx_.where(node.source()), label_, ks,
              allowed_keys(pattern_));
@@ -265,11 +267,29 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     s.finish();
   }
   {
-    Section s(ctx, sub_table(ctx, root, "mesh"), "mesh", "[mesh]");
-    c.mesh_file = s.str("file");
-    const fs::path p(c.mesh_file);
-    if (p.is_relative()) c.mesh_file = (fs::path(c.dir) / p).lexically_normal().string();
-    s.finish();
+    toml::table& mt = sub_table(ctx, root, "mesh");
+    Section s(ctx, mt, "mesh", "[mesh]");
+    if (s.has("file") == s.has("generator"))
+      fail("{}: [mesh] needs exactly one of 'file' (a .msh or .geo) or 'generator'", s.where());
+    c.mesh_cache = s.boolean("cache");
+    if (s.has("file")) {
+      c.mesh_file = s.str("file");
+      const fs::path p(c.mesh_file);
+      if (p.is_relative()) c.mesh_file = (fs::path(c.dir) / p).lexically_normal().string();
+      s.finish();
+    } else {
+      c.mesh_generator = s.str("generator");
+      s.finish(c.mesh_generator);
+      const std::string pattern = "mesh." + c.mesh_generator;
+      Section g(ctx, sub_table(ctx, mt, c.mesh_generator), pattern, "[" + pattern + "]");
+      for (const auto& k : schema::keys()) {
+        if (pattern != k.section) continue;
+        if (k.type == Type::String) c.mesh_str[k.key] = g.str(k.key);
+        else if (k.type == Type::Int) c.mesh_num[k.key] = static_cast<double>(g.integer(k.key));
+        else c.mesh_num[k.key] = g.real(k.key);
+      }
+      g.finish();
+    }
   }
   {
     Section s(ctx, sub_table(ctx, root, "physics"), "physics", "[physics]");
@@ -324,6 +344,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       b.material = s.str("material");
       material_index(b.material, s.where("material"));
       b.kinematics = s.str("kinematics") == "small_strain" ? Kinematics::SmallStrain : Kinematics::Corotational;
+      b.split_components = s.boolean("split_components");
       for (const auto& o : c.bodies)
         DSPDEM_CHECK(o.name != b.name, "{}: body name '{}' used twice", s.where("name"), b.name);
       s.finish();

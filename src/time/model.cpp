@@ -88,6 +88,44 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     fail("{}: {} element(s) of mesh '{}' belong to no body (first: element {}); list their volume groups in [[bodies]] groups",
          c.path, orphans, me.source, first_orphan);
 
+  // Split bodies into connected components where asked (e.g. one body per particle).
+  for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
+    if (!c.bodies[bi].split_components) continue;
+    std::vector<Index> parent(me.n_nodes());
+    for (Index n = 0; n < me.n_nodes(); ++n) parent[n] = n;
+    auto find = [&](Index a) {
+      while (parent[a] != a) a = parent[a] = parent[parent[a]];
+      return a;
+    };
+    auto each_element = [&](auto&& fn) {
+      for (std::size_t b = 0; b < me.blocks.size(); ++b)
+        for (Index e = 0; e < me.blocks[b].size(); ++e)
+          if (body[block_offset[b] + e] == static_cast<Index>(bi)) fn(me.blocks[b], block_offset[b] + e, e);
+    };
+    each_element([&](const ElementBlock& blk, Index, Index e) {
+      const Index* cn = &blk.conn[static_cast<std::size_t>(e) * blk.npe()];
+      for (int i = 1; i < blk.npe(); ++i) parent[find(cn[i])] = find(cn[0]);
+    });
+    std::map<Index, Index> component_body;  // root node -> body id, numbered in element order
+    Index k = 0;
+    each_element([&](const ElementBlock& blk, Index gid, Index e) {
+      const Index root = find(blk.conn[static_cast<std::size_t>(e) * blk.npe()]);
+      auto [it, inserted] = component_body.try_emplace(root, -1);
+      if (inserted) {
+        if (k == 0) {
+          it->second = static_cast<Index>(bi);  // the first component keeps the body's slot
+          m.body_names[bi] = c.bodies[bi].name + "#0";
+        } else {
+          it->second = static_cast<Index>(m.body_names.size());
+          m.body_names.push_back(c.bodies[bi].name + "#" + std::to_string(k));
+          body_kin.push_back(c.bodies[bi].kinematics);
+        }
+        ++k;
+      }
+      body[gid] = it->second;
+    });
+  }
+
   m.fem = build_fem_model(me, m.materials, material, body, body_kin);
 
   // Constraints: the last condition on a dof wins; say so when two disagree.

@@ -1,4 +1,4 @@
-#include "time/run.hpp"
+#include "app/run_command.hpp"
 
 #include <omp.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 #include "fem/stable_dt.hpp"
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"
-#include "mesh/gmsh_reader.hpp"
+#include "app/case_mesh.hpp"
 #include "time/integrator.hpp"
 
 namespace dspdem {
@@ -68,10 +68,11 @@ class Series {
 int run_case(const CaseConfig& c, const RunOptions& opt) {
   Timer wall;
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
-  Mesh mesh = read_gmsh(c.mesh_file);
+  Mesh mesh = load_case_mesh(c);
   Model model = build_model(c, std::move(mesh));
   const FemModel& fem = model.fem;
-  log::info("  mesh {}: {} nodes, {} elements", c.mesh_file, fem.n_nodes, fem.n_elements);
+  log::info("  mesh {}: {} nodes, {} elements, {} bodies", c.mesh_generator.empty() ? c.mesh_file : c.mesh_generator,
+            fem.n_nodes, fem.n_elements, model.body_names.size());
 
   const StableStep crit = element_stable_step(fem, model.materials);
   const std::size_t lim_tag = fem.elem_tag[crit.element];

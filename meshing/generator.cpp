@@ -1,0 +1,179 @@
+#include "meshing/generator.hpp"
+
+#include <gmsh.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "mesh/gmsh_reader.hpp"
+
+namespace dspdem::meshing {
+
+namespace fs = std::filesystem;
+
+// One translation unit per generator; each defines its build function.
+void build_brazilian_disc(const Params&);
+void build_galvez_beam(const Params&);
+void build_murray_beam(const Params&);
+void build_sphere_plate(const Params&);
+void build_packing(const Params&);
+
+double Params::operator[](const std::string& key) const {
+  auto it = num.find(key);
+  DSPDEM_CHECK(it != num.end(), "internal: generator '{}' has no numeric parameter '{}'", generator, key);
+  return it->second;
+}
+
+const std::string& Params::text(const std::string& key) const {
+  auto it = str.find(key);
+  DSPDEM_CHECK(it != str.end(), "internal: generator '{}' has no text parameter '{}'", generator, key);
+  return it->second;
+}
+
+std::string Params::canonical() const {
+  std::string s = "generator=" + generator;
+  for (const auto& [k, v] : num) s += fmt::format(";{}={:.17g}", k, v);
+  for (const auto& [k, v] : str) s += fmt::format(";{}={}", k, v);
+  return s;
+}
+
+void param_error(const Params& p, const std::string& key, const std::string& why) {
+  auto it = p.num.find(key);
+  const std::string val = it != p.num.end() ? fmt::format("{:g}", it->second)
+                                           : (p.str.count(key) ? p.str.at(key) : std::string("?"));
+  fail("mesh.{}.{} = {}: {}", p.generator, key, val, why);
+}
+
+const std::vector<Generator>& registry() {
+  static const std::vector<Generator> r = {
+      {"brazilian_disc",
+       "Disc (axis z, diameter D, thickness L, centred at the origin) between two flat loading plates above and "
+       "below (load along y), each plate a separate body touching the disc. Volumes: disc, plate_top, plate_bottom. "
+       "Surfaces: plate_top_load (top face of the top plate), plate_bottom_load (bottom face of the bottom plate).",
+       build_brazilian_disc},
+      {"galvez_beam",
+       "Galvez et al. (1998) notched beam for mixed-mode fracture (four-point shear): beam along x (bottom at y = 0, "
+       "mid-thickness at z = 0) with a notch at mid-span from the bottom. Volume: beam. Curves across the width: "
+       "support_left, support_right (bottom), load_inner, load_outer (top). Curves: cmod_left, cmod_right (the two "
+       "notch-mouth edges).",
+       build_galvez_beam},
+      {"murray_beam",
+       "Murray et al. (2007) plain concrete beam for impact: box along x (centred at the origin, depth along y, width "
+       "along z), structured hexahedra, split at the support and impactor lines. Volumes: beam, impactor_left, "
+       "impactor_right, support_left, support_right (cylinders along z). Curves: midspan_bottom. Surfaces: "
+       "beam_bottom, beam_top.",
+       build_murray_beam},
+      {"sphere_plate",
+       "Sphere (centre at the origin) above a plate below it (-y), touching or with a gap. Volumes: sphere, plate. "
+       "Surfaces: plate_top, plate_bottom.",
+       build_sphere_plate},
+      {"packing",
+       "Open-top rigid box (inner size lx x ly(height) x lz, floor at y = 0) made of five wall slabs, and N "
+       "tetrahedral particles (one tet4 each, randomly oriented, edge length uniform in [size_min, size_max], "
+       "vertices jittered by 'irregularity') on a lattice inside and above it, without overlaps; deterministic for a "
+       "seed. Volumes: container, particles (each particle is a connected component: use split_components = true).",
+       build_packing},
+  };
+  return r;
+}
+
+const Generator& find_generator(const std::string& name) {
+  std::string names;
+  for (const auto& g : registry()) {
+    if (name == g.name) return g;
+    names += (names.empty() ? "" : ", ") + std::string(g.name);
+  }
+  fail("unknown mesh generator '{}' (known: {})", name, names);
+}
+
+Mesh generate(const Params& p, const std::string& msh_path) {
+  const Generator& g = find_generator(p.generator);
+  GmshSession session;
+  gmsh::model::add(p.generator);
+  gmsh::option::setNumber("General.NumThreads", 1);  // deterministic meshes
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1);    // Delaunay
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+  g.build(p);
+  std::string err;
+  gmsh::logger::getLastError(err);
+  DSPDEM_CHECK(err.empty(), "mesh generator '{}': gmsh reported: {}", p.generator, err);
+  Mesh m = mesh_from_gmsh_model("generator " + p.generator);
+  if (!msh_path.empty()) {
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 0);
+    const std::string tmp = msh_path + ".tmp.msh";
+    gmsh::write(tmp);
+    fs::rename(tmp, msh_path);
+  }
+  return m;
+}
+
+namespace {
+std::uint64_t fnv1a(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+// Bump when a generator's output changes for the same parameters.
+constexpr const char* kGeneratorsVersion = "1";
+}  // namespace
+
+std::string default_cache_dir() {
+  if (const char* d = std::getenv("DSPDEM_MESH_CACHE")) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME")) return (fs::path(x) / "dspdem/meshes").string();
+  if (const char* h = std::getenv("HOME")) return (fs::path(h) / ".cache/dspdem/meshes").string();
+  return (fs::temp_directory_path() / "dspdem-meshes").string();
+}
+
+Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cached, std::string* path) {
+  const std::string key = p.canonical() + ";gmsh=" + GMSH_API_VERSION + ";generators=" + kGeneratorsVersion;
+  const fs::path file = fs::path(cache_dir) / fmt::format("{}-{:016x}.msh", p.generator, fnv1a(key));
+  if (path) *path = file.string();
+  if (fs::exists(file)) {
+    try {
+      Mesh m = read_gmsh(file.string());
+      if (cached) *cached = true;
+      return m;
+    } catch (const Error& e) {
+      log::warn("cached mesh '{}' unreadable ({}); generating it again", file.string(), e.what());
+    }
+  }
+  std::error_code ec;
+  fs::create_directories(cache_dir, ec);
+  if (cached) *cached = false;
+  if (ec) {
+    log::warn("mesh cache folder '{}' cannot be created ({}); not caching", cache_dir, ec.message());
+    return generate(p);
+  }
+  return generate(p, file.string());
+}
+
+void add_group(int dim, const std::vector<int>& tags, const std::string& name) {
+  DSPDEM_CHECK(!tags.empty(), "internal: physical group '{}' would be empty", name);
+  const int t = gmsh::model::addPhysicalGroup(dim, tags);
+  gmsh::model::setPhysicalName(dim, t, name);
+}
+
+std::vector<int> entities_in_box(int dim, double x0, double y0, double z0, double x1, double y1, double z1,
+                                 double eps) {
+  gmsh::vectorpair dt;
+  gmsh::model::getEntitiesInBoundingBox(x0 - eps, y0 - eps, z0 - eps, x1 + eps, y1 + eps, z1 + eps, dt, dim);
+  std::vector<int> tags;
+  for (auto [d, t] : dt) tags.push_back(t);
+  return tags;
+}
+
+void set_volume_size(const std::vector<int>& volumes, double size) {
+  gmsh::vectorpair in, pts;
+  for (int v : volumes) in.emplace_back(3, v);
+  gmsh::model::getBoundary(in, pts, false, false, true);
+  std::vector<std::pair<int, int>> points;
+  for (auto [d, t] : pts)
+    if (d == 0) points.emplace_back(d, t);
+  gmsh::model::mesh::setSize(points, size);
+}
+
+}  // namespace dspdem::meshing

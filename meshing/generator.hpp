@@ -1,0 +1,64 @@
+// Mesh generators for the benchmark geometries, on the gmsh C++ API, and their registry.
+// A case names a generator and its parameters ([mesh] generator = "...", [mesh.<name>]);
+// the parameters are declared (type, default, range, unit, doc) in src/io/case_schema.cpp
+// under section "mesh.<name>" and validated there; a generator only checks relations
+// between parameters (a notch deeper than the beam, a size larger than the part) and
+// reports them naming the key.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace dspdem::meshing {
+
+/// Validated parameters of one generator.
+struct Params {
+  std::string generator;
+  std::map<std::string, double> num;
+  std::map<std::string, std::string> str;
+
+  double operator[](const std::string& key) const;
+  const std::string& text(const std::string& key) const;
+  /// Sorted key=value list with full precision: the identity of the mesh for caching.
+  std::string canonical() const;
+};
+
+/// Throws Error "mesh.<generator>.<key> = <value>: <why>".
+[[noreturn]] void param_error(const Params& p, const std::string& key, const std::string& why);
+
+struct Generator {
+  const char* name;
+  const char* doc;                   ///< geometry, groups, and where defaults come from
+  void (*build)(const Params&);      ///< builds and meshes the current gmsh model, adds groups
+};
+
+/// All generators, by name.
+const std::vector<Generator>& registry();
+/// The generator called `name`; throws Error listing the known names otherwise.
+const Generator& find_generator(const std::string& name);
+
+/// Runs the generator in a fresh gmsh model and returns the mesh; if `msh_path` is not
+/// empty, also writes the gmsh file there (through a temporary name).
+Mesh generate(const Params& p, const std::string& msh_path = "");
+
+/// Returns the mesh from the cache when a file for the same generator, parameters and gmsh
+/// version exists in `cache_dir`, else generates and stores it. `cached` tells which.
+Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cached = nullptr,
+                      std::string* path = nullptr);
+
+/// Default cache folder: $DSPDEM_MESH_CACHE, else $XDG_CACHE_HOME/dspdem/meshes, else
+/// $HOME/.cache/dspdem/meshes.
+std::string default_cache_dir();
+
+// Helpers shared by generators ---------------------------------------------------------
+/// Adds a named physical group of the given entities.
+void add_group(int dim, const std::vector<int>& tags, const std::string& name);
+/// Entities of dimension `dim` inside the box (with a tolerance `eps` on every side).
+std::vector<int> entities_in_box(int dim, double x0, double y0, double z0, double x1, double y1, double z1,
+                                 double eps = 1e-6);
+/// Sets the target mesh size on every point of the given volumes.
+void set_volume_size(const std::vector<int>& volumes, double size);
+
+}  // namespace dspdem::meshing

@@ -1,0 +1,96 @@
+// Plain concrete beam struck by two impactors (paper section 2.4, Murray et al. 2007):
+// structured hexahedra, with the box split at the support, impactor and mid-span lines so
+// that those lines are mesh lines and named curves.
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "meshing/generator.hpp"
+
+namespace dspdem::meshing {
+
+void build_murray_beam(const Params& p) {
+  namespace occ = gmsh::model::occ;
+  const double L = p["length"], H = p["depth"], W = p["width"];
+  const double span = p["span"], gap = p["impactor_spacing"], r = p["cylinder_radius"];
+  const int nx = static_cast<int>(p["nx"]), ny = static_cast<int>(p["ny"]), nz = static_cast<int>(p["nz"]);
+  if (span >= L) param_error(p, "span", "must be shorter than the beam length");
+  if (gap >= span) param_error(p, "impactor_spacing", "must be smaller than the span");
+  if (r >= span / 4) param_error(p, "cylinder_radius", "too large for the span");
+  // Segment ends along x: beam ends, supports, impactors, mid-span.
+  const std::vector<double> xs = {-L / 2, -span / 2, -gap / 2, 0.0, gap / 2, span / 2, L / 2};
+  std::vector<int> counts(xs.size() - 1);
+  int used = 0;
+  for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+    counts[i] = std::max(1, static_cast<int>(std::lround(nx * (xs[i + 1] - xs[i]) / L)));
+    used += counts[i];
+  }
+  // Put any rounding difference into the two middle segments, keeping the mesh symmetric.
+  const int diff = nx - used;
+  if (diff % 2 != 0) param_error(p, "nx", "must give an even number of elements across the symmetric segments");
+  counts[2] += diff / 2, counts[3] += diff / 2;
+  if (counts[2] < 1) param_error(p, "nx", "too small for the segment layout");
+
+  gmsh::vectorpair boxes;
+  for (std::size_t i = 0; i + 1 < xs.size(); ++i)
+    boxes.emplace_back(3, occ::addBox(xs[i], -H / 2, -W / 2, xs[i + 1] - xs[i], H, W));
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment({boxes.front()}, gmsh::vectorpair(boxes.begin() + 1, boxes.end()), out, map);
+  // Cylinders along z, touching the beam: impactors on top, supports below.
+  const double cl = W;
+  const int imp_l = occ::addCylinder(-gap / 2, H / 2 + r, -cl / 2, 0, 0, cl, r);
+  const int imp_r = occ::addCylinder(gap / 2, H / 2 + r, -cl / 2, 0, 0, cl, r);
+  const int sup_l = occ::addCylinder(-span / 2, -H / 2 - r, -cl / 2, 0, 0, cl, r);
+  const int sup_r = occ::addCylinder(span / 2, -H / 2 - r, -cl / 2, 0, 0, cl, r);
+  occ::synchronize();
+
+  const std::vector<int> beam = entities_in_box(3, -L / 2, -H / 2, -W / 2, L / 2, H / 2, W / 2);
+  DSPDEM_CHECK(beam.size() == xs.size() - 1, "internal: murray_beam expected {} beam segments, got {}",
+               xs.size() - 1, beam.size());
+  // Transfinite lines: count by direction (and by x segment).
+  // Every curve of the beam lies inside its bounding box; the cylinders' curves do not.
+  gmsh::vectorpair curves;
+  for (int c : entities_in_box(1, -L / 2, -H / 2, -W / 2, L / 2, H / 2, W / 2)) curves.emplace_back(1, c);
+  for (auto [d, c] : curves) {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(1, c, x0, y0, z0, x1, y1, z1);
+    int n = 0;
+    const double dx = x1 - x0, dy = y1 - y0, dz = z1 - z0;  // OCC pads boxes: use the longest
+    const double tol = 1e-3 * std::min({L, H, W});
+    if (dx > dy && dx > dz) {
+      for (std::size_t i = 0; i + 1 < xs.size(); ++i)
+        if (std::abs(0.5 * (x0 + x1) - 0.5 * (xs[i] + xs[i + 1])) < tol) n = counts[i];
+    } else if (dy > dz) {
+      n = ny;
+    } else {
+      n = nz;
+    }
+    DSPDEM_CHECK(n > 0, "internal: murray_beam could not classify curve {}", c);
+    gmsh::model::mesh::setTransfiniteCurve(c, n + 1);
+  }
+  for (int v : beam) {
+    gmsh::vectorpair b;
+    gmsh::model::getBoundary({{3, v}}, b, false, false, false);
+    for (auto [d, s] : b) {
+      gmsh::model::mesh::setTransfiniteSurface(std::abs(s));
+      gmsh::model::mesh::setRecombine(2, std::abs(s));
+    }
+    gmsh::model::mesh::setTransfiniteVolume(v);
+  }
+  set_volume_size({imp_l, imp_r, sup_l, sup_r}, p["cylinder_size"]);
+  gmsh::model::mesh::generate(3);
+
+  add_group(3, beam, "beam");
+  add_group(3, {imp_l}, "impactor_left");
+  add_group(3, {imp_r}, "impactor_right");
+  add_group(3, {sup_l}, "support_left");
+  add_group(3, {sup_r}, "support_right");
+  add_group(1, entities_in_box(1, 0, -H / 2, -W / 2, 0, -H / 2, W / 2), "midspan_bottom");
+  add_group(2, entities_in_box(2, -L / 2, -H / 2, -W / 2, L / 2, -H / 2, W / 2), "beam_bottom");
+  add_group(2, entities_in_box(2, -L / 2, H / 2, -W / 2, L / 2, H / 2, W / 2), "beam_top");
+}
+
+}  // namespace dspdem::meshing

@@ -1,0 +1,51 @@
+#include "app/mesh_command.hpp"
+
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "io/staging.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "meshing/generator.hpp"
+#include "meshing/quality.hpp"
+
+namespace dspdem {
+
+meshing::Params generator_params(const CaseConfig& c);
+
+int mesh_command(const CaseConfig& c, const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  Timer t;
+  fs::create_directories(out_dir);
+  const std::string msh = (fs::path(out_dir) / (c.name + ".msh")).string();
+  Mesh m;
+  std::string source;
+  if (c.mesh_generator.empty()) {
+    m = read_gmsh(c.mesh_file);
+    fs::copy_file(c.mesh_file, msh + ".tmp", fs::copy_options::overwrite_existing);
+    fs::rename(msh + ".tmp", msh);
+    source = c.mesh_file;
+  } else {
+    // Inverted elements are refused inside (check_element_volumes); nothing is written then.
+    m = meshing::generate(generator_params(c), msh);
+    source = "generator " + c.mesh_generator;
+  }
+  const meshing::Quality q = meshing::mesh_quality(m);
+  std::string params;
+  for (const auto& [k, v] : c.mesh_num) params += fmt::format("{}\"{}\": {:.10g}", params.empty() ? "" : ", ", k, v);
+  const std::string extra = fmt::format("  \"case\": \"{}\",\n  \"source\": \"{}\",\n  \"parameters\": {{{}}},\n  \"nodes\": {},\n",
+                                        c.name, source, params, m.n_nodes());
+  write_file_atomic((fs::path(out_dir) / "quality.json").string(), meshing::quality_json(q, extra));
+  log::info("dspdem mesh: case '{}': {} nodes, {} tet4, {} hex8 in {:.2f} s", c.name, m.n_nodes(), q.n_tet4, q.n_hex8,
+            t.seconds());
+  for (const auto& [g, n] : q.elements_per_group) log::info("  {}: {} elements", g, n);
+  log::info("  dihedral angles {:.1f} to {:.1f} deg; quality min {:.3f}, 1st percentile {:.3f}, mean {:.3f}",
+            q.min_dihedral_deg, q.max_dihedral_deg, q.quality_min, q.quality_p01, q.quality_mean);
+  if (q.n_slivers > 0)
+    log::warn("{} sliver tetrahedra (gamma < {}) in the mesh of case '{}'", q.n_slivers, q.sliver_threshold, c.name);
+  log::info("  wrote {} and {}/quality.json", msh, out_dir);
+  return 0;
+}
+
+}  // namespace dspdem
