@@ -49,7 +49,7 @@ const std::vector<Key>& keys() {
     {"mesh.murray_beam", "span", T::Real, "1.4224", 0, inf, true, false, "m", nullptr, "Support span. [NF]: 1/3 of the FHWA full-scale span 4267.2 mm, the tests being 1/3-scale."},
     {"mesh.murray_beam", "impactor_spacing", T::Real, "0.2032", 0, inf, true, false, "m", nullptr, "Distance between the two impactor lines. [NF]: 1/3 of the full-scale 609.6 mm."},
     {"mesh.murray_beam", "cylinder_radius", T::Real, "0.016", 0, inf, true, false, "m", nullptr, "Radius of the impactor and support cylinders [S]."},
-    {"mesh.murray_beam", "cylinder_size", T::Real, "0.012", 0, inf, true, false, "m", nullptr, "Element size in the cylinders."},
+    {"mesh.murray_beam", "cylinder_size", T::Real, "0.006", 0, inf, true, false, "m", nullptr, "Element size in the cylinders."},
     {"mesh.murray_beam", "nx", T::Int, "68", 2, 100000, false, false, "", nullptr, "Hexahedra along the length (68 x 6 x 10 = 4080, the paper's count)."},
     {"mesh.murray_beam", "ny", T::Int, "6", 1, 100000, false, false, "", nullptr, "Hexahedra through the depth."},
     {"mesh.murray_beam", "nz", T::Int, "10", 1, 100000, false, false, "", nullptr, "Hexahedra across the width."},
