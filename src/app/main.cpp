@@ -9,6 +9,8 @@
 #include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "app/mesh_command.hpp"
+#include "app/render_command.hpp"
+#include "render/image_compare.hpp"
 #include "app/run_command.hpp"
 
 using namespace dspdem;
@@ -37,6 +39,31 @@ int main(int argc, char** argv) {
   mesh->add_option("-o,--out", mesh_out, "Output directory (default: results/<case name>/mesh)");
   mesh->add_option("--set", mesh_sets, "Override a case key: section.key=value (repeatable)");
 
+  auto* rend = app.add_subcommand("render", "Draw a run's frames off-screen: DIR/images/<view>/frame_NNNN.png, animations, plots");
+  RenderArgs ra;
+  rend->add_option("run_dir", ra.run_dir, "Output folder of a run (holds run.pvd)")->required();
+  rend->add_option("--view", ra.views, "View: stress, fragments, cracks (repeatable; default from the case)");
+  rend->add_option("--field", ra.field, "Field of the stress view");
+  rend->add_option("--frames", ra.frames, "all (default), last, every:K, or indices i,j,k");
+  rend->add_option("--camera", ra.camera, "front, back, top, side, iso");
+  rend->add_option("--cut", ra.cut, "none, x, y, z: cut at the mid-plane");
+  rend->add_option("--magnify", ra.magnify, "Displacement magnification");
+  rend->add_option("--range", ra.range, "Colour range MIN:MAX");
+  rend->add_option("--size", ra.size, "Image size WIDTHxHEIGHT");
+  rend->add_option("-j,--jobs", ra.jobs, "Render processes (default: one per core)");
+  rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
+  rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
+
+  auto* imgdiff = app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
+  std::string img_a, img_b, img_diff;
+  double img_threshold = 0.5;
+  int img_tol = 16;
+  imgdiff->add_option("a", img_a, "First image")->required();
+  imgdiff->add_option("b", img_b, "Second image (e.g. the baseline)")->required();
+  imgdiff->add_option("--threshold", img_threshold, "Largest accepted error (mean thresholded difference per pixel)");
+  imgdiff->add_option("--tolerance", img_tol, "Per-channel difference ignored (0-255)");
+  imgdiff->add_option("--diff", img_diff, "Where to write the difference image (default: <a>.diff.png)");
+
   auto* keys = app.add_subcommand("keys", "Print every case-file key (type, default, range, unit, meaning) as Markdown");
 
   try {
@@ -50,6 +77,15 @@ int main(int argc, char** argv) {
     if (*keys) {
       fmt::print("{}", case_schema_markdown());
       return 0;
+    }
+    if (*rend) return render_command(ra);
+    if (*imgdiff) {
+      const std::string diff = img_diff.empty() ? img_a.substr(0, img_a.rfind('.')) + ".diff.png" : img_diff;
+      const render::ImageDiff d = render::compare_png(img_a, img_b, diff, img_tol);
+      const bool pass = d.error <= img_threshold;
+      fmt::print("{}: error {:.4g} (threshold {}) {}x{}; difference image {}\n", pass ? "same" : "DIFFERENT", d.error,
+                 img_threshold, d.width, d.height, diff);
+      return pass ? 0 : 1;
     }
     if (*mesh) {
       const CaseConfig c = read_case(mesh_case_file, mesh_sets);

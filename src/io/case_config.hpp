@@ -43,6 +43,19 @@ struct MonitorConfig {
   std::string where;
 };
 
+/// [render]: how `dspdem render` draws a run.
+struct RenderConfig {
+  std::vector<std::string> views = {"stress", "fragments"};
+  std::string field = "von_mises", camera = "iso", cut = "none", plot_reference;
+  Real magnify = 1;
+  bool auto_min = true, auto_max = true;
+  Real range_min = 0, range_max = 0;
+  int width = 1280, height = 720, fps = 10;
+  Vec3 background = Vec3::Ones();
+  bool animation = true;
+  std::vector<std::string> plots;
+};
+
 struct CaseConfig {
   std::string path;         ///< the case file
   std::string dir;          ///< its directory (relative paths are resolved against it)
@@ -66,6 +79,7 @@ struct CaseConfig {
   Real frame_interval = 0, series_interval = 0;
   std::vector<std::string> fields;
   bool compress = true;
+  RenderConfig render;
   // checks
   Real energy_blowup_factor = 10;
   std::string resolved_toml;  ///< the case with every default filled in

@@ -96,6 +96,7 @@ class Section {
     for (int i = 0; i < 3; ++i) {
       auto d = a->get(i)->value<double>();
       if (!d || !std::isfinite(*d)) fail("{}: {} key '{}' entry {} must be a finite number", where(key), label_, key, i + 1);
+      check_range(k, *d, key);
       v(i) = *d;
     }
     return v;
@@ -428,6 +429,34 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       s.finish();
       c.monitors.push_back(m);
     }
+  }
+  {
+    Section s(ctx, sub_table(ctx, root, "render"), "render", "[render]");
+    RenderConfig& r = c.render;
+    r.views = s.strings("views");
+    r.field = s.str("field");
+    r.magnify = s.real("magnify");
+    r.auto_min = !s.has("range_min");
+    r.auto_max = !s.has("range_max");
+    if (!r.auto_min) r.range_min = s.real("range_min");
+    if (!r.auto_max) r.range_max = s.real("range_max");
+    if (!r.auto_min && !r.auto_max && !(r.range_min < r.range_max))
+      fail("{}: [render] range_min must be below range_max", s.where("range_max"));
+    r.camera = s.str("camera");
+    r.cut = s.str("cut");
+    r.width = static_cast<int>(s.integer("width"));
+    r.height = static_cast<int>(s.integer("height"));
+    r.background = s.vec3("background");
+    r.animation = s.boolean("animation");
+    r.fps = static_cast<int>(s.integer("fps"));
+    r.plots = s.strings("plots");
+    for (const auto& p : r.plots)
+      if (p.find(':') == std::string::npos || p.find(':') == 0 || p.back() == ':')
+        fail("{}: [render] plots entry \"{}\" must read \"x:y1,y2\"", s.where("plots"), p);
+    r.plot_reference = s.str("plot_reference");
+    if (!r.plot_reference.empty() && fs::path(r.plot_reference).is_relative())
+      r.plot_reference = (fs::path(c.dir) / r.plot_reference).lexically_normal().string();
+    s.finish();
   }
   {
     Section s(ctx, sub_table(ctx, root, "checks"), "checks", "[checks]");

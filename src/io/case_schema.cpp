@@ -14,7 +14,7 @@ using T = Type;
 const std::vector<const char*>& sections() {
   static const std::vector<const char*> s = {"case", "mesh", "mesh.brazilian_disc", "mesh.galvez_beam", "mesh.murray_beam",
                                              "mesh.sphere_plate", "mesh.packing", "physics", "materials.<name>", "bodies[]",
-                                             "boundary[]", "initial[]", "time", "output", "monitors[]", "checks"};
+                                             "boundary[]", "initial[]", "time", "output", "monitors[]", "render", "checks"};
   return s;
 }
 
@@ -107,6 +107,20 @@ const std::vector<Key>& keys() {
     {"monitors[]", "group", T::String, "auto", 0, 0, false, false, "", nullptr, "Physical group (default: all nodes, for max_displacement only)."},
     {"monitors[]", "group2", T::String, "auto", 0, 0, false, false, "", nullptr, "Second group for displacement_difference."},
     {"monitors[]", "component", T::String, "\"magnitude\"", 0, 0, false, false, "", "x|y|z|magnitude", "Component recorded."},
+    {"render", "views", T::StringList, "[\"stress\", \"fragments\"]", 0, 0, false, false, "", "stress|fragments|cracks", "Views drawn by dspdem render: stress field, fragments (one colour each), cracks (broken joints over a translucent body)."},
+    {"render", "field", T::String, "\"von_mises\"", 0, 0, false, false, "", "von_mises|max_principal|sigma_xx|sigma_yy|sigma_zz|sigma_xy|sigma_yz|sigma_xz|displacement", "Field of the stress view."},
+    {"render", "magnify", T::Real, "1.0", 0, inf, true, false, "", nullptr, "Displacement magnification for drawing (the paper shows x100)."},
+    {"render", "range_min", T::Real, "auto", -inf, inf, false, false, "Pa", nullptr, "Lower end of the colour range; default: 0.5th percentile over all frames (0 for von Mises)."},
+    {"render", "range_max", T::Real, "auto", -inf, inf, false, false, "Pa", nullptr, "Upper end of the colour range; default: 99.5th percentile over all frames."},
+    {"render", "camera", T::String, "\"iso\"", 0, 0, false, false, "", "front|back|top|side|iso", "Camera preset (parallel projection, framed on the first frame)."},
+    {"render", "cut", T::String, "\"none\"", 0, 0, false, false, "", "none|x|y|z", "Cut the bodies at the mid-plane normal to this axis and show the half below it."},
+    {"render", "width", T::Int, "1280", 16, 8192, false, false, "px", nullptr, "Image width."},
+    {"render", "height", T::Int, "720", 16, 8192, false, false, "px", nullptr, "Image height."},
+    {"render", "background", T::Vec3, "[1.0, 1.0, 1.0]", 0, 1, false, false, "", nullptr, "Background colour (RGB, 0-1)."},
+    {"render", "animation", T::Bool, "true", 0, 0, false, false, "", nullptr, "Write an animation per view (.ogv; .mp4 and .gif when ffmpeg is installed)."},
+    {"render", "fps", T::Int, "10", 1, 120, false, false, "1/s", nullptr, "Animation frame rate."},
+    {"render", "plots", T::StringList, "[]", 0, 0, false, false, "", nullptr, "Extra plots of series.csv, each \"x:y1,y2\" (e.g. \"cmod:load\"); energies and monitors against time are always plotted."},
+    {"render", "plot_reference", T::String, "\"\"", 0, 0, false, false, "", nullptr, "CSV with the same column names, drawn dashed over the extra plots (e.g. a test curve)."},
     {"checks", "energy_blowup_factor", T::Real, "10.0", 1, inf, true, false, "", nullptr, "Stop when kinetic + internal energy exceeds this factor times (initial energy + work done on the body + a floor)."},
   };
   return k;

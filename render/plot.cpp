@@ -1,0 +1,115 @@
+#include "render/plot.hpp"
+
+#include <vtkAxis.h>
+#include <vtkChartLegend.h>
+#include <vtkChartXY.h>
+#include <vtkContextActor.h>
+#include <vtkContextScene.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPen.h>
+#include <vtkPlot.h>
+#include <vtkRenderer.h>
+#include <vtkTable.h>
+#include <vtkTextProperty.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "render/offscreen.hpp"
+
+namespace dspdem::render {
+
+void read_csv(const std::string& path, std::vector<std::string>& names, std::vector<std::vector<double>>& cols) {
+  std::ifstream f(path);
+  DSPDEM_CHECK(f.good(), "CSV file '{}' cannot be read", path);
+  std::string line;
+  DSPDEM_CHECK(static_cast<bool>(std::getline(f, line)), "CSV file '{}' is empty", path);
+  names.clear();
+  std::stringstream hs(line);
+  for (std::string n; std::getline(hs, n, ',');) names.push_back(n);
+  cols.assign(names.size(), {});
+  long row = 1;
+  while (std::getline(f, line)) {
+    ++row;
+    if (line.empty()) continue;
+    std::stringstream ls(line);
+    std::size_t c = 0;
+    for (std::string v; std::getline(ls, v, ','); ++c) {
+      DSPDEM_CHECK(c < names.size(), "CSV file '{}' line {}: more values than header columns", path, row);
+      try {
+        cols[c].push_back(std::stod(v));
+      } catch (...) {
+        fail("CSV file '{}' line {}: '{}' is not a number", path, row, v);
+      }
+    }
+    DSPDEM_CHECK(c == names.size(), "CSV file '{}' line {}: {} values for {} columns", path, row, c, names.size());
+  }
+}
+
+namespace {
+std::size_t column(const std::vector<std::string>& names, const std::string& name, const std::string& file) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return i;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  fail("CSV file '{}' has no column '{}' (columns: {})", file, name, list);
+}
+
+void add_lines(vtkChartXY* chart, const std::string& csv, const PlotSpec& spec, bool reference) {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> cols;
+  read_csv(csv, names, cols);
+  const std::size_t xi = column(names, spec.x, csv);
+  vtkNew<vtkTable> t;
+  vtkNew<vtkDoubleArray> xa;
+  xa->SetName(spec.x.c_str());
+  t->AddColumn(xa);
+  std::vector<std::size_t> yi;
+  for (const auto& y : spec.y) {
+    yi.push_back(column(names, y, csv));
+    vtkNew<vtkDoubleArray> ya;
+    ya->SetName((reference ? y + " (reference)" : y).c_str());
+    t->AddColumn(ya);
+  }
+  t->SetNumberOfRows(static_cast<vtkIdType>(cols[xi].size()));
+  for (std::size_t r = 0; r < cols[xi].size(); ++r) {
+    t->SetValue(static_cast<vtkIdType>(r), 0, cols[xi][r]);
+    for (std::size_t k = 0; k < yi.size(); ++k) t->SetValue(static_cast<vtkIdType>(r), static_cast<vtkIdType>(k + 1), cols[yi[k]][r]);
+  }
+  static const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40}, {44, 160, 44}, {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
+  for (std::size_t k = 0; k < yi.size(); ++k) {
+    vtkPlot* p = chart->AddPlot(vtkChart::LINE);
+    p->SetInputData(t, 0, static_cast<vtkIdType>(k + 1));
+    const unsigned char* c = reference ? colors[5] : colors[k % 5];
+    p->SetColor(c[0], c[1], c[2], 255);
+    p->SetWidth(2.0);
+    if (reference) p->GetPen()->SetLineType(vtkPen::DASH_LINE);
+  }
+}
+}  // namespace
+
+void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& png) {
+  DSPDEM_CHECK(!spec.y.empty(), "plot of '{}': no y column given", csv);
+  OffscreenWindow win(spec.width, spec.height);
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(1, 1, 1);
+  win.add_renderer(ren);
+  vtkNew<vtkChartXY> chart;
+  vtkNew<vtkContextScene> scene;
+  vtkNew<vtkContextActor> actor;
+  scene->AddItem(chart);
+  actor->SetScene(scene);
+  ren->AddActor(actor);
+  scene->SetRenderer(ren);
+  add_lines(chart, csv, spec, false);
+  if (!spec.reference_csv.empty()) add_lines(chart, spec.reference_csv, spec, true);
+  chart->SetShowLegend(true);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(spec.x);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(spec.y.size() == 1 ? spec.y[0] : "");
+  chart->SetTitle(spec.title.empty() ? csv : spec.title);
+  win.write_png(png);
+}
+
+}  // namespace dspdem::render

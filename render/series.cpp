@@ -1,0 +1,68 @@
+#include "render/series.hpp"
+
+#include <vtkCallbackCommand.h>
+#include <vtkExecutive.h>
+#include <vtkNew.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace dspdem::render {
+
+namespace fs = std::filesystem;
+
+std::vector<FrameRef> read_series(const std::string& run_dir) {
+  const fs::path pvd = fs::path(run_dir) / "run.pvd";
+  DSPDEM_CHECK(fs::exists(pvd), "'{}' not found: is '{}' the output folder of a dspdem run?", pvd.string(), run_dir);
+  std::ifstream f(pvd);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  std::vector<FrameRef> frames;
+  const std::regex ds("<DataSet[^>]*timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), ds); it != std::sregex_iterator(); ++it) {
+    FrameRef fr;
+    try {
+      fr.time = std::stod((*it)[1].str());
+    } catch (...) {
+      fail("'{}': timestep '{}' is not a number", pvd.string(), (*it)[1].str());
+    }
+    fr.file = (fs::path(run_dir) / (*it)[2].str()).string();
+    frames.push_back(fr);
+  }
+  DSPDEM_CHECK(!frames.empty(), "'{}' lists no frames", pvd.string());
+  return frames;
+}
+
+namespace {
+void on_error(vtkObject*, unsigned long, void* client, void* call) {
+  *static_cast<std::string*>(client) += call ? static_cast<const char*>(call) : "error";
+}
+}  // namespace
+
+vtkSmartPointer<vtkUnstructuredGrid> read_frame(const std::string& path) {
+  DSPDEM_CHECK(fs::exists(path), "frame '{}' does not exist", path);
+  std::string errors;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetCallback(on_error);
+  cb->SetClientData(&errors);
+  vtkNew<vtkXMLUnstructuredGridReader> r;
+  r->AddObserver(vtkCommand::ErrorEvent, cb);
+  r->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  r->SetFileName(path.c_str());
+  r->Update();
+  vtkUnstructuredGrid* g = r->GetOutput();
+  DSPDEM_CHECK(errors.empty() && g && g->GetNumberOfCells() > 0,
+               "frame '{}' is truncated or unreadable{}", path, errors.empty() ? "" : ": " + errors.substr(0, 300));
+  vtkSmartPointer<vtkUnstructuredGrid> out = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  out->ShallowCopy(g);
+  return out;
+}
+
+}  // namespace dspdem::render

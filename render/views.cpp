@@ -1,0 +1,241 @@
+#include "render/views.hpp"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellData.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkImageData.h>
+#include <vtkLookupTable.h>
+#include <vtkNew.h>
+#include <vtkPlane.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTableBasedClipDataSet.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "render/offscreen.hpp"
+
+namespace dspdem::render {
+
+const std::vector<std::string>& stress_fields() {
+  static const std::vector<std::string> f = {"von_mises", "max_principal", "sigma_xx", "sigma_yy", "sigma_zz",
+                                             "sigma_xy",  "sigma_yz",      "sigma_xz", "displacement"};
+  return f;
+}
+
+std::vector<double> field_values(vtkUnstructuredGrid* g, const std::string& field, const std::string& file) {
+  const vtkIdType n = g->GetNumberOfCells();
+  std::vector<double> out(static_cast<std::size_t>(n));
+  auto need = [&](vtkDataArray* a, const char* name) {
+    if (!a) fail("frame '{}' has no '{}' array (needed for field '{}'); write it with [output] fields", file, name, field);
+    return a;
+  };
+  const char* comps[] = {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_yz", "sigma_xz"};
+  for (int c = 0; c < 6; ++c)
+    if (field == comps[c]) {
+      vtkDataArray* s = need(g->GetCellData()->GetArray("stress"), "stress");
+      for (vtkIdType e = 0; e < n; ++e) out[e] = s->GetComponent(e, c);
+      return out;
+    }
+  if (field == "von_mises" || field == "max_principal") {
+    vtkDataArray* a = need(g->GetCellData()->GetArray(field.c_str()), field.c_str());
+    for (vtkIdType e = 0; e < n; ++e) out[e] = a->GetComponent(e, 0);
+    return out;
+  }
+  if (field == "displacement") {  // cell mean of the nodal displacement magnitude
+    vtkDataArray* u = need(g->GetPointData()->GetArray("displacement"), "displacement");
+    for (vtkIdType e = 0; e < n; ++e) {
+      vtkCell* cell = g->GetCell(e);
+      double s = 0;
+      for (vtkIdType i = 0; i < cell->GetNumberOfPoints(); ++i) {
+        double v[3];
+        u->GetTuple(cell->GetPointId(i), v);
+        s += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      }
+      out[e] = s / static_cast<double>(cell->GetNumberOfPoints());
+    }
+    return out;
+  }
+  std::string list;
+  for (const auto& f : stress_fields()) list += (list.empty() ? "" : ", ") + f;
+  fail("unknown field '{}' (known: {})", field, list);
+}
+
+namespace {
+// 20 well-separated colours (Tableau 20), for fragment ids.
+const unsigned char kPalette[20][3] = {
+    {31, 119, 180}, {255, 127, 14}, {44, 160, 44},   {214, 39, 40},  {148, 103, 189}, {140, 86, 75},  {227, 119, 194},
+    {127, 127, 127}, {188, 189, 34}, {23, 190, 207}, {174, 199, 232}, {255, 187, 120}, {152, 223, 138}, {255, 152, 150},
+    {197, 176, 213}, {196, 156, 148}, {247, 182, 210}, {199, 199, 199}, {219, 219, 141}, {158, 218, 229}};
+
+void place_camera(vtkRenderer* r, const ViewOptions& o) {
+  const double* b = o.bounds;
+  const double c[3] = {0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])};
+  const double diag = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  double dir[3] = {0, 0, 1}, up[3] = {0, 1, 0};
+  if (o.camera == "front") dir[0] = 0, dir[1] = 0, dir[2] = 1;
+  else if (o.camera == "back") dir[0] = 0, dir[1] = 0, dir[2] = -1;
+  else if (o.camera == "top") dir[0] = 0, dir[1] = 1, dir[2] = 0, up[1] = 0, up[2] = -1;
+  else if (o.camera == "side") dir[0] = 1, dir[1] = 0, dir[2] = 0;
+  else if (o.camera == "iso") dir[0] = 1, dir[1] = 0.8, dir[2] = 1.2;
+  else fail("unknown camera preset '{}' (known: front, back, top, side, iso)", o.camera);
+  const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  vtkCamera* cam = r->GetActiveCamera();
+  cam->SetFocalPoint(c);
+  cam->SetPosition(c[0] + 3 * diag * dir[0] / len, c[1] + 3 * diag * dir[1] / len, c[2] + 3 * diag * dir[2] / len);
+  cam->SetViewUp(up);
+  cam->ParallelProjectionOn();  // no perspective: crack patterns compare pixel to pixel
+  const double aspect = static_cast<double>(o.width) / o.height;
+  cam->SetParallelScale(0.55 * diag / std::min(1.0, aspect) * 0.9);
+  cam->SetClippingRange(0.1 * diag, 10 * diag);
+}
+}  // namespace
+
+struct FrameRenderer::Impl {
+  ViewOptions opt;
+  OffscreenWindow win;
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkActor> actor, context_actor;
+  vtkNew<vtkPolyDataMapper> mapper, context_mapper;
+  vtkNew<vtkLookupTable> lut;
+  vtkNew<vtkScalarBarActor> bar;
+  vtkNew<vtkTextActor> time_text;
+  explicit Impl(const ViewOptions& o) : opt(o), win(o.width, o.height) {}
+};
+
+FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
+  Impl& s = *impl_;
+  if (o.view != "stress" && o.view != "fragments" && o.view != "cracks")
+    fail("unknown view '{}' (known: stress, fragments, cracks)", o.view);
+  s.ren->SetBackground(o.background.data());
+  s.win.add_renderer(s.ren);
+  s.actor->SetMapper(s.mapper);
+  s.ren->AddActor(s.actor);
+  s.lut->SetHueRange(0.667, 0.0);  // blue (low) to red (high)
+  s.lut->SetNumberOfTableValues(256);
+  s.lut->SetRange(o.range[0], o.range[1]);
+  s.lut->Build();
+  s.time_text->GetTextProperty()->SetFontSize(std::max(12, o.height / 30));
+  s.time_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+  s.time_text->SetPosition(10, o.height - 10 - std::max(12, o.height / 30));
+  s.ren->AddViewProp(s.time_text);
+  if (o.view == "stress") {
+    s.mapper->SetLookupTable(s.lut);
+    s.mapper->SetScalarRange(o.range[0], o.range[1]);
+    s.mapper->SetScalarModeToUseCellFieldData();
+    s.mapper->SelectColorArray("field");
+    s.mapper->ScalarVisibilityOn();
+    s.bar->SetLookupTable(s.lut);
+    s.bar->SetTitle(o.field == "displacement" ? "|u| [m]" : (o.field + " [Pa]").c_str());
+    s.bar->SetNumberOfLabels(5);
+    // Horizontal along the bottom: it never covers the bodies, whatever their shape.
+    s.bar->SetOrientationToHorizontal();
+    s.bar->SetPosition(0.2, 0.01);
+    s.bar->SetWidth(0.6);
+    s.bar->SetHeight(0.14);
+    s.bar->SetTextPositionToPrecedeScalarBar();
+    s.bar->UnconstrainedFontSizeOn();
+    s.bar->GetTitleTextProperty()->SetFontSize(std::max(10, o.height / 40));
+    s.bar->GetLabelTextProperty()->SetFontSize(std::max(9, o.height / 45));
+    s.bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
+    s.bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
+    s.ren->AddViewProp(s.bar);
+  } else {
+    s.mapper->SetScalarModeToUseCellFieldData();
+    s.mapper->SelectColorArray("colors");
+    s.mapper->SetColorModeToDirectScalars();
+    s.mapper->ScalarVisibilityOn();
+  }
+  if (o.view == "cracks") {
+    s.actor->GetProperty()->SetOpacity(0.25);
+    s.context_actor->SetMapper(s.context_mapper);
+    s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
+    s.ren->AddActor(s.context_actor);
+  }
+  place_camera(s.ren, o);
+}
+
+FrameRenderer::~FrameRenderer() { delete impl_; }
+
+std::string FrameRenderer::gl_info() const { return impl_->win.gl_info(); }
+
+vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, double time, const std::string& file) {
+  Impl& s = *impl_;
+  const ViewOptions& o = s.opt;
+  if (o.view == "cracks")
+    fail("the cracks view needs broken-joint data, which frame '{}' does not have (the run has no joints)", file);
+  vtkNew<vtkUnstructuredGrid> g;
+  g->ShallowCopy(frame);
+  // Magnified displacement: x_draw = x - u + m u.
+  if (o.magnify != 1.0) {
+    vtkDataArray* u = g->GetPointData()->GetArray("displacement");
+    if (!u) fail("frame '{}' has no displacement array, needed for magnify = {}", file, o.magnify);
+    vtkNew<vtkPoints> pts;
+    pts->DeepCopy(frame->GetPoints());
+    for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
+      double p[3], d[3];
+      pts->GetPoint(i, p);
+      u->GetTuple(i, d);
+      for (int k = 0; k < 3; ++k) p[k] += (o.magnify - 1.0) * d[k];
+      pts->SetPoint(i, p);
+    }
+    g->SetPoints(pts);
+  }
+  if (o.view == "stress") {
+    const std::vector<double> v = field_values(g, o.field, file);
+    vtkNew<vtkDoubleArray> a;
+    a->SetName("field");
+    a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i]);
+    g->GetCellData()->AddArray(a);
+  } else {
+    vtkDataArray* id = g->GetCellData()->GetArray("fragment");
+    if (!id) id = g->GetCellData()->GetArray("body");
+    if (!id) fail("frame '{}' has neither a 'fragment' nor a 'body' array: the {} view needs one", file, o.view);
+    vtkNew<vtkUnsignedCharArray> c;
+    c->SetName("colors");
+    c->SetNumberOfComponents(3);
+    c->SetNumberOfTuples(g->GetNumberOfCells());
+    for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
+      const long k = static_cast<long>(id->GetComponent(e, 0));
+      const unsigned char* col = kPalette[((k % 20) + 20) % 20];
+      c->SetTypedTuple(e, col);
+    }
+    g->GetCellData()->AddArray(c);
+  }
+  vtkNew<vtkDataSetSurfaceFilter> surf;
+  if (o.cut != "none") {
+    const double* b = o.bounds;
+    vtkNew<vtkPlane> plane;
+    plane->SetOrigin(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
+    if (o.cut == "x") plane->SetNormal(1, 0, 0);
+    else if (o.cut == "y") plane->SetNormal(0, 1, 0);
+    else if (o.cut == "z") plane->SetNormal(0, 0, 1);
+    else fail("unknown cut '{}' (known: none, x, y, z)", o.cut);
+    vtkNew<vtkTableBasedClipDataSet> clip;
+    clip->SetInputData(g);
+    clip->SetClipFunction(plane);
+    clip->InsideOutOn();  // keep the half below the plane
+    surf->SetInputConnection(clip->GetOutputPort());
+  } else {
+    surf->SetInputData(g);
+  }
+  surf->Update();
+  s.mapper->SetInputConnection(surf->GetOutputPort());
+  s.time_text->SetInput(fmt::format("t = {:.4g} ms", time * 1e3).c_str());
+  return s.win.capture();
+}
+
+}  // namespace dspdem::render

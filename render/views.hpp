@@ -1,0 +1,54 @@
+// The views a frame is drawn in:
+//   stress    - a scalar field on the (optionally magnified) deformed bodies, fixed colour
+//               range over the series, scalar bar and simulated time;
+//   fragments - every fragment (until joints exist: every body) its own colour, stable from
+//               frame to frame (colour = palette[id mod 20]);
+//   cracks    - broken joint faces over a translucent body (needs joint data in the run).
+// Camera presets look at the first frame's bounds, so every frame of a series is framed
+// the same and images can be compared pixel by pixel.
+#pragma once
+#include <vtkSmartPointer.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+class vtkUnstructuredGrid;
+class vtkImageData;
+
+namespace dspdem::render {
+
+struct ViewOptions {
+  std::string view = "stress";
+  std::string field = "von_mises";   ///< von_mises, max_principal, sigma_xx ... sigma_xz, displacement
+  double magnify = 1.0;              ///< displacement magnification for drawing
+  bool auto_range = true;
+  double range[2] = {0, 1};          ///< colour range [field unit]
+  std::string camera = "iso";        ///< front, back, top, side, iso
+  std::string cut = "none";          ///< none, x, y, z: keep the half below the mid-plane normal to it
+  int width = 1280, height = 720;
+  std::array<double, 3> background = {1.0, 1.0, 1.0};
+  double bounds[6] = {0, 1, 0, 1, 0, 1};  ///< framing (first frame's bounds)
+};
+
+/// Fields the stress view can draw.
+const std::vector<std::string>& stress_fields();
+
+/// The per-cell values of `field` for a frame; throws Error naming the field and file if the
+/// frame lacks it.
+std::vector<double> field_values(vtkUnstructuredGrid* g, const std::string& field, const std::string& file);
+
+/// Renders one frame in the given view and returns the image.
+class FrameRenderer {
+ public:
+  explicit FrameRenderer(const ViewOptions& opt);
+  ~FrameRenderer();
+  vtkSmartPointer<vtkImageData> render(vtkUnstructuredGrid* frame, double time, const std::string& file);
+  std::string gl_info() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace dspdem::render

@@ -1,0 +1,220 @@
+#include "app/render_command.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vtkCellData.h>
+#include <vtkImageData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "io/case_config.hpp"
+#include "render/animation.hpp"
+#include "render/offscreen.hpp"
+#include "render/plot.hpp"
+#include "render/series.hpp"
+#include "render/views.hpp"
+
+extern char** environ;
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+
+std::vector<std::size_t> select_frames(const std::string& spec, std::size_t n) {
+  std::vector<std::size_t> out;
+  if (spec == "all") {
+    for (std::size_t i = 0; i < n; ++i) out.push_back(i);
+  } else if (spec == "last") {
+    out.push_back(n - 1);
+  } else if (spec.rfind("every:", 0) == 0) {
+    const long k = std::stol(spec.substr(6));
+    DSPDEM_CHECK(k > 0, "--frames {}: the stride must be positive", spec);
+    for (std::size_t i = 0; i < n; i += static_cast<std::size_t>(k)) out.push_back(i);
+  } else {
+    std::stringstream ss(spec);
+    for (std::string t; std::getline(ss, t, ',');) {
+      char* end = nullptr;
+      const long i = std::strtol(t.c_str(), &end, 10);
+      DSPDEM_CHECK(*end == '\0' && i >= 0 && static_cast<std::size_t>(i) < n,
+                   "--frames {}: '{}' is not a frame index (the run has {} frames)", spec, t, n);
+      out.push_back(static_cast<std::size_t>(i));
+    }
+  }
+  DSPDEM_CHECK(!out.empty(), "--frames {}: no frame selected", spec);
+  return out;
+}
+
+// Robust colour range over every selected frame: 0.5th to 99.5th percentile.
+void auto_range(const std::vector<render::FrameRef>& frames, const std::vector<std::size_t>& sel,
+                render::ViewOptions& o, const RenderConfig& rc) {
+  std::vector<double> v;
+  for (std::size_t i : sel) {
+    auto g = render::read_frame(frames[i].file);
+    const auto f = render::field_values(g, o.field, frames[i].file);
+    const std::size_t stride = std::max<std::size_t>(1, f.size() * sel.size() / 2000000);
+    for (std::size_t k = 0; k < f.size(); k += stride) v.push_back(f[k]);
+  }
+  std::sort(v.begin(), v.end());
+  double lo = v[static_cast<std::size_t>(0.005 * (v.size() - 1))], hi = v[static_cast<std::size_t>(0.995 * (v.size() - 1))];
+  if (o.field == "von_mises" || o.field == "displacement") lo = 0;
+  if (!rc.auto_min) lo = rc.range_min;
+  if (!rc.auto_max) hi = rc.range_max;
+  if (!(hi > lo)) hi = lo + std::max(1.0, std::abs(lo)) * 1e-6;
+  o.range[0] = lo, o.range[1] = hi;
+}
+
+std::string view_dir(const std::string& run, const std::string& view) { return (fs::path(run) / "images" / view).string(); }
+
+void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, std::vector<pid_t>& pids) {
+  for (int k = 1; k < jobs; ++k) {
+    std::vector<std::string> args = {"/proc/self/exe", "-q", "render", a.run_dir, "--worker", fmt::format("{}/{}", k, jobs),
+                                     "--frames", a.frames, "--field", o.field, "--camera", o.camera, "--cut", o.cut,
+                                     "--magnify", fmt::format("{:.17g}", o.magnify),
+                                     "--range", fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]),
+                                     "--size", fmt::format("{}x{}", o.width, o.height)};
+    for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
+    std::vector<char*> argv;
+    for (auto& s : args) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ);
+    if (rc == 0) pids.push_back(pid);
+    else log::warn("could not start render worker {} ({}); rendering its frames here", k, rc);
+  }
+}
+}  // namespace
+
+int render_command(const RenderArgs& in) {
+  Timer wall;
+  RenderArgs a = in;
+  const fs::path resolved = fs::path(a.run_dir) / "case.resolved.toml";
+  CaseConfig c;
+  if (fs::exists(resolved)) c = read_case(resolved.string());
+  const RenderConfig& rc = c.render;
+  if (a.views.empty()) a.views = rc.views;
+  render::ViewOptions o;
+  o.field = a.field.empty() ? rc.field : a.field;
+  o.camera = a.camera.empty() ? rc.camera : a.camera;
+  o.cut = a.cut.empty() ? rc.cut : a.cut;
+  o.magnify = a.magnify > 0 ? a.magnify : rc.magnify;
+  o.width = rc.width, o.height = rc.height;
+  if (!a.size.empty()) {
+    DSPDEM_CHECK(std::sscanf(a.size.c_str(), "%dx%d", &o.width, &o.height) == 2, "--size {}: expected WIDTHxHEIGHT", a.size);
+  }
+  o.background = {rc.background(0), rc.background(1), rc.background(2)};
+
+  const std::vector<render::FrameRef> frames = render::read_series(a.run_dir);
+  const std::vector<std::size_t> sel = select_frames(a.frames, frames.size());
+  // Validate every view on the first selected frame before writing anything.
+  auto first = render::read_frame(frames[sel[0]].file);
+  first->GetBounds(o.bounds);
+  for (const auto& v : a.views) {
+    if (v == "stress") render::field_values(first, o.field, frames[sel[0]].file);
+    else if (v == "fragments") {
+      if (!first->GetCellData()->GetArray("fragment") && !first->GetCellData()->GetArray("body"))
+        fail("frame '{}' has neither 'fragment' nor 'body' cell data: the fragments view needs one", frames[sel[0]].file);
+    } else if (v == "cracks") {
+      fail("the cracks view needs broken-joint data, which run '{}' does not have (the run has no joints)", a.run_dir);
+    } else {
+      fail("unknown view '{}' (known: stress, fragments, cracks)", v);
+    }
+  }
+  if (!a.range.empty()) {
+    DSPDEM_CHECK(std::sscanf(a.range.c_str(), "%lf:%lf", &o.range[0], &o.range[1]) == 2 && o.range[1] > o.range[0],
+                 "--range {}: expected MIN:MAX with MIN < MAX", a.range);
+  } else if (std::find(a.views.begin(), a.views.end(), "stress") != a.views.end()) {
+    auto_range(frames, sel, o, rc);
+  }
+
+  int k = 0, n = 1;
+  const bool worker = !a.worker.empty();
+  if (worker) DSPDEM_CHECK(std::sscanf(a.worker.c_str(), "%d/%d", &k, &n) == 2 && n > 0 && k >= 0 && k < n, "--worker {}", a.worker);
+  int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  jobs = std::min<int>(jobs, static_cast<int>(sel.size()));
+  std::vector<pid_t> pids;
+  if (!worker && jobs > 1) {
+    spawn_workers(a, o, jobs, pids);
+    n = static_cast<int>(pids.size()) + 1;
+  }
+  for (const auto& v : a.views) fs::create_directories(view_dir(a.run_dir, v));
+
+  Timer t;
+  std::string gl;
+  long drawn = 0;
+  for (const auto& view : a.views) {
+    render::ViewOptions vo = o;
+    vo.view = view;
+    render::FrameRenderer fr(vo);
+    gl = fr.gl_info();
+    for (std::size_t s = 0; s < sel.size(); ++s) {
+      if (static_cast<int>(s % static_cast<std::size_t>(n)) != k) continue;
+      const std::size_t i = sel[s];
+      auto g = s == 0 ? first : render::read_frame(frames[i].file);
+      auto img = fr.render(g, frames[i].time, frames[i].file);
+      render::write_png(img, (fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
+      ++drawn;
+    }
+  }
+  const double t_frames = t.seconds();
+  int failed = 0;
+  for (pid_t p : pids) {
+    int st = 0;
+    waitpid(p, &st, 0);
+    failed += !(WIFEXITED(st) && WEXITSTATUS(st) == 0);
+  }
+  if (worker) return 0;
+  DSPDEM_CHECK(failed == 0, "{} render worker(s) failed; see their messages above", failed);
+  log::info("dspdem render: {} frame(s) x {} view(s) of {} at {}x{} with {} process(es), {:.3f} s per image here ({})",
+            sel.size(), a.views.size(), a.run_dir, o.width, o.height, n, drawn > 0 ? t_frames / drawn : 0.0, gl);
+  if (std::find(a.views.begin(), a.views.end(), "stress") != a.views.end())
+    log::info("  stress view: {} in [{:.4g}, {:.4g}], magnification {}", o.field, o.range[0], o.range[1], o.magnify);
+
+  if (rc.animation && !a.no_animation && sel.size() > 1) {
+    for (const auto& view : a.views) {
+      std::vector<std::string> pngs;
+      for (std::size_t i : sel) pngs.push_back((fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
+      const auto files = render::write_animation(pngs, (fs::path(a.run_dir) / "images" / view).string(), rc.fps);
+      for (const auto& f : files) log::info("  animation {}", f);
+    }
+  }
+  // Plots: energies and monitors against time, then the case's extra plots.
+  const fs::path csv = fs::path(a.run_dir) / "series.csv";
+  if (fs::exists(csv)) {
+    const fs::path pdir = fs::path(a.run_dir) / "images" / "plots";
+    fs::create_directories(pdir);
+    std::vector<std::string> names;
+    std::vector<std::vector<double>> cols;
+    render::read_csv(csv.string(), names, cols);
+    render::PlotSpec energy{"time", {"kinetic", "internal", "external_work", "damping"}, "", "energy ledger [J]"};
+    render::plot_csv(csv.string(), energy, (pdir / "energy.png").string());
+    for (std::size_t i = 7; i < names.size(); ++i) {
+      render::PlotSpec m{"time", {names[i]}, "", names[i]};
+      render::plot_csv(csv.string(), m, (pdir / (names[i] + ".png")).string());
+    }
+    for (const auto& p : rc.plots) {
+      render::PlotSpec s;
+      s.x = p.substr(0, p.find(':'));
+      std::stringstream ys(p.substr(p.find(':') + 1));
+      for (std::string y; std::getline(ys, y, ',');) s.y.push_back(y);
+      s.reference_csv = rc.plot_reference;
+      s.title = p;
+      std::string name = p;
+      std::replace(name.begin(), name.end(), ':', '_');
+      std::replace(name.begin(), name.end(), ',', '_');
+      render::plot_csv(csv.string(), s, (pdir / (name + ".png")).string());
+    }
+    log::info("  plots in {}", pdir.string());
+  }
+  log::info("  images in {}/images/ ({:.2f} s in all)", a.run_dir, wall.seconds());
+  return 0;
+}
+
+}  // namespace dspdem
