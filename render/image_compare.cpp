@@ -1,6 +1,8 @@
 #include "render/image_compare.hpp"
 
+#include <vtkDataArray.h>
 #include <vtkImageData.h>
+#include <vtkPointData.h>
 #include <vtkImageDifference.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
@@ -40,8 +42,16 @@ ImageDiff compare_png(const std::string& a, const std::string& b, const std::str
   d->AveragingOff();
   d->Update();
   ImageDiff r;
-  r.error = d->GetThresholdedError();
+  r.vtk_error = d->GetThresholdedError();
   r.width = da[0], r.height = da[1];
+  vtkDataArray* px = d->GetOutput()->GetPointData()->GetScalars();
+  long changed = 0;
+  for (vtkIdType i = 0; i < px->GetNumberOfTuples(); ++i) {
+    bool diff = false;
+    for (int c = 0; c < std::min(3, px->GetNumberOfComponents()); ++c) diff = diff || px->GetComponent(i, c) > 0;
+    changed += diff;
+  }
+  r.changed_fraction = static_cast<double>(changed) / std::max<vtkIdType>(1, px->GetNumberOfTuples());
   if (!diff_png.empty()) write_png(d->GetOutput(), diff_png);
   return r;
 }

@@ -56,11 +56,11 @@ int main(int argc, char** argv) {
 
   auto* imgdiff = app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
   std::string img_a, img_b, img_diff;
-  double img_threshold = 0.5;
+  double img_threshold = 0.002;
   int img_tol = 16;
   imgdiff->add_option("a", img_a, "First image")->required();
   imgdiff->add_option("b", img_b, "Second image (e.g. the baseline)")->required();
-  imgdiff->add_option("--threshold", img_threshold, "Largest accepted error (mean thresholded difference per pixel)");
+  imgdiff->add_option("--threshold", img_threshold, "Largest accepted fraction of changed pixels (after a one-pixel shift and the channel tolerance)");
   imgdiff->add_option("--tolerance", img_tol, "Per-channel difference ignored (0-255)");
   imgdiff->add_option("--diff", img_diff, "Where to write the difference image (default: <a>.diff.png)");
 
@@ -82,9 +82,10 @@ int main(int argc, char** argv) {
     if (*imgdiff) {
       const std::string diff = img_diff.empty() ? img_a.substr(0, img_a.rfind('.')) + ".diff.png" : img_diff;
       const render::ImageDiff d = render::compare_png(img_a, img_b, diff, img_tol);
-      const bool pass = d.error <= img_threshold;
-      fmt::print("{}: error {:.4g} (threshold {}) {}x{}; difference image {}\n", pass ? "same" : "DIFFERENT", d.error,
-                 img_threshold, d.width, d.height, diff);
+      const bool pass = d.changed_fraction <= img_threshold;
+      fmt::print("{}: {:.4f} % of pixels changed (threshold {:.4f} %; VTK thresholded error {:.4g}), {}x{}; difference "
+                 "image {}\n", pass ? "same" : "DIFFERENT", 100 * d.changed_fraction, 100 * img_threshold, d.vtk_error,
+                 d.width, d.height, diff);
       return pass ? 0 : 1;
     }
     if (*mesh) {

@@ -1,0 +1,164 @@
+// Rendering end to end with no X server: golden images, repeatability, imgdiff, bad input.
+// Baselines live in tests/regression/images; regenerate them only on purpose with
+// DSPDEM_REGEN_IMAGES=1 and review the diff. A failing comparison leaves the new image and
+// the difference image in <build>/tests/image_failures/ (CI keeps that folder).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Result {
+  int code;
+  std::string out;
+};
+
+Result sh(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(("env -u DISPLAY " + cmd + " 2>&1").c_str(), "r");
+  char buf[4096];
+  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::string bin() { return DSPDEM_BIN; }
+fs::path src(const std::string& rel) { return fs::path(DSPDEM_SOURCE_DIR) / rel; }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Runs a test scene and renders its last frame; returns the image path.
+fs::path render_scene(const std::string& scene, const fs::path& out, const std::string& view) {
+  Result r = sh(bin() + " -q run " + src("tests/data/" + scene + ".toml").string() + " --out " + out.string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  r = sh(bin() + " -q render " + out.string() + " --frames last");
+  EXPECT_EQ(r.code, 0) << r.out;
+  fs::path last;
+  for (const auto& e : fs::directory_iterator(out / "images" / view)) last = std::max(last, e.path());
+  return last;
+}
+
+void golden(const std::string& scene, const std::string& view, const std::string& baseline) {
+  const fs::path out = fs::temp_directory_path() / ("dspdem_golden_" + scene);
+  fs::remove_all(out);
+  const fs::path img = render_scene(scene, out, view);
+  ASSERT_TRUE(fs::exists(img));
+  const fs::path base = src("tests/regression/images/" + baseline);
+  if (std::getenv("DSPDEM_REGEN_IMAGES")) {
+    fs::copy_file(img, base, fs::copy_options::overwrite_existing);
+    GTEST_SKIP() << "baseline regenerated: " << base;
+  }
+  const fs::path fails = fs::path(DSPDEM_BUILD_DIR) / "tests/image_failures";
+  fs::create_directories(fails);
+  const fs::path diff = fails / (scene + ".diff.png");
+  // Threshold 0.2 % of the pixels: a one-pixel shift and anti-aliasing give 0; another
+  // frame of the same run or another camera changes several per cent (ImgDiff test).
+  const Result r = sh(bin() + " imgdiff " + img.string() + " " + base.string() + " --threshold 0.002 --diff " + diff.string());
+  if (r.code != 0) fs::copy_file(img, fails / (scene + ".png"), fs::copy_options::overwrite_existing);
+  else fs::remove(diff);
+  EXPECT_EQ(r.code, 0) << r.out << "\nnew image and difference kept in " << fails;
+}
+}  // namespace
+
+TEST(Golden, BarTensionStressView) { golden("bar_tension", "stress", "bar_tension_stress.png"); }
+TEST(Golden, SplitBlockFragmentsView) { golden("split_block", "fragments", "split_block_fragments.png"); }
+
+TEST(Render, SameInputGivesIdenticalImages) {
+  const fs::path out = fs::temp_directory_path() / "dspdem_render_twice";
+  fs::remove_all(out);
+  const fs::path a = render_scene("split_block", out, "fragments");
+  const std::string first = slurp(a);
+  ASSERT_EQ(sh(bin() + " -q render " + out.string() + " --frames last").code, 0);
+  EXPECT_EQ(slurp(a), first) << "two renders of the same frame differ";
+}
+
+TEST(Render, WritesFramesAnimationAndPlotsWithoutDisplay) {
+  const fs::path out = fs::temp_directory_path() / "dspdem_render_all";
+  fs::remove_all(out);
+  ASSERT_EQ(sh(bin() + " -q run " + src("tests/data/bar_tension.toml").string() + " --out " + out.string()).code, 0);
+  const Result r = sh(bin() + " render " + out.string() + " --view stress --view fragments --jobs 2");
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_NE(r.out.find("OSMesa"), std::string::npos) << "GL path not reported: " << r.out;
+  EXPECT_EQ(r.out.find("GLEW"), std::string::npos) << "GLEW noise leaked: " << r.out;
+  for (const char* f : {"images/stress/frame_0000.png", "images/stress/frame_0002.png", "images/fragments/frame_0001.png",
+                        "images/plots/energy.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  // bar_tension.toml turns animations off; a second render with them on writes the .ogv.
+  const fs::path out2 = fs::temp_directory_path() / "dspdem_render_anim";
+  fs::remove_all(out2);
+  ASSERT_EQ(sh(bin() + " -q run " + src("cases/cantilever.toml").string() + " --out " + out2.string() +
+               " --set time.end=0.004 --set output.frame_interval=0.001 --set render.width=160 --set render.height=120")
+                .code,
+            0);
+  const Result r2 = sh(bin() + " render " + out2.string());
+  ASSERT_EQ(r2.code, 0) << r2.out;
+  EXPECT_GT(fs::file_size(out2 / "images/stress.ogv"), 1000u);
+  EXPECT_TRUE(fs::exists(out2 / "images/plots/tip_uy.png"));
+  for (const auto& e : fs::recursive_directory_iterator(out2))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+}
+
+TEST(ImgDiff, IdenticalPassesAndChangedSceneFails) {
+  const fs::path out = fs::temp_directory_path() / "dspdem_imgdiff";
+  fs::remove_all(out);
+  const fs::path a = render_scene("split_block", out, "fragments");
+  Result r = sh(bin() + " imgdiff " + a.string() + " " + a.string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  // The same scene seen from the front is a different picture: must fail, with a diff image.
+  // (The render overwrites `a`; the baseline is the iso view.)
+  ASSERT_EQ(sh(bin() + " -q render " + out.string() + " --frames last --camera front").code, 0);
+  r = sh(bin() + " imgdiff " + a.string() + " " + src("tests/regression/images/split_block_fragments.png").string() +
+         " --diff " + (out / "d.png").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("DIFFERENT"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(out / "d.png"));
+  // Missing file and size mismatch: clear errors, exit 2.
+  r = sh(bin() + " imgdiff " + (out / "none.png").string() + " " + a.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("none.png"), std::string::npos) << r.out;
+  ASSERT_EQ(sh(bin() + " -q render " + out.string() + " --frames last --size 200x100").code, 0);
+  r = sh(bin() + " imgdiff " + a.string() + " " + src("tests/regression/images/split_block_fragments.png").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("differ in size"), std::string::npos) << r.out;
+}
+
+TEST(Render, BadInputIsNamedAndWritesNothing) {
+  const fs::path out = fs::temp_directory_path() / "dspdem_render_bad";
+  fs::remove_all(out);
+  ASSERT_EQ(sh(bin() + " -q run " + src("tests/data/bar_tension.toml").string() + " --out " + out.string()).code, 0);
+  struct Bad {
+    std::string args, expect;
+  };
+  const std::vector<Bad> cases = {
+      {"--field sigma_qq", "unknown field 'sigma_qq'"},
+      {"--view cracks", "cracks view needs broken-joint data"},
+      {"--view wireframe", "unknown view 'wireframe'"},
+      {"--frames 7", "not a frame index"},
+  };
+  for (const auto& b : cases) {
+    const Result r = sh(bin() + " render " + out.string() + " " + b.args);
+    EXPECT_EQ(r.code, 2) << b.args << ": " << r.out;
+    EXPECT_NE(r.out.find(b.expect), std::string::npos) << b.args << ": " << r.out;
+  }
+  EXPECT_FALSE(fs::exists(out / "images/stress")) << "a failed render wrote images";
+  // Not a run folder.
+  Result r = sh(bin() + " render " + (out / "nowhere").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("run.pvd"), std::string::npos) << r.out;
+  // A truncated frame is named.
+  const fs::path f = out / "frames/frame_0001.vtu";
+  fs::resize_file(f, fs::file_size(f) / 2);
+  r = sh(bin() + " render " + out.string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("frame_0001.vtu"), std::string::npos) << r.out;
+}
