@@ -146,6 +146,7 @@ TEST(Damping, RayleighRatioMatchesInput) {
   const Real f1 = c_p / 4.0;
   for (const char* mode : {"mass", "stiffness"}) {
     const auto [xi, f] = measured_damping(mode, 0.02, f1);
+    RecordProperty(std::string(mode) + "_xi_over_target", sci(xi / 0.02));
     EXPECT_NEAR(xi / 0.02, 1.0, 0.05) << mode << ": measured xi " << xi << " at " << f << " Hz (target " << f1 << ")";
   }
 }

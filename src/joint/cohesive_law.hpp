@@ -1,0 +1,120 @@
+// Cohesive joint law of the paper (eqs. 1-6; METHOD.md section 2), per integration point,
+// in the joint's local frame: opening dn (> 0 in tension) and slip magnitude ds.
+//
+//   mode I : w_ft = f_t / k_n, w_GI = 2 G_fI / f_t
+//            dn <= w_ft           : s_n = k_n dn  (compression too: a penalty, no damage)
+//            w_ft <= dn < w_ft+w_GI: s_n = f_t (1 - (dn - w_ft) / w_GI)
+//   mode II: f_s = c - s_n tan(phi) for s_n < f_t, else c - f_t tan(phi)
+//            w_fs = f_s / k_s, w_GII = 2 G_fII / f_s, same shape in ds
+//   failure (mixed mode, eq. 6): (<dn_max - w_ft>/w_GI)^2 + (<ds_max - w_fs>/w_GII)^2 >= 1
+//
+// Decisions where the paper is silent (tested in tests/unit/test_cohesive_law.cpp):
+//  - irreversibility: the largest opening (slip) reached is a history variable; below it the
+//    joint unloads and reloads along the secant to the origin; it never heals;
+//  - compression is a penalty and never damages the joint;
+//  - once broken, a joint carries no tension; in compression it keeps the normal penalty and
+//    a Coulomb residual friction |s_s| <= -s_n tan(phi) (elastic-plastic in the slip
+//    magnitude, with a plastic slip history);
+//  - energy: the work of the tractions is integrated (trapezoid) per mode; dissipation is
+//    work minus the recoverable elastic energy (1/2 s dn on the secant), so at complete
+//    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n).
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "core/types.hpp"
+
+namespace dspdem::joint {
+
+struct CohesiveParams {
+  Real kn = 0, ks = 0;      ///< penalty stiffness [Pa/m]
+  Real ft = 0;              ///< tensile strength [Pa]
+  Real GfI = 0, GfII = 0;   ///< fracture energies [J/m^2]
+  Real c = 0;               ///< cohesion [Pa]
+  Real tan_phi = 0;         ///< tan of the friction angle
+};
+
+enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
+
+/// History and last state of one integration point.
+struct CohesiveState {
+  Real dn_max = 0;     ///< largest opening reached [m]
+  Real ds_max = 0;     ///< largest slip reached [m]
+  Real ds_plastic = 0; ///< plastic slip of the residual friction (broken joints) [m]
+  Real dn = 0, ds = 0; ///< last opening and slip [m]
+  Real sn = 0, ss = 0; ///< last tractions [Pa]
+  Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
+  JointStatus status = JointStatus::Intact;
+
+  /// Recoverable energy per unit area at the current state [J/m^2].
+  Real elastic_energy(const CohesiveParams& p) const {
+    const Real en = 0.5 * sn * dn;
+    const Real es = status == JointStatus::Broken ? 0.5 * ss * ss / std::max(p.ks, Real(1e-300)) : 0.5 * ss * ds;
+    return en + es;
+  }
+  Real dissipated_I(const CohesiveParams&) const { return work_n - 0.5 * sn * dn; }
+  Real dissipated_II(const CohesiveParams& p) const {
+    return work_s - (status == JointStatus::Broken ? 0.5 * ss * ss / std::max(p.ks, Real(1e-300)) : 0.5 * ss * ds);
+  }
+};
+
+/// Shear strength f_s for the current normal traction (eq. 5, tension positive).
+inline Real shear_strength(const CohesiveParams& p, Real sn) {
+  return std::max<Real>(p.c - std::min(sn, p.ft) * p.tan_phi, 1e-12 * std::max<Real>(p.c, 1.0));
+}
+
+/// Advances one integration point to opening dn and slip magnitude ds (>= 0); updates the
+/// tractions sn, ss (ss acts against the slip), the history and the work integrals.
+inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+  const Real w_ft = p.ft / p.kn, w_GI = 2.0 * p.GfI / p.ft;
+  Real sn;
+  if (s.status == JointStatus::Broken) {
+    sn = dn < 0 ? p.kn * dn : 0.0;
+  } else if (dn <= 0) {
+    sn = p.kn * dn;
+  } else {
+    s.dn_max = std::max(s.dn_max, dn);
+    const Real m = s.dn_max;
+    if (m <= w_ft) sn = p.kn * dn;
+    else sn = std::max<Real>(0.0, p.ft * (1.0 - (m - w_ft) / w_GI)) / m * dn;  // secant below the envelope
+  }
+  Real ss;
+  if (s.status == JointStatus::Broken) {
+    // Residual Coulomb friction, elastic-plastic in the slip magnitude.
+    const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
+    Real trial = p.ks * (ds - s.ds_plastic);
+    if (trial > cap) {
+      s.ds_plastic = ds - cap / p.ks;
+      trial = cap;
+    } else if (trial < 0) {
+      s.ds_plastic = ds;
+      trial = 0;
+    }
+    ss = trial;
+  } else {
+    const Real fs = shear_strength(p, sn);
+    const Real w_fs = fs / p.ks, w_GII = 2.0 * p.GfII / fs;
+    s.ds_max = std::max(s.ds_max, ds);
+    const Real m = s.ds_max;
+    if (m <= w_fs) ss = p.ks * ds;
+    else ss = std::max<Real>(0.0, fs * (1.0 - (m - w_fs) / w_GII)) / m * ds;
+    // Mixed-mode failure (eq. 6).
+    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI, b = std::max<Real>(0.0, m - w_fs) / w_GII;
+    if (a * a + b * b >= 1.0) {
+      s.status = JointStatus::Broken;
+      s.ds_plastic = ds;
+      sn = dn < 0 ? p.kn * dn : 0.0;
+      ss = 0.0;
+    } else if (s.dn_max > w_ft || m > w_fs) {
+      s.status = JointStatus::Softening;
+    }
+  }
+  s.work_n += 0.5 * (s.sn + sn) * (dn - s.dn);
+  s.work_s += 0.5 * (s.ss + ss) * (ds - s.ds);
+  s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
+}
+
+/// Largest stiffness the joint presents (for the stable time step).
+inline Real max_stiffness(const CohesiveParams& p) { return std::max(p.kn, p.ks); }
+
+}  // namespace dspdem::joint

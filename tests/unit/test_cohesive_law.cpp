@@ -1,0 +1,128 @@
+// The cohesive law alone (METHOD.md section 2), with the Brazilian-disc parameters of the
+// paper: f_t 2.3 MPa, G_fI 10 N/m, c 20 MPa, phi 45 deg, G_fII 1500 N/m; penalty
+// k = 10 E / h with E = 25.8 GPa, h = 7.6 mm (the default disc mesh).
+#include <gtest/gtest.h>
+
+#include "joint/cohesive_law.hpp"
+
+using namespace dspdem;
+using namespace dspdem::joint;
+
+namespace {
+CohesiveParams disc_params() {
+  CohesiveParams p;
+  p.kn = p.ks = 10 * 25.8e9 / 7.6e-3;
+  p.ft = 2.3e6, p.GfI = 10, p.c = 20e6, p.tan_phi = 1.0, p.GfII = 1500;
+  return p;
+}
+
+Real envelope_I(const CohesiveParams& p, Real d) {
+  const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft;
+  if (d <= w_ft) return p.kn * d;
+  return std::max<Real>(0, p.ft * (1 - (d - w_ft) / w_GI));
+}
+}  // namespace
+
+TEST(CohesiveLaw, ModeIOpeningFollowsTheLawAndDissipatesGf) {
+  const CohesiveParams p = disc_params();
+  const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft, df = w_ft + w_GI;
+  CohesiveState s;
+  const int n = 20000;
+  Real worst = 0;
+  for (int i = 1; i <= n; ++i) {
+    const Real d = 1.2 * df * i / n;
+    cohesive_update(p, d, 0.0, s);
+    if (s.status != JointStatus::Broken) worst = std::max(worst, std::abs(s.sn - envelope_I(p, d)) / p.ft);
+  }
+  EXPECT_LT(worst, 1e-9);  // the curve is the law (up to round-off)
+  EXPECT_EQ(s.status, JointStatus::Broken);
+  EXPECT_EQ(s.sn, 0.0);
+  // Dissipation = area under the whole curve: G_fI + f_t^2 / (2 k_n). The trapezoid rule
+  // is exact on the linear pieces except in the step holding the peak: 1e-4.
+  EXPECT_NEAR(s.dissipated_I(p) / (p.GfI + p.ft * p.ft / (2 * p.kn)), 1.0, 1e-4);
+  // Against G_fI alone: within 1 % at the default penalty (the elastic ramp adds 0.78 %).
+  EXPECT_NEAR(s.dissipated_I(p) / p.GfI, 1.0, 0.01);
+}
+
+TEST(CohesiveLaw, UnloadingAndReloadingFollowTheSecant) {
+  const CohesiveParams p = disc_params();
+  const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft;
+  const Real m = w_ft + 0.4 * w_GI;  // 40 % into softening
+  CohesiveState s;
+  for (int i = 1; i <= 1000; ++i) cohesive_update(p, m * i / 1000, 0, s);
+  const Real secant = envelope_I(p, m) / m;
+  const Real diss_at_m = s.dissipated_I(p);
+  for (int i = 999; i >= 0; --i) {  // unload to zero
+    cohesive_update(p, m * i / 1000, 0, s);
+    ASSERT_NEAR(s.sn, secant * m * i / 1000, 1e-9 * p.ft);
+  }
+  EXPECT_NEAR(s.dissipated_I(p), diss_at_m, 1e-9 * p.GfI);  // unloading dissipates nothing
+  for (int i = 1; i <= 1000; ++i) {  // reload along the same secant
+    cohesive_update(p, m * i / 1000, 0, s);
+    ASSERT_NEAR(s.sn, secant * m * i / 1000, 1e-9 * p.ft);
+  }
+  cohesive_update(p, m * 1.01, 0, s);  // then back on the envelope
+  EXPECT_NEAR(s.sn, envelope_I(p, m * 1.01), 1e-9 * p.ft);
+  EXPECT_EQ(s.status, JointStatus::Softening);
+}
+
+TEST(CohesiveLaw, CompressionNeverDamages) {
+  const CohesiveParams p = disc_params();
+  CohesiveState s;
+  for (int i = 1; i <= 100; ++i) cohesive_update(p, -1e-3 * i / 100, 0, s);  // ~1000 x w_ft in compression
+  EXPECT_EQ(s.status, JointStatus::Intact);
+  EXPECT_DOUBLE_EQ(s.sn, p.kn * -1e-3);
+  EXPECT_NEAR(s.dissipated_I(p), 0.0, 1e-9 * std::abs(s.work_n));
+}
+
+TEST(CohesiveLaw, ShearUnderCompressionDissipatesGfIIThenSlidesWithFriction) {
+  CohesiveParams p = disc_params();
+  const Real sigma = -5e6;  // 5 MPa compression
+  const Real dn = sigma / p.kn;
+  const Real fs = p.c - sigma * p.tan_phi;  // 25 MPa
+  const Real w_fs = fs / p.ks, w_GII = 2 * p.GfII / fs, df = w_fs + w_GII;
+  CohesiveState s;
+  const int n = 40000;
+  Real worst = 0, diss_at_break = -1;
+  for (int i = 1; i <= n; ++i) {
+    const Real d = 1.5 * df * i / n;
+    cohesive_update(p, dn, d, s);
+    if (s.status != JointStatus::Broken) {
+      const Real env = d <= w_fs ? p.ks * d : fs * (1 - (d - w_fs) / w_GII);
+      worst = std::max(worst, std::abs(s.ss - env) / fs);
+    } else if (diss_at_break < 0) {
+      diss_at_break = s.dissipated_II(p);
+    }
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_EQ(s.status, JointStatus::Broken);
+  EXPECT_NEAR(diss_at_break / (p.GfII + fs * fs / (2 * p.ks)), 1.0, 1e-3);
+  // Residual friction: |s_s| = -s_n tan(phi) = 5 MPa, and compression is still carried.
+  EXPECT_NEAR(s.ss, -sigma * p.tan_phi, 1e-6 * fs);
+  EXPECT_NEAR(s.sn, sigma, 1e-6 * std::abs(sigma));
+}
+
+TEST(CohesiveLaw, MixedModeBreaksWhereEquation6Predicts) {
+  const CohesiveParams p = disc_params();
+  // Proportional path dn = ds = d: the joint must break where
+  // ((d - w_ft)/w_GI)^2 + ((d - w_fs)/w_GII)^2 = 1, with w_fs from the shear strength at the
+  // normal traction of that moment. Tolerance 2e-3: the step size of the path.
+  CohesiveState s;
+  const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft;
+  const int n = 200000;
+  Real d_break = -1;
+  for (int i = 1; i <= n && d_break < 0; ++i) {
+    const Real d = 2 * (w_ft + w_GI) * i / n;
+    cohesive_update(p, d, d, s);
+    if (s.status == JointStatus::Broken) d_break = d;
+  }
+  ASSERT_GT(d_break, 0);
+  // Pure mode I would break at w_ft + w_GI; the shear term makes it break earlier, but
+  // only slightly, because w_GII (G_fII = 1500 N/m) is much longer than w_GI.
+  EXPECT_LT(d_break, w_ft + w_GI);
+  // Check eq. 6 at the break with the strength the law used just before it.
+  const Real a = (d_break - w_ft) / w_GI;
+  const Real fs = shear_strength(p, envelope_I(p, d_break));
+  const Real b = (d_break - fs / p.ks) / (2 * p.GfII / fs);
+  EXPECT_NEAR(a * a + b * b, 1.0, 2e-3);
+}
