@@ -215,8 +215,10 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     c->SetNumberOfComponents(3);
     c->SetNumberOfTuples(g->GetNumberOfCells());
     for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
-      const long k = static_cast<long>(id->GetComponent(e, 0));
-      const unsigned char* col = kPalette[((k % 20) + 20) % 20];
+      // Fragment ids are element ids (sparse, spatially ordered): hash them so neighbouring
+      // pieces rarely share a colour; the colour of an id never changes.
+      const std::uint64_t k = static_cast<std::uint64_t>(static_cast<long>(id->GetComponent(e, 0)));
+      const unsigned char* col = kPalette[((k * 0x9E3779B97F4A7C15ull) >> 32) % 20];
       c->SetTypedTuple(e, col);
     }
     g->GetCellData()->AddArray(c);

@@ -1,8 +1,8 @@
 // The views a frame is drawn in:
 //   stress    - a scalar field on the (optionally magnified) deformed bodies, fixed colour
 //               range over the series, scalar bar and simulated time;
-//   fragments - every fragment (until joints exist: every body) its own colour, stable from
-//               frame to frame (colour = palette[id mod 20]);
+//   fragments - every fragment (or, in runs without fragment data, every body) its own
+//               colour, stable from frame to frame (colour = palette[hash(id) mod 20]);
 //   cracks    - broken joint faces over a translucent body (needs joint data in the run).
 // Camera presets look at the first frame's bounds, so every frame of a series is framed
 // the same and images can be compared pixel by pixel.

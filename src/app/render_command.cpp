@@ -194,8 +194,13 @@ int render_command(const RenderArgs& in) {
     std::vector<std::vector<double>> cols;
     render::read_csv(csv.string(), names, cols);
     render::PlotSpec energy{"time", {"kinetic", "internal", "external_work", "damping"}, "", "energy ledger [J]"};
+    if (std::find(names.begin(), names.end(), "fracture_I") != names.end())
+      energy.y.insert(energy.y.end(), {"joint_elastic", "fracture_I", "fracture_II"});
     render::plot_csv(csv.string(), energy, (pdir / "energy.png").string());
-    for (std::size_t i = 7; i < names.size(); ++i) {
+    // Monitors follow the balance_error column.
+    const std::size_t first_monitor = static_cast<std::size_t>(
+        std::find(names.begin(), names.end(), "balance_error") - names.begin() + 1);
+    for (std::size_t i = first_monitor; i < names.size(); ++i) {
       render::PlotSpec m{"time", {names[i]}, "", names[i]};
       render::plot_csv(csv.string(), m, (pdir / (names[i] + ".png")).string());
     }

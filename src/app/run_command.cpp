@@ -13,6 +13,7 @@
 #include "fem/stable_dt.hpp"
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"
+#include "joint/fragments.hpp"
 #include "app/case_mesh.hpp"
 #include "time/integrator.hpp"
 
@@ -47,14 +48,16 @@ class Series {
  public:
   Series(const std::string& path, const Model& m) : f_(path) {
     DSPDEM_CHECK(f_.good(), "cannot write '{}'", path);
-    f_ << "time,step,kinetic,internal,external_work,damping,balance_error";
+    f_ << "time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,"
+          "crack_area,balance_error";
     for (const auto& ms : m.monitors) f_ << ',' << ms.cfg.name;
     f_ << '\n';
   }
   void row(const Integrator& it, const Model& m) {
     const Energy e = it.energy();
-    f_ << fmt::format("{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.4g}", it.time(), it.steps(), e.kinetic,
-                      e.internal, e.external_work, e.damping, e.balance_error());
+    f_ << fmt::format("{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{:.10g},{:.4g}", it.time(),
+                      it.steps(), e.kinetic, e.internal, e.external_work, e.damping, e.joint_elastic, e.fracture_I,
+                      e.fracture_II, e.broken_joints, e.crack_area, e.balance_error());
     for (const auto& ms : m.monitors) f_ << fmt::format(",{:.10g}", it.monitor(ms));
     f_ << '\n';
     f_.flush();
@@ -74,11 +77,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   log::info("  mesh {}: {} nodes, {} elements, {} bodies", c.mesh_generator.empty() ? c.mesh_file : c.mesh_generator,
             fem.n_nodes, fem.n_elements, model.body_names.size());
 
-  const StableStep crit = element_stable_step(fem, model.materials);
+  if (model.joints.size() > 0)
+    log::info("  joints: {} ({} triangles, {} quadrilaterals) on fracturable bodies; nodes {} -> {}", model.joint_report.joints,
+              model.joint_report.tri, model.joint_report.quad, model.joint_report.nodes_before, model.joint_report.nodes_after);
+  const StableStep crit = stable_step(model);
   const std::size_t lim_tag = fem.elem_tag[crit.element];
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
-  log::info("  critical step {:.4g} s, limited by {} {} (body '{}'); using dt = {:.4g} s{}", crit.dt, crit.limiter,
-            lim_tag, model.body_names[fem.elem_body[crit.element]], dt, c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
+  log::info("  critical step {:.4g} s, limited by {} at element {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
+            crit.limiter, lim_tag, model.body_names[fem.elem_body[crit.element]], dt, c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
   if (c.dt > crit.dt) {
     if (!c.allow_unstable)
       fail("{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, remove it "
@@ -100,6 +106,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
 
   Integrator it(model, dt);
   std::vector<Real> stress;
+  std::vector<Real> elem_mass(fem.n_elements, 0.0);
+  for (const auto& b : fem.blocks)
+    for (Index e = 0; e < b.size(); ++e) elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
+  joint::Fragments frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+  std::vector<std::pair<double, std::string>> joint_frames;
+  const std::string joints_pvd = (fs::path(stage.path()) / "joints.pvd").string();
   auto write_frame = [&]() {
     it.stresses(stress);
     FrameData fd;
@@ -109,6 +121,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     fd.v = it.v().data();
     fd.stress = stress.data();
     fd.body = fem.elem_body.data();
+    frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+    fd.fragment = frag.id.data();
     fd.material = fem.elem_material.data();
     fd.fields = c.fields;
     fd.compress = c.compress;
@@ -116,6 +130,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     write_vtu((fs::path(frames_dir) / name).string(), fd);
     frames.emplace_back(it.time(), "frames/" + name);
     write_pvd(pvd, frames);
+    if (model.joints.size() > 0) {
+      const std::string jname = fmt::format("joints_{:04d}.vtu", joint_frames.size());
+      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(), c.compress);
+      joint_frames.emplace_back(it.time(), "frames/" + jname);
+      write_pvd(joints_pvd, joint_frames);
+    }
   };
 
   auto write_summary = [&](const std::string& dir, const std::string& status, const std::string& message) {
@@ -138,12 +158,23 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     kv("nodes", std::to_string(fem.n_nodes));
     kv("elements", std::to_string(fem.n_elements));
     kv("frames", std::to_string(frames.size()));
+    kv("joints", std::to_string(model.joints.size()));
+    kv("broken_joints", std::to_string(e.broken_joints));
+    kv("crack_area", json_number(e.crack_area));
+    kv("fragments", std::to_string(frag.count));
+    {
+      std::string masses;
+      for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)
+        masses += (i ? ", " : "") + json_number(frag.mass[i]);
+      kv("largest_fragment_masses", "[" + masses + "]");
+    }
     kv("element_steps_per_s", json_number(ws > 0 ? static_cast<double>(it.steps()) * fem.n_elements / ws : 0.0));
     s += fmt::format(
         "  \"energy\": {{\"kinetic\": {}, \"internal\": {}, \"external_work\": {}, \"damping\": {}, \"initial\": {}, "
-        "\"balance_error\": {}}}\n}}\n",
+        "\"joint_elastic\": {}, \"fracture_I\": {}, \"fracture_II\": {}, \"balance_error\": {}}}\n}}\n",
         json_number(e.kinetic), json_number(e.internal), json_number(e.external_work), json_number(e.damping),
-        json_number(e.initial), json_number(e.balance_error()));
+        json_number(e.initial), json_number(e.joint_elastic), json_number(e.fracture_I), json_number(e.fracture_II),
+        json_number(e.balance_error()));
     write_file_atomic((fs::path(dir) / "summary.json").string(), s);
   };
 

@@ -11,8 +11,17 @@
 
 namespace dspdem {
 
+/// Joint (cohesive) parameters of a material; `given` when the material defines them.
+struct JointMaterial {
+  bool given = false;
+  Real ft = 0, GfI = 0, c = 0, phi_deg = 0, GfII = 0;
+  Real penalty = 50, kn = 0, ks = 0;  ///< kn, ks = 0: from the penalty factor
+};
+
 struct BodyConfig {
   std::string name;
+  enum class Fracture { None, All, Groups } fracture = Fracture::None;
+  std::vector<std::string> fracture_groups;
   std::vector<std::string> groups;
   std::string material;
   Kinematics kinematics = Kinematics::Corotational;
@@ -67,6 +76,7 @@ struct CaseConfig {
   bool mesh_cache = true;
   Vec3 gravity = Vec3::Zero();
   std::vector<Material> materials;
+  std::vector<JointMaterial> joint_materials;  ///< parallel to materials
   std::vector<BodyConfig> bodies;
   std::vector<BoundaryConfig> boundaries;
   std::vector<InitialConfig> initial;

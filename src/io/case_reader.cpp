@@ -323,8 +323,27 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       } else if (s.has("damping_frequency")) {
         s.real("damping_frequency");
       }
+      JointMaterial jm;
+      const char* jkeys[] = {"tensile_strength", "fracture_energy_I", "cohesion", "friction_angle", "fracture_energy_II"};
+      int present = 0;
+      for (const char* k : jkeys) present += s.has(k);
+      if (present > 0 && present < 5)
+        fail("{}: [materials.{}] joint parameters come together: give all of tensile_strength, fracture_energy_I, "
+             "cohesion, friction_angle, fracture_energy_II", s.where(), mname);
+      if (present == 5) {
+        jm.given = true;
+        jm.ft = s.real("tensile_strength");
+        jm.GfI = s.real("fracture_energy_I");
+        jm.c = s.real("cohesion");
+        jm.phi_deg = s.real("friction_angle");
+        jm.GfII = s.real("fracture_energy_II");
+      }
+      jm.penalty = s.real("joint_penalty");
+      if (s.has("joint_kn")) jm.kn = s.real("joint_kn");
+      if (s.has("joint_ks")) jm.ks = s.real("joint_ks");
       s.finish();
       c.materials.push_back(m);
+      c.joint_materials.push_back(jm);
     }
   }
   auto material_index = [&](const std::string& name, const std::string& where) {
@@ -346,6 +365,17 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       material_index(b.material, s.where("material"));
       b.kinematics = s.str("kinematics") == "small_strain" ? Kinematics::SmallStrain : Kinematics::Corotational;
       b.split_components = s.boolean("split_components");
+      const std::string fr = s.str("fracture");
+      b.fracture = fr == "all" ? BodyConfig::Fracture::All : fr == "groups" ? BodyConfig::Fracture::Groups : BodyConfig::Fracture::None;
+      b.fracture_groups = s.strings("fracture_groups");
+      if (b.fracture == BodyConfig::Fracture::Groups && b.fracture_groups.empty())
+        fail("{}: [[bodies]] '{}' has fracture = \"groups\" but no fracture_groups", s.where("fracture"), b.name);
+      if (b.fracture != BodyConfig::Fracture::None) {
+        const Index mi = material_index(b.material, s.where("material"));
+        if (!c.joint_materials[mi].given)
+          fail("{}: [[bodies]] '{}' is fracturable but [materials.{}] has no joint parameters (tensile_strength, "
+               "fracture_energy_I, cohesion, friction_angle, fracture_energy_II)", s.where("fracture"), b.name, b.material);
+      }
       for (const auto& o : c.bodies)
         DSPDEM_CHECK(o.name != b.name, "{}: body name '{}' used twice", s.where("name"), b.name);
       s.finish();

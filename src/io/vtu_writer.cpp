@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "fem/linear_elastic.hpp"
 #include "io/staging.hpp"
+#include "joint/joint_set.hpp"
 
 namespace dspdem {
 
@@ -99,6 +100,7 @@ void write_vtu(const std::string& path, const FrameData& f) {
     grid->GetCellData()->AddArray(a);
   };
   if (f.body && wants(f, "body")) int_array("body", f.body);
+  if (f.fragment) int_array("fragment", f.fragment);
   if (f.material && wants(f, "material")) int_array("material", f.material);
 
   const std::string tmp = path + ".tmp.vtu";
@@ -110,6 +112,56 @@ void write_vtu(const std::string& path, const FrameData& f) {
   if (f.compress) w->SetCompressorTypeToZLib();
   else w->SetCompressorTypeToNone();
   DSPDEM_CHECK(w->Write() == 1, "could not write frame '{}'", tmp);
+  std::filesystem::rename(tmp, path);
+}
+
+void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress) {
+  vtkNew<vtkUnstructuredGrid> grid;
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  vtkNew<vtkIntArray> state;
+  state->SetName("state");
+  vtkNew<vtkDoubleArray> damage, opening, slip;
+  damage->SetName("damage"), opening->SetName("opening"), slip->SetName("slip");
+  for (Index j = 0; j < js.size(); ++j) {
+    const int npf = js.npf[j];
+    vtkIdType ids[4];
+    for (int k = 0; k < npf; ++k) {
+      const Index a = js.a[4 * static_cast<std::size_t>(j) + k], b = js.b[4 * static_cast<std::size_t>(j) + k];
+      ids[k] = pts->InsertNextPoint(0.5 * (x[3 * a] + x[3 * b]), 0.5 * (x[3 * a + 1] + x[3 * b + 1]),
+                                    0.5 * (x[3 * a + 2] + x[3 * b + 2]));
+    }
+    grid->InsertNextCell(npf == 3 ? 5 /*VTK_TRIANGLE*/ : 9 /*VTK_QUAD*/, npf, ids);
+    const joint::CohesiveParams& p = js.params[js.param[j]];
+    const int ng = npf;  // 3 points on triangles, 4 on quads
+    Real d = 0, dn = 0, ds = 0;
+    for (int g = 0; g < ng; ++g) {
+      const joint::CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];
+      const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft;
+      const Real fs = joint::shear_strength(p, s.sn), w_fs = fs / p.ks, w_GII = 2 * p.GfII / fs;
+      const Real a = std::max<Real>(0, s.dn_max - w_ft) / w_GI, b = std::max<Real>(0, s.ds_max - w_fs) / w_GII;
+      d = std::max(d, s.status == joint::JointStatus::Broken ? 1.0 : std::min<Real>(1.0, std::sqrt(a * a + b * b)));
+      dn += s.dn / ng, ds += s.ds / ng;
+    }
+    state->InsertNextValue(static_cast<int>(js.status[j]));
+    damage->InsertNextValue(d);
+    opening->InsertNextValue(dn);
+    slip->InsertNextValue(ds);
+  }
+  grid->SetPoints(pts);
+  grid->GetCellData()->AddArray(state);
+  grid->GetCellData()->AddArray(damage);
+  grid->GetCellData()->AddArray(opening);
+  grid->GetCellData()->AddArray(slip);
+  const std::string tmp = path + ".tmp.vtu";
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetFileName(tmp.c_str());
+  w->SetInputData(grid);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  if (compress) w->SetCompressorTypeToZLib();
+  else w->SetCompressorTypeToNone();
+  DSPDEM_CHECK(w->Write() == 1, "could not write joints '{}'", tmp);
   std::filesystem::rename(tmp, path);
 }
 

@@ -17,6 +17,7 @@ struct FrameData {
   const Real* v = nullptr;
   const Real* stress = nullptr;  ///< 6 per element (xx yy zz xy yz xz), global element order
   const Index* body = nullptr;
+  const Index* fragment = nullptr;  ///< per element, or null
   const Index* material = nullptr;
   std::vector<std::string> fields;
   bool compress = true;
@@ -24,6 +25,12 @@ struct FrameData {
 
 /// Writes the frame to `path` (through a temporary name). Throws Error on failure.
 void write_vtu(const std::string& path, const FrameData& f);
+
+namespace joint { struct JointSet; }
+/// Writes the joints as their own dataset: one polygon per joint on its mid-surface with
+/// cell data state (0 intact, 1 softening, 2 broken), damage (0-1, the eq. 6 measure),
+/// opening and slip (means over the points) [m].
+void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress);
 
 /// Writes a .pvd collection: (time, relative file) pairs.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames);

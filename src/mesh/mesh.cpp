@@ -64,3 +64,15 @@ void check_element_volumes(const Mesh& mesh) {
 }
 
 }  // namespace dspdem
+
+namespace dspdem {
+Real element_volume(const Mesh& mesh, const ElementBlock& blk, Index e) {
+  const Index* c = &blk.conn[static_cast<std::size_t>(e) * blk.npe()];
+  auto P = [&](int i) { return node_pos(mesh.x, c[i]); };
+  if (blk.type == CellType::Tet4) return tet4_volume(P(0), P(1), P(2), P(3));
+  const int t[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  Real v = 0;
+  for (const auto& q : t) v += tet4_volume(P(q[0]), P(q[1]), P(q[2]), P(q[3]));
+  return v;
+}
+}  // namespace dspdem

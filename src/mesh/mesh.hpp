@@ -57,3 +57,13 @@ Real tet4_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 inline Vec3 node_pos(const std::vector<Real>& x, Index i) { return {x[3 * i], x[3 * i + 1], x[3 * i + 2]}; }
 
 }  // namespace dspdem
+
+namespace dspdem {
+/// Nodal position from a raw coordinate array.
+inline Vec3 node_pos_ptr(const Real* x, Index i) { return {x[3 * i], x[3 * i + 1], x[3 * i + 2]}; }
+}  // namespace dspdem
+
+namespace dspdem {
+/// Volume of element e of a block at the mesh's coordinates (hex8: 6-tet split).
+Real element_volume(const Mesh& mesh, const ElementBlock& blk, Index e);
+}  // namespace dspdem

@@ -4,11 +4,13 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "joint/joint_forces.hpp"
 
 namespace dspdem {
 
 Real Energy::largest() const {
-  return std::max({std::abs(kinetic), std::abs(internal), std::abs(external_work), std::abs(damping), std::abs(initial)});
+  return std::max({std::abs(kinetic), std::abs(internal), std::abs(external_work), std::abs(damping), std::abs(initial),
+                   std::abs(joint_elastic), std::abs(fracture_I), std::abs(fracture_II)});
 }
 
 Real Energy::balance_error() const {
@@ -33,7 +35,7 @@ Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
   }
   compute_forces(v_);
   const Energy e = energy();
-  e0_ = e.kinetic + e.internal;
+  e0_ = e.kinetic + e.internal + e.joint_elastic;
 }
 
 void Integrator::compute_forces(const std::vector<Real>& vel) {
@@ -43,6 +45,7 @@ void Integrator::compute_forces(const std::vector<Real>& vel) {
                                      "may be too large or the element too distorted",
                                      element_tag(st.inverted_element), st.min_detF, n_, t_),
                          n_, t_);
+  if (m_.joints.size() > 0) joint::add_joint_forces(m_.joints, x_.data(), f_.data(), joint_slots_);
   const Index nn = m_.fem.n_nodes;
   const Real* mass = m_.fem.mass.data();
   const Real* alpha = m_.fem.node_alpha.data();
@@ -128,12 +131,17 @@ Energy Integrator::energy() const {
   e.external_work = w_ext_;
   e.damping = damp_;
   e.initial = e0_;
+  if (m_.joints.size() > 0) {
+    const joint::JointTotals t = joint::joint_totals(m_.joints);
+    e.joint_elastic = t.elastic, e.fracture_I = t.fracture_I, e.fracture_II = t.fracture_II;
+    e.broken_joints = t.broken, e.crack_area = t.broken_area;
+  }
   return e;
 }
 
 void Integrator::check_energy(Real factor) const {
   const Energy e = energy();
-  const Real budget = e.initial + std::abs(e.external_work) + e.damping;
+  const Real budget = e.initial + std::abs(e.external_work) + e.damping + e.fracture_I + e.fracture_II;
   const Real floor = 1e-9 * std::max<Real>(1.0, budget);
   if (e.kinetic + e.internal > factor * budget + floor) {
     Index worst = 0;

@@ -17,7 +17,12 @@ namespace dspdem {
 
 struct Energy {
   Real kinetic = 0, internal = 0, external_work = 0, damping = 0, initial = 0;
-  Real balance() const { return kinetic + internal + damping - initial - external_work; }
+  Real joint_elastic = 0, fracture_I = 0, fracture_II = 0;  ///< joints (zero without)
+  Index broken_joints = 0;
+  Real crack_area = 0;
+  Real balance() const {
+    return kinetic + internal + joint_elastic + damping + fracture_I + fracture_II - initial - external_work;
+  }
   Real largest() const;
   Real balance_error() const;  ///< |balance| / largest term
 };
@@ -56,7 +61,7 @@ class Integrator {
   Model& m_;
   Real dt_, t_ = 0;
   long n_ = 0;
-  std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_;
+  std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_, joint_slots_;
   std::vector<char> constrained_;
   Real w_ext_ = 0, damp_ = 0, e0_ = 0;
   Real dpower_ = 0;  ///< dissipation rate at the last force evaluation

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "joint/joint_dt.hpp"
 
 namespace dspdem {
 
@@ -40,6 +41,13 @@ std::vector<std::pair<Index, Real>> load_weights(const Mesh& mesh, const Group& 
   return out;
 }
 }  // namespace
+
+StableStep stable_step(const Model& m) {
+  std::vector<Real> per_element;
+  const StableStep s = element_stable_step(m.fem, m.materials, &per_element);
+  if (m.joints.size() == 0) return s;
+  return joint::stable_step_with_joints(m.fem, m.joints, per_element);
+}
 
 Model build_model(const CaseConfig& c, Mesh mesh) {
   Model m;
@@ -88,6 +96,7 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     fail("{}: {} element(s) of mesh '{}' belong to no body (first: element {}); list their volume groups in [[bodies]] groups",
          c.path, orphans, me.source, first_orphan);
 
+  const std::vector<Index> cfg_body = body;  // before splitting into components
   // Split bodies into connected components where asked (e.g. one body per particle).
   for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
     if (!c.bodies[bi].split_components) continue;
@@ -124,6 +133,61 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       }
       body[gid] = it->second;
     });
+  }
+
+  // Cohesive joints on the faces of fracturable bodies (node duplication).
+  {
+    joint::InsertionInput in;
+    in.fracturable.assign(ne, 0);
+    in.body = cfg_body;
+    bool any = false;
+    for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
+      const BodyConfig& bc = c.bodies[bi];
+      if (bc.fracture == BodyConfig::Fracture::None) continue;
+      any = true;
+      if (bc.fracture == BodyConfig::Fracture::All) {
+        for (Index g = 0; g < ne; ++g)
+          if (cfg_body[g] == static_cast<Index>(bi)) in.fracturable[g] = 1;
+        continue;
+      }
+      for (const auto& gname : bc.fracture_groups) {
+        const Group* g = me.find_group(gname);
+        const std::string where = fmt::format("{}: [[bodies]] '{}' fracture_groups", c.path, bc.name);
+        if (!g || g->dim != 3) fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
+        for (std::size_t b = 0; b < g->elements.size(); ++b)
+          for (Index e : g->elements[b]) {
+            const Index gid = block_offset[b] + e;
+            if (cfg_body[gid] != static_cast<Index>(bi))
+              fail("{}: group '{}' holds element {} of another body", where, gname, me.blocks[b].tag[e]);
+            in.fracturable[gid] = 1;
+          }
+      }
+    }
+    if (any) {
+      m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
+      // Penalty stiffness from the two elements' heights over the face.
+      std::vector<Real> vol(ne);
+      for (std::size_t b = 0; b < me.blocks.size(); ++b)
+        for (Index e = 0; e < me.blocks[b].size(); ++e) vol[block_offset[b] + e] = element_volume(me, me.blocks[b], e);
+      auto height = [&](Index g, Real area) {
+        const bool tet = me.blocks[0].size() > g;  // block 0 holds the tets
+        return (tet ? 3.0 : 1.0) * vol[g] / area;
+      };
+      joint::JointSet& js = m.joints;
+      js.param.resize(js.size());
+      for (Index j = 0; j < js.size(); ++j) {
+        const Index mat = material[js.ea[j]];
+        const JointMaterial& jm = c.joint_materials[mat];
+        const Real h = 0.5 * (height(js.ea[j], js.area0[j]) + height(js.eb[j], js.area0[j]));
+        joint::CohesiveParams p;
+        p.kn = jm.kn > 0 ? jm.kn : jm.penalty * c.materials[mat].E / h;
+        p.ks = jm.ks > 0 ? jm.ks : p.kn;
+        p.ft = jm.ft, p.GfI = jm.GfI, p.c = jm.c, p.GfII = jm.GfII;
+        p.tan_phi = std::tan(jm.phi_deg * M_PI / 180.0);
+        js.param[j] = static_cast<Index>(js.params.size());
+        js.params.push_back(p);
+      }
+    }
   }
 
   m.fem = build_fem_model(me, m.materials, material, body, body_kin);

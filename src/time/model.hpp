@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "fem/fem_model.hpp"
+#include "fem/stable_dt.hpp"
+#include "joint/joint_set.hpp"
 #include "io/case_config.hpp"
 #include "mesh/mesh.hpp"
 
@@ -40,12 +42,17 @@ struct Model {
   Vec3 gravity = Vec3::Zero();
   std::vector<MonitorSet> monitors;
   std::vector<std::string> body_names;
+  joint::JointSet joints;
+  joint::InsertionReport joint_report;
 };
 
 /// Ramp factor of a boundary value at time t: min(1, t / ramp), or 1 without a ramp.
 inline Real ramp_factor(Real t, Real ramp) { return ramp > 0 ? std::min<Real>(1.0, t / ramp) : 1.0; }
 /// Its time derivative (for the inertia part of reactions).
 inline Real ramp_rate(Real t, Real ramp) { return ramp > 0 && t < ramp ? 1.0 / ramp : 0.0; }
+
+/// Critical time step of the model: elements, then joint penalties (limiter says which).
+StableStep stable_step(const Model& m);
 
 /// Builds the model from a case and a mesh. Throws Error naming the case key for groups or
 /// bodies that do not match the mesh.

@@ -103,7 +103,7 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   EXPECT_EQ(g->GetCellData()->GetArray("stress")->GetNumberOfComponents(), 6);
   // series.csv: header with the monitors and one row per series step.
   const std::string csv = slurp(out / "series.csv");
-  EXPECT_EQ(csv.rfind("time,step,kinetic,internal,external_work,damping,balance_error,tip_uy,clamp_reaction_y", 0), 0u);
+  EXPECT_EQ(csv.rfind("time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,crack_area,balance_error,tip_uy,clamp_reaction_y", 0), 0u);
   EXPECT_TRUE(fs::exists(out / "case.resolved.toml"));
   for (const auto& e : fs::directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().rfind(".staging", 0), std::string::npos) << "staging folder left behind";

@@ -10,7 +10,7 @@ namespace dspdem::testsupport {
 /// Node index of grid point (i, j, k) in a box_mesh with nx x ny cells per layer.
 inline Index grid_node(int nx, int ny, int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); }
 
-inline Real critical_dt(const Model& m) { return element_stable_step(m.fem, m.materials).dt; }
+inline Real critical_dt(const Model& m) { return stable_step(m).dt; }
 
 }  // namespace dspdem::testsupport
 

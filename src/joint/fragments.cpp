@@ -1,0 +1,46 @@
+#include "joint/fragments.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+namespace dspdem::joint {
+
+Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector<Real>& elem_mass) {
+  const Index ne = mesh.n_elements();
+  std::vector<Index> parent(ne);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  auto unite = [&](Index a, Index b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  // Shared nodes: every element meets the first element seen at each of its nodes.
+  std::vector<Index> first(mesh.n_nodes(), -1);
+  Index g = 0;
+  for (const auto& b : mesh.blocks)
+    for (Index e = 0; e < b.size(); ++e, ++g)
+      for (int i = 0; i < b.npe(); ++i) {
+        Index& f = first[b.conn[static_cast<std::size_t>(e) * b.npe() + i]];
+        if (f < 0) f = g;
+        else unite(f, g);
+      }
+  for (Index j = 0; j < js.size(); ++j)
+    if (js.status[j] != JointStatus::Broken) unite(js.ea[j], js.eb[j]);
+  Fragments fr;
+  fr.id.resize(ne);
+  std::map<Index, Real> mass;
+  for (Index e = 0; e < ne; ++e) {
+    fr.id[e] = find(e);  // the root is the smallest element id of the set
+    mass[fr.id[e]] += elem_mass[e];
+  }
+  fr.count = static_cast<Index>(mass.size());
+  for (auto& [id, m] : mass) fr.mass.push_back(m);
+  std::sort(fr.mass.rbegin(), fr.mass.rend());
+  return fr;
+}
+
+}  // namespace dspdem::joint

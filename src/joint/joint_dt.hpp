@@ -1,0 +1,16 @@
+// The stable step with joints. A joint's penalty springs add, at each of its nodes, a
+// Gershgorin row sum of 2 k A / npf (k = max(k_n, k_s), A the face area) to the stiffness
+// the element already gives. Per node: w^2 <= w_e^2 + 2 K_n / m_n, w_e the largest
+// frequency of the node's elements (element eigenvalue bound), K_n the sum over its joints;
+// dt = 2 / w. The limiter is "joint" when the joint term is the larger one.
+#pragma once
+#include "fem/fem_model.hpp"
+#include "fem/stable_dt.hpp"
+#include "joint/joint_set.hpp"
+
+namespace dspdem::joint {
+
+/// Combines the element step (`per_element` critical steps) with the joint penalties.
+StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const std::vector<Real>& per_element);
+
+}  // namespace dspdem::joint

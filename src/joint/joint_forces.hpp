@@ -1,0 +1,30 @@
+// Joint forces (paper eq. 7): f = integral of N^T t over the joint, by Gauss quadrature on
+// the mid-surface (triangles 3 points, quadrilaterals 2x2), weights from the reference
+// area. The local frame (normal from side A to side B) is taken from the current
+// mid-surface, so rigid rotations neither open nor shear a joint.
+#pragma once
+#include <vector>
+
+#include "joint/joint_set.hpp"
+
+namespace dspdem::joint {
+
+struct JointTotals {
+  Real elastic = 0;       ///< recoverable energy in the joints [J]
+  Real fracture_I = 0;    ///< dissipated, mode I [J]
+  Real fracture_II = 0;   ///< dissipated, mode II (and residual friction) [J]
+  Index broken = 0;       ///< joints with every point failed
+  Real broken_area = 0;   ///< their reference area: the crack area [m^2]
+};
+
+/// Updates every joint at positions x and adds its nodal forces to f. Deterministic: joint
+/// forces go to per-joint slots, then are added in joint order.
+void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots);
+
+JointTotals joint_totals(const JointSet& js);
+
+/// Quadrature of a face: shape values N (per point, per node) and weights (fractions of the
+/// face area). Triangles: 3 points at (2/3, 1/6, 1/6) and permutations; quads: 2x2 Gauss.
+int face_quadrature(int npf, double N[4][4], double w[4]);
+
+}  // namespace dspdem::joint

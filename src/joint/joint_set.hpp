@@ -1,0 +1,48 @@
+// Zero-thickness joint (cohesive interface) elements between element faces, and their
+// insertion into a mesh (node duplication).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "joint/cohesive_law.hpp"
+#include "mesh/mesh.hpp"
+
+namespace dspdem::joint {
+
+/// All joints of a model. A joint ties face A of element ea (outward normal from A to B) to
+/// the coincident face B of element eb; node k of side A and node k of side B were the
+/// same node before insertion. Triangles (between tet4) and quadrilaterals (between hex8).
+struct JointSet {
+  std::vector<int> npf;              ///< nodes per face: 3 or 4
+  std::vector<Index> a, b;           ///< 4 slots per joint (the 4th unused for triangles)
+  std::vector<Index> ea, eb;         ///< element on each side (global ids)
+  std::vector<Real> area0;           ///< reference area [m^2]
+  std::vector<Index> param;          ///< index into params
+  std::vector<CohesiveParams> params;
+  // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint).
+  std::vector<CohesiveState> state;
+  std::vector<JointStatus> status;   ///< per joint: Broken once any point is
+  Index size() const { return static_cast<Index>(npf.size()); }
+};
+
+/// Which faces get joints: interior faces whose two elements are both marked fracturable
+/// and in the same body.
+struct InsertionInput {
+  std::vector<char> fracturable;  ///< per global element
+  std::vector<Index> body;        ///< per global element
+};
+
+struct InsertionReport {
+  Index joints = 0, tri = 0, quad = 0;
+  Index nodes_before = 0, nodes_after = 0;
+};
+
+/// Duplicates nodes so that jointed faces no longer share nodes, rewrites the mesh
+/// (connectivity, coordinates, groups) and returns the joint topology (without params).
+JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* report = nullptr);
+
+/// Outward faces of the cell types, as local node indices (gmsh ordering).
+const std::vector<std::vector<int>>& cell_faces(CellType t);
+
+}  // namespace dspdem::joint
