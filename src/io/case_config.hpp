@@ -15,7 +15,7 @@ namespace dspdem {
 struct JointMaterial {
   bool given = false;
   Real ft = 0, GfI = 0, c = 0, phi_deg = 0, GfII = 0;
-  Real penalty = 50, kn = 0, ks = 0;  ///< kn, ks = 0: from the penalty factor
+  Real penalty = 100, kn = 0, ks = 0;  ///< kn, ks = 0: from the penalty factor
 };
 
 struct BodyConfig {

@@ -179,6 +179,7 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     report->quad = report->joints - report->tri;
     report->nodes_before = nn_old;
     report->nodes_after = static_cast<Index>(tags.size());
+    report->copies = copies;
   }
   mesh.x = std::move(x);
   mesh.node_tag = std::move(tags);

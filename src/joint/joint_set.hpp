@@ -36,6 +36,7 @@ struct InsertionInput {
 struct InsertionReport {
   Index joints = 0, tri = 0, quad = 0;
   Index nodes_before = 0, nodes_after = 0;
+  std::vector<std::vector<Index>> copies;  ///< per original node, its new nodes
 };
 
 /// Duplicates nodes so that jointed faces no longer share nodes, rewrites the mesh

@@ -135,6 +135,13 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     });
   }
 
+  // Force conditions are spread over the original mesh (its surface faces are exact); after
+  // joint insertion each node's share is split equally among its copies.
+  std::vector<std::vector<std::pair<Index, Real>>> force_weights(c.boundaries.size());
+  for (std::size_t i = 0; i < c.boundaries.size(); ++i)
+    if (c.boundaries[i].type == BoundaryConfig::Type::Force)
+      force_weights[i] = load_weights(me, need_group(me, c.boundaries[i].group, c.boundaries[i].where));
+
   // Cohesive joints on the faces of fracturable bodies (node duplication).
   {
     joint::InsertionInput in;
@@ -165,6 +172,14 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     }
     if (any) {
       m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
+      for (auto& fw : force_weights) {
+        std::vector<std::pair<Index, Real>> split;
+        for (auto [n, w] : fw) {
+          const auto& cp = m.joint_report.copies[n];
+          for (Index k : cp) split.emplace_back(k, w / static_cast<Real>(cp.size()));
+        }
+        fw = std::move(split);
+      }
       // Penalty stiffness from the two elements' heights over the face.
       std::vector<Real> vol(ne);
       for (std::size_t b = 0; b < me.blocks.size(); ++b)
@@ -194,10 +209,11 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
 
   // Constraints: the last condition on a dof wins; say so when two disagree.
   std::map<Index, Constraint> cons;
-  for (const auto& bc : c.boundaries) {
+  for (std::size_t bi = 0; bi < c.boundaries.size(); ++bi) {
+    const BoundaryConfig& bc = c.boundaries[bi];
     const Group& g = need_group(me, bc.group, bc.where);
     if (bc.type == BoundaryConfig::Type::Force) {
-      for (auto [n, w] : load_weights(me, g))
+      for (auto [n, w] : force_weights[bi])
         for (int d = 0; d < 3; ++d)
           if (bc.dof[d] && bc.value(d) != 0) m.loads.push_back({3 * n + d, w * bc.value(d), bc.ramp});
       continue;

@@ -13,6 +13,7 @@ inline CaseConfig simple_case(Real E, Real nu, Real rho, Kinematics kin = Kinema
   m.name = "mat";
   m.E = E, m.nu = nu, m.density = rho;
   c.materials.push_back(m);
+  c.joint_materials.resize(1);
   BodyConfig b;
   b.name = "body";
   b.groups = {"all"};
@@ -20,6 +21,15 @@ inline CaseConfig simple_case(Real E, Real nu, Real rho, Kinematics kin = Kinema
   b.kinematics = kin;
   c.bodies.push_back(b);
   return c;
+}
+
+/// Makes body 0 fracturable with the given joint parameters.
+inline void make_fracturable(CaseConfig& c, Real ft, Real GfI, Real coh, Real phi_deg, Real GfII, Real penalty = 100) {
+  JointMaterial jm;
+  jm.given = true;
+  jm.ft = ft, jm.GfI = GfI, jm.c = coh, jm.phi_deg = phi_deg, jm.GfII = GfII, jm.penalty = penalty;
+  c.joint_materials.assign(c.materials.size(), jm);
+  c.bodies[0].fracture = BodyConfig::Fracture::All;
 }
 
 inline BoundaryConfig fixed(const std::string& group, const char* dofs = "xyz") {
