@@ -10,14 +10,18 @@
 //
 // Decisions where the paper is silent (tested in tests/unit/test_cohesive_law.cpp):
 //  - irreversibility: the largest opening (slip) reached is a history variable; below it the
-//    joint unloads and reloads along the secant to the origin; it never heals;
+//    joint unloads and reloads along the secant to the origin; it never heals. In shear the
+//    envelope moves with s_n (Mohr-Coulomb), so the secant stiffness is kept as a history
+//    variable that can only decrease: otherwise more compression at a damaged slip would
+//    raise s_s and a closed path could create energy (seen in a notched-bar run);
 //  - compression is a penalty and never damages the joint;
 //  - once broken, a joint carries no tension; in compression it keeps the normal penalty and
 //    a Coulomb residual friction |s_s| <= -s_n tan(phi) (elastic-plastic in the slip
 //    magnitude, with a plastic slip history);
 //  - energy: the work of the tractions is integrated (trapezoid) per mode; dissipation is
 //    work minus the recoverable elastic energy (1/2 s dn on the secant), so at complete
-//    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n).
+//    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n); residual friction dissipates
+//    exactly cap x plastic slip.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -41,6 +45,9 @@ struct CohesiveState {
   Real dn_max = 0;     ///< largest opening reached [m]
   Real ds_max = 0;     ///< largest slip reached [m]
   Real ds_plastic = 0; ///< plastic slip of the residual friction (broken joints) [m]
+  Real ks_secant = -1; ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
+  Real diss_II_at_break = 0;  ///< mode-II dissipation when the point failed [J/m^2]
+  Real friction = 0;          ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
   Real dn = 0, ds = 0; ///< last opening and slip [m]
   Real sn = 0, ss = 0; ///< last tractions [Pa]
   Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
@@ -53,8 +60,8 @@ struct CohesiveState {
     return en + es;
   }
   Real dissipated_I(const CohesiveParams&) const { return work_n - 0.5 * sn * dn; }
-  Real dissipated_II(const CohesiveParams& p) const {
-    return work_s - (status == JointStatus::Broken ? 0.5 * ss * ss / std::max(p.ks, Real(1e-300)) : 0.5 * ss * ds);
+  Real dissipated_II(const CohesiveParams&) const {
+    return status == JointStatus::Broken ? diss_II_at_break + friction : work_s - 0.5 * ss * ds;
   }
 };
 
@@ -81,10 +88,13 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   Real ss;
   if (s.status == JointStatus::Broken) {
     // Residual Coulomb friction, elastic-plastic in the slip magnitude.
+    // Dissipation is cap x plastic slip, exactly (no quadrature across the stick/slip kink).
     const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
     Real trial = p.ks * (ds - s.ds_plastic);
     if (trial > cap) {
-      s.ds_plastic = ds - cap / p.ks;
+      const Real plastic = ds - cap / p.ks;
+      s.friction += cap * (plastic - s.ds_plastic);
+      s.ds_plastic = plastic;
       trial = cap;
     } else if (trial < 0) {
       s.ds_plastic = ds;
@@ -96,8 +106,11 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
     const Real w_fs = fs / p.ks, w_GII = 2.0 * p.GfII / fs;
     s.ds_max = std::max(s.ds_max, ds);
     const Real m = s.ds_max;
-    if (m <= w_fs) ss = p.ks * ds;
-    else ss = std::max<Real>(0.0, fs * (1.0 - (m - w_fs) / w_GII)) / m * ds;
+    if (m > w_fs) {
+      const Real k = std::max<Real>(0.0, fs * (1.0 - (m - w_fs) / w_GII)) / m;
+      s.ks_secant = s.ks_secant < 0 ? std::min(k, p.ks) : std::min(s.ks_secant, k);
+    }
+    ss = (s.ks_secant < 0 ? p.ks : s.ks_secant) * ds;
     // Mixed-mode failure (eq. 6).
     const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI, b = std::max<Real>(0.0, m - w_fs) / w_GII;
     if (a * a + b * b >= 1.0) {
@@ -105,6 +118,7 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
       s.ds_plastic = ds;
       sn = dn < 0 ? p.kn * dn : 0.0;
       ss = 0.0;
+      s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
     } else if (s.dn_max > w_ft || m > w_fs) {
       s.status = JointStatus::Softening;
     }
@@ -112,6 +126,16 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   s.work_n += 0.5 * (s.sn + sn) * (dn - s.dn);
   s.work_s += 0.5 * (s.ss + ss) * (ds - s.ds);
   s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
+}
+
+/// Fails a point that has not reached eq. 6 itself, because its joint failed elsewhere: it
+/// keeps no tension and no cohesion from the next update on (its elastic energy is then
+/// dissipated; the rest of its fracture energy is not).
+inline void force_break(CohesiveState& s) {
+  if (s.status == JointStatus::Broken) return;
+  s.status = JointStatus::Broken;
+  s.ds_plastic = s.ds;
+  s.diss_II_at_break = s.work_s;
 }
 
 /// Largest stiffness the joint presents (for the stable time step).

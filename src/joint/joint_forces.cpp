@@ -68,7 +68,11 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
           out[12 + 3 * k + d] += N[g][k] * wa * t(d); // side B
         }
     }
-    js.status[j] = broken == ng ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
+    // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and
+    // a half-failed facet would otherwise hold two separated pieces together.
+    if (broken > 0 && broken < ng)
+      for (int g = 0; g < ng; ++g) force_break(js.state[js4 + g]);
+    js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
   }
   for (Index j = 0; j < nj; ++j) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);

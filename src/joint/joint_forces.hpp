@@ -13,7 +13,7 @@ struct JointTotals {
   Real elastic = 0;       ///< recoverable energy in the joints [J]
   Real fracture_I = 0;    ///< dissipated, mode I [J]
   Real fracture_II = 0;   ///< dissipated, mode II (and residual friction) [J]
-  Index broken = 0;       ///< joints with every point failed
+  Index broken = 0;       ///< failed joints
   Real broken_area = 0;   ///< their reference area: the crack area [m^2]
 };
 

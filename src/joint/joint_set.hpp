@@ -22,7 +22,7 @@ struct JointSet {
   std::vector<CohesiveParams> params;
   // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint).
   std::vector<CohesiveState> state;
-  std::vector<JointStatus> status;   ///< per joint: Broken once any point is
+  std::vector<JointStatus> status;   ///< per joint: Broken once any of its points fails
   Index size() const { return static_cast<Index>(npf.size()); }
 };
 

@@ -216,6 +216,32 @@ TEST_F(Cli, MeshCommandWritesMshAndQuality) {
   EXPECT_NE(bad.out.find("mesh.galvez_beam.notch_depth"), std::string::npos) << bad.out;
 }
 
+TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
+  // tests/data/notched_bar.toml: a double-edge-notched bar pulled slowly; joints in the band
+  // around the notch. It must end in two main fragments of about half the mass each (the
+  // crack through the notch ligament; a few single elements may come loose along it), with
+  // the energy balance closed to 1e-3 of the largest term.
+  const fs::path out = dir_ / "nb";
+  const Result r = run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string s = slurp(out / "summary.json");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(s, m, std::regex("\"largest_fragment_masses\": \\[([^\\]]*)\\]"))) << s;
+  std::vector<double> masses;
+  std::stringstream ms(m[1].str());
+  for (std::string t; std::getline(ms, t, ',');) masses.push_back(std::stod(t));
+  double total = 0;
+  for (double v : masses) total += v;
+  ASSERT_GE(masses.size(), 2u);
+  const double big = 0.01 * total;
+  EXPECT_EQ(std::count_if(masses.begin(), masses.end(), [big](double v) { return v > big; }), 2) << s;
+  EXPECT_NEAR(masses[0] / (masses[0] + masses[1]), 0.5, 0.1) << s;
+  ASSERT_TRUE(std::regex_search(s, m, std::regex("\"balance_error\": ([0-9.e+-]+)")));
+  EXPECT_LT(std::stod(m[1].str()), 1e-3) << s;
+  EXPECT_TRUE(fs::exists(out / "joints.pvd"));
+  EXPECT_NE(slurp(out / "series.csv").find("broken_joints,crack_area"), std::string::npos);
+}
+
 TEST_F(Cli, HelpListsSubcommands) {
   const Result r = run("--help");
   EXPECT_EQ(r.code, 0);
