@@ -17,8 +17,8 @@ namespace dspdem::render {
 
 namespace fs = std::filesystem;
 
-std::vector<FrameRef> read_series(const std::string& run_dir) {
-  const fs::path pvd = fs::path(run_dir) / "run.pvd";
+std::vector<FrameRef> read_series(const std::string& run_dir, const std::string& collection) {
+  const fs::path pvd = fs::path(run_dir) / collection;
   DSPDEM_CHECK(fs::exists(pvd), "'{}' not found: is '{}' the output folder of a dspdem run?", pvd.string(), run_dir);
   std::ifstream f(pvd);
   std::stringstream ss;

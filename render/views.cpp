@@ -18,6 +18,12 @@
 #include <vtkTableBasedClipDataSet.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkCellArray.h>
+#include <vtkStaticCleanPolyData.h>
+
+#include <map>
+#include <vtkIdList.h>
+#include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -159,7 +165,9 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.mapper->ScalarVisibilityOn();
   }
   if (o.view == "cracks") {
-    s.actor->GetProperty()->SetOpacity(0.25);
+    s.mapper->ScalarVisibilityOff();
+    s.actor->GetProperty()->SetColor(0.75, 0.75, 0.75);
+    s.actor->GetProperty()->SetOpacity(0.2);
     s.context_actor->SetMapper(s.context_mapper);
     s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
     s.ren->AddActor(s.context_actor);
@@ -177,11 +185,27 @@ FrameRenderer::~FrameRenderer() { delete impl_; }
 
 std::string FrameRenderer::gl_info() const { return impl_->win.gl_info(); }
 
-vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, double time, const std::string& file) {
+vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, double time, const std::string& file,
+                                                   vtkUnstructuredGrid* joints) {
   Impl& s = *impl_;
   const ViewOptions& o = s.opt;
-  if (o.view == "cracks")
-    fail("the cracks view needs broken-joint data, which frame '{}' does not have (the run has no joints)", file);
+  if (o.view == "cracks") {
+    if (!joints || !joints->GetCellData()->GetArray("state"))
+      fail("the cracks view needs the joints dataset, which frame '{}' does not have (the run has no joints)", file);
+    // Broken joints (state 2), drawn red over the translucent bodies.
+    vtkDataArray* state = joints->GetCellData()->GetArray("state");
+    vtkNew<vtkPolyData> cracks;
+    vtkNew<vtkCellArray> polys;
+    cracks->SetPoints(joints->GetPoints());
+    for (vtkIdType c = 0; c < joints->GetNumberOfCells(); ++c)
+      if (state->GetComponent(c, 0) > 1.5) {
+        vtkIdList* ids = joints->GetCell(c)->GetPointIds();
+        polys->InsertNextCell(ids);
+      }
+    cracks->SetPolys(polys);
+    s.context_mapper->SetInputData(cracks);
+    s.context_mapper->ScalarVisibilityOff();
+  }
   vtkNew<vtkUnstructuredGrid> g;
   g->ShallowCopy(frame);
   // Magnified displacement: x_draw = x - u + m u.
@@ -206,7 +230,7 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
     for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i]);
     g->GetCellData()->AddArray(a);
-  } else {
+  } else if (o.view == "fragments") {
     vtkDataArray* id = g->GetCellData()->GetArray("fragment");
     if (!id) id = g->GetCellData()->GetArray("body");
     if (!id) fail("frame '{}' has neither a 'fragment' nor a 'body' array: the {} view needs one", file, o.view);
@@ -241,7 +265,37 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     surf->SetInputData(g);
   }
   surf->Update();
-  s.mapper->SetInputConnection(surf->GetOutputPort());
+  if (o.view == "cracks") {
+    // Joints split every element from its neighbours, so the surface holds every element
+    // face twice; stacked translucent layers would hide the cracks. Keep only faces that
+    // are not matched by a coincident face: the outer envelope and the opened cracks.
+    vtkNew<vtkStaticCleanPolyData> clean;
+    clean->SetInputConnection(surf->GetOutputPort());
+    clean->SetTolerance(1e-4);  // of the bounds diagonal: joint openings before failure are smaller
+    clean->Update();
+    vtkPolyData* pd = clean->GetOutput();
+    std::map<std::vector<vtkIdType>, int> count;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) {
+      pd->GetCellPoints(c, ids);
+      std::vector<vtkIdType> k(ids->begin(), ids->end());
+      std::sort(k.begin(), k.end());
+      ++count[k];
+    }
+    vtkNew<vtkCellArray> keep;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) {
+      pd->GetCellPoints(c, ids);
+      std::vector<vtkIdType> k(ids->begin(), ids->end());
+      std::sort(k.begin(), k.end());
+      if (count[k] == 1) keep->InsertNextCell(ids);
+    }
+    vtkNew<vtkPolyData> envelope;
+    envelope->SetPoints(pd->GetPoints());
+    envelope->SetPolys(keep);
+    s.mapper->SetInputData(envelope);
+  } else {
+    s.mapper->SetInputConnection(surf->GetOutputPort());
+  }
   s.time_text->SetInput(fmt::format("t = {:.4g} ms", time * 1e3).c_str());
   return s.win.capture();
 }

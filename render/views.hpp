@@ -43,7 +43,9 @@ class FrameRenderer {
  public:
   explicit FrameRenderer(const ViewOptions& opt);
   ~FrameRenderer();
-  vtkSmartPointer<vtkImageData> render(vtkUnstructuredGrid* frame, double time, const std::string& file);
+  /// `joints` (the run's joints dataset at this frame) is needed by the cracks view only.
+  vtkSmartPointer<vtkImageData> render(vtkUnstructuredGrid* frame, double time, const std::string& file,
+                                       vtkUnstructuredGrid* joints = nullptr);
   std::string gl_info() const;
 
  private:

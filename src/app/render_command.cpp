@@ -122,7 +122,9 @@ int render_command(const RenderArgs& in) {
       if (!first->GetCellData()->GetArray("fragment") && !first->GetCellData()->GetArray("body"))
         fail("frame '{}' has neither 'fragment' nor 'body' cell data: the fragments view needs one", frames[sel[0]].file);
     } else if (v == "cracks") {
-      fail("the cracks view needs broken-joint data, which run '{}' does not have (the run has no joints)", a.run_dir);
+      if (!fs::exists(fs::path(a.run_dir) / "joints.pvd"))
+        fail("the cracks view needs the joints dataset (joints.pvd), which run '{}' does not have: the run has no "
+             "fracturable body", a.run_dir);
     } else {
       fail("unknown view '{}' (known: stress, fragments, cracks)", v);
     }
@@ -146,6 +148,12 @@ int render_command(const RenderArgs& in) {
   }
   for (const auto& v : a.views) fs::create_directories(view_dir(a.run_dir, v));
 
+  std::vector<render::FrameRef> joint_frames;
+  if (std::find(a.views.begin(), a.views.end(), "cracks") != a.views.end()) {
+    joint_frames = render::read_series(a.run_dir, "joints.pvd");
+    DSPDEM_CHECK(joint_frames.size() == frames.size(), "'{}/joints.pvd' lists {} frames, run.pvd {}", a.run_dir,
+                 joint_frames.size(), frames.size());
+  }
   Timer t;
   std::string gl;
   long drawn = 0;
@@ -158,7 +166,9 @@ int render_command(const RenderArgs& in) {
       if (static_cast<int>(s % static_cast<std::size_t>(n)) != k) continue;
       const std::size_t i = sel[s];
       auto g = s == 0 ? first : render::read_frame(frames[i].file);
-      auto img = fr.render(g, frames[i].time, frames[i].file);
+      vtkSmartPointer<vtkUnstructuredGrid> jg;
+      if (view == "cracks") jg = render::read_frame(joint_frames[i].file);
+      auto img = fr.render(g, frames[i].time, frames[i].file, jg);
       render::write_png(img, (fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
       ++drawn;
     }

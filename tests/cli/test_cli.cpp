@@ -240,6 +240,11 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   EXPECT_LT(std::stod(m[1].str()), 1e-3) << s;
   EXPECT_TRUE(fs::exists(out / "joints.pvd"));
   EXPECT_NE(slurp(out / "series.csv").find("broken_joints,crack_area"), std::string::npos);
+  // The cracks view draws the broken joints from the joints dataset.
+  const Result rr = run("-q render " + out.string() + " --view cracks --view fragments --frames last --size 320x240 "
+                        "--no-animation");
+  EXPECT_EQ(rr.code, 0) << rr.out;
+  EXPECT_TRUE(fs::exists(out / "images/cracks/frame_0010.png"));
 }
 
 TEST_F(Cli, HelpListsSubcommands) {

@@ -141,7 +141,7 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
   };
   const std::vector<Bad> cases = {
       {"--field sigma_qq", "unknown field 'sigma_qq'"},
-      {"--view cracks", "cracks view needs broken-joint data"},
+      {"--view cracks", "cracks view needs the joints dataset"},
       {"--view wireframe", "unknown view 'wireframe'"},
       {"--frames 7", "not a frame index"},
   };
