@@ -29,6 +29,20 @@ Real max_principal(const Real* s) {
 }
 
 namespace {
+// Appended raw binary, zlib-compressed on request, through a temporary name.
+void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compress) {
+  const std::string tmp = path + ".tmp.vtu";
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetFileName(tmp.c_str());
+  w->SetInputData(grid);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  if (compress) w->SetCompressorTypeToZLib();
+  else w->SetCompressorTypeToNone();
+  DSPDEM_CHECK(w->Write() == 1, "could not write '{}'", tmp);
+  std::filesystem::rename(tmp, path);
+}
+
 bool wants(const FrameData& f, const char* name) {
   return std::find(f.fields.begin(), f.fields.end(), name) != f.fields.end();
 }
@@ -103,16 +117,7 @@ void write_vtu(const std::string& path, const FrameData& f) {
   if (f.fragment) int_array("fragment", f.fragment);
   if (f.material && wants(f, "material")) int_array("material", f.material);
 
-  const std::string tmp = path + ".tmp.vtu";
-  vtkNew<vtkXMLUnstructuredGridWriter> w;
-  w->SetFileName(tmp.c_str());
-  w->SetInputData(grid);
-  w->SetDataModeToAppended();
-  w->EncodeAppendedDataOff();
-  if (f.compress) w->SetCompressorTypeToZLib();
-  else w->SetCompressorTypeToNone();
-  DSPDEM_CHECK(w->Write() == 1, "could not write frame '{}'", tmp);
-  std::filesystem::rename(tmp, path);
+  write_grid(grid, path, f.compress);
 }
 
 void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress) {
@@ -153,16 +158,7 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
   grid->GetCellData()->AddArray(damage);
   grid->GetCellData()->AddArray(opening);
   grid->GetCellData()->AddArray(slip);
-  const std::string tmp = path + ".tmp.vtu";
-  vtkNew<vtkXMLUnstructuredGridWriter> w;
-  w->SetFileName(tmp.c_str());
-  w->SetInputData(grid);
-  w->SetDataModeToAppended();
-  w->EncodeAppendedDataOff();
-  if (compress) w->SetCompressorTypeToZLib();
-  else w->SetCompressorTypeToNone();
-  DSPDEM_CHECK(w->Write() == 1, "could not write joints '{}'", tmp);
-  std::filesystem::rename(tmp, path);
+  write_grid(grid, path, compress);
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {

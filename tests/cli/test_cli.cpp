@@ -15,24 +15,16 @@
 #include <sstream>
 
 #include "mesh/gmsh_reader.hpp"
+#include "support/cli.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-struct Result {
-  int code;
-  std::string out;
-};
+using Result = dspdem::testsupport::CliResult;
 
 Result run(const std::string& args) {
   // Arguments starting with "env " are a whole command line.
-  const std::string cmd = (args.rfind("env ", 0) == 0 ? args : std::string(DSPDEM_BIN) + " " + args) + " 2>&1";
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+  return dspdem::testsupport::shell(args.rfind("env ", 0) == 0 ? args : std::string(DSPDEM_BIN) + " " + args);
 }
 
 std::string slurp(const fs::path& p) {

@@ -10,22 +10,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/cli.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
-struct Result {
-  int code;
-  std::string out;
-};
+using Result = dspdem::testsupport::CliResult;
 
-Result sh(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen(("env -u DISPLAY " + cmd + " 2>&1").c_str(), "r");
-  char buf[4096];
-  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+Result sh(const std::string& cmd) { return dspdem::testsupport::shell("env -u DISPLAY " + cmd); }
 
 std::string bin() { return DSPDEM_BIN; }
 fs::path src(const std::string& rel) { return fs::path(DSPDEM_SOURCE_DIR) / rel; }
