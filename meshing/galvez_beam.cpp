@@ -48,8 +48,7 @@ void build_galvez_beam(const Params& p) {
   add_group(3, vols, "beam");
   const char* groups[4] = {"support_left", "support_right", "load_inner", "load_outer"};
   const double ys[4] = {0, 0, D, D};
-  for (int i = 0; i < 4; ++i)
-    add_group(1, entities_in_box(1, xs[i], ys[i], -B / 2, xs[i], ys[i], B / 2), groups[i]);
+  for (int i = 0; i < 4; ++i) add_group(1, entities_in_box(1, xs[i], ys[i], -B / 2, xs[i], ys[i], B / 2), groups[i]);
   add_group(1, entities_in_box(1, -w / 2, 0, -B / 2, -w / 2, 0, B / 2), "cmod_left");
   add_group(1, entities_in_box(1, w / 2, 0, -B / 2, w / 2, 0, B / 2), "cmod_right");
 }

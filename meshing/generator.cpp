@@ -41,8 +41,8 @@ std::string Params::canonical() const {
 
 void param_error(const Params& p, const std::string& key, const std::string& why) {
   auto it = p.num.find(key);
-  const std::string val = it != p.num.end() ? fmt::format("{:g}", it->second)
-                                           : (p.str.count(key) ? p.str.at(key) : std::string("?"));
+  const std::string val =
+      it != p.num.end() ? fmt::format("{:g}", it->second) : (p.str.count(key) ? p.str.at(key) : std::string("?"));
   fail("mesh.{}.{} = {}: {}", p.generator, key, val, why);
 }
 

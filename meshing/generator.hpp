@@ -30,8 +30,8 @@ struct Params {
 
 struct Generator {
   const char* name;
-  const char* doc;                   ///< geometry, groups, and where defaults come from
-  void (*build)(const Params&);      ///< builds and meshes the current gmsh model, adds groups
+  const char* doc;               ///< geometry, groups, and where defaults come from
+  void (*build)(const Params&);  ///< builds and meshes the current gmsh model, adds groups
 };
 
 /// All generators, by name.

@@ -48,8 +48,8 @@ void build_murray_beam(const Params& p) {
   occ::synchronize();
 
   const std::vector<int> beam = entities_in_box(3, -L / 2, -H / 2, -W / 2, L / 2, H / 2, W / 2);
-  DSPDEM_CHECK(beam.size() == xs.size() - 1, "internal: murray_beam expected {} beam segments, got {}",
-               xs.size() - 1, beam.size());
+  DSPDEM_CHECK(beam.size() == xs.size() - 1, "internal: murray_beam expected {} beam segments, got {}", xs.size() - 1,
+               beam.size());
   // Transfinite lines: count by direction (and by x segment).
   // Every curve of the beam lies inside its bounding box; the cylinders' curves do not.
   gmsh::vectorpair curves;

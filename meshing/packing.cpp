@@ -8,12 +8,11 @@
 // orientation. Cells fill the box footprint layer by layer from the floor up to
 // fill_height. Random numbers come from a 64-bit Mersenne twister with explicit
 // conversions, so a seed gives the same bytes on any platform.
+#include <fmt/format.h>
 #include <gmsh.h>
 
 #include <cmath>
 #include <random>
-
-#include <fmt/format.h>
 
 #include "core/types.hpp"
 #include "meshing/generator.hpp"
@@ -44,18 +43,21 @@ void build_packing(const Params& p) {
   const long nx = static_cast<long>(std::floor(lx / s)), nz = static_cast<long>(std::floor(lz / s));
   const long ny = static_cast<long>(std::floor(top / s));
   const long capacity = nx * ny * nz;
-  if (nx < 1 || nz < 1) param_error(p, "size_max", fmt::format("a particle cell ({:.3g} m) does not fit in the box", s));
+  if (nx < 1 || nz < 1)
+    param_error(p, "size_max", fmt::format("a particle cell ({:.3g} m) does not fit in the box", s));
   if (n > capacity)
-    param_error(p, "count", fmt::format("only {} particles with size_max = {:g} m fit in the box footprint up to "
-                                        "fill_height = {:g} m ({} x {} per layer, {} layers)", capacity, amax, top, nx, nz, ny));
+    param_error(p, "count",
+                fmt::format("only {} particles with size_max = {:g} m fit in the box footprint up to "
+                            "fill_height = {:g} m ({} x {} per layer, {} layers)",
+                            capacity, amax, top, nx, nz, ny));
 
   // Container: floor and four walls, non-overlapping slabs fragmented into one conformal body.
   gmsh::vectorpair walls = {
       {3, occ::addBox(-t, -t, -t, lx + 2 * t, t, lz + 2 * t)},  // floor
-      {3, occ::addBox(-t, 0, -t, t, ly, lz + 2 * t)},          // x = 0 wall
-      {3, occ::addBox(lx, 0, -t, t, ly, lz + 2 * t)},          // x = lx wall
-      {3, occ::addBox(0, 0, -t, lx, ly, t)},                   // z = 0 wall
-      {3, occ::addBox(0, 0, lz, lx, ly, t)},                   // z = lz wall
+      {3, occ::addBox(-t, 0, -t, t, ly, lz + 2 * t)},           // x = 0 wall
+      {3, occ::addBox(lx, 0, -t, t, ly, lz + 2 * t)},           // x = lx wall
+      {3, occ::addBox(0, 0, -t, lx, ly, t)},                    // z = 0 wall
+      {3, occ::addBox(0, 0, lz, lx, ly, t)},                    // z = lz wall
   };
   gmsh::vectorpair out;
   std::vector<gmsh::vectorpair> map;

@@ -15,8 +15,8 @@ double tet_gamma(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3)
   const double A = 0.5 * (a.cross(b).norm() + b.cross(c).norm() + c.cross(a).norm() + (p2 - p1).cross(p3 - p1).norm());
   if (V <= 0 || A <= 0) return 0.0;
   const double r_in = 3 * V / A;
-  const double R = (a.squaredNorm() * b.cross(c) + b.squaredNorm() * c.cross(a) + c.squaredNorm() * a.cross(b)).norm() /
-                   (12 * V);
+  const double R =
+      (a.squaredNorm() * b.cross(c) + b.squaredNorm() * c.cross(a) + c.squaredNorm() * a.cross(b)).norm() / (12 * V);
   return 3 * r_in / R;
 }
 
@@ -66,7 +66,8 @@ Quality mesh_quality(const Mesh& m) {
         Vec3 p[8];
         for (int i = 0; i < 8; ++i) p[i] = node_pos(m.x, c[i]);
         // Corner neighbours in gmsh order: along xi, eta, zeta.
-        static const int nb[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7}, {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
+        static const int nb[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
+                                     {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
         double sj = 1;
         for (int i = 0; i < 8; ++i) {
           const Vec3 e1 = p[nb[i][0]] - p[i], e2 = p[nb[i][1]] - p[i], e3 = p[nb[i][2]] - p[i];
@@ -112,11 +113,14 @@ Quality mesh_quality(const Mesh& m) {
 
 std::string quality_json(const Quality& q, const std::string& extra) {
   std::string groups;
-  for (const auto& [k, v] : q.elements_per_group) groups += fmt::format("{}\"{}\": {}", groups.empty() ? "" : ", ", k, v);
+  for (const auto& [k, v] : q.elements_per_group)
+    groups += fmt::format("{}\"{}\": {}", groups.empty() ? "" : ", ", k, v);
   return fmt::format(
       "{{\n{}  \"elements_per_group\": {{{}}},\n  \"tet4\": {},\n  \"hex8\": {},\n  \"min_dihedral_deg\": {:.4f},\n"
-      "  \"max_dihedral_deg\": {:.4f},\n  \"quality_measure\": \"tet4: gamma = 3 r_in / R_circ; hex8: scaled Jacobian\",\n"
-      "  \"quality_min\": {:.6f},\n  \"quality_p01\": {:.6f},\n  \"quality_mean\": {:.6f},\n  \"sliver_threshold\": {},\n"
+      "  \"max_dihedral_deg\": {:.4f},\n  \"quality_measure\": \"tet4: gamma = 3 r_in / R_circ; hex8: scaled "
+      "Jacobian\",\n"
+      "  \"quality_min\": {:.6f},\n  \"quality_p01\": {:.6f},\n  \"quality_mean\": {:.6f},\n  \"sliver_threshold\": "
+      "{},\n"
       "  \"slivers\": {}\n}}\n",
       extra, groups, q.n_tet4, q.n_hex8, q.min_dihedral_deg, q.max_dihedral_deg, q.quality_min, q.quality_p01,
       q.quality_mean, q.sliver_threshold, q.n_slivers);

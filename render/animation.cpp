@@ -45,8 +45,9 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
     const std::string pattern = (dir / "frame_%04d.png").string();
     for (const char* ext : {"mp4", "gif"}) {
       const std::string tmp = base + ".tmp." + ext, dst = base + "." + ext;
-      const std::string codec = std::string(ext) == "mp4" ? "-c:v libx264 -pix_fmt yuv420p -vf pad=ceil(iw/2)*2:ceil(ih/2)*2"
-                                                          : "-vf fps=" + std::to_string(fps) + ",scale=640:-1:flags=lanczos";
+      const std::string codec = std::string(ext) == "mp4"
+                                    ? "-c:v libx264 -pix_fmt yuv420p -vf pad=ceil(iw/2)*2:ceil(ih/2)*2"
+                                    : "-vf fps=" + std::to_string(fps) + ",scale=640:-1:flags=lanczos";
       const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" + pattern + "' " +
                               codec + " '" + tmp + "' </dev/null";
       if (std::system(cmd.c_str()) == 0 && fs::exists(tmp)) {

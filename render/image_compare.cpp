@@ -2,10 +2,10 @@
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
-#include <vtkPointData.h>
 #include <vtkImageDifference.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
+#include <vtkPointData.h>
 
 #include <filesystem>
 

@@ -38,8 +38,19 @@ void error_observer(vtkObject*, unsigned long, void* client, void* call) {
 OffscreenWindow::OffscreenWindow(int width, int height) : impl_(std::make_unique<Impl>()), w_(width), h_(height) {
   DSPDEM_CHECK(width > 0 && height > 0 && width <= 16384 && height <= 16384, "image size {}x{} is not valid", width,
                height);
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8, OSMESA_PROFILE,
-                         OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 2, 0};
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         24,
+                         OSMESA_STENCIL_BITS,
+                         8,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         3,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         2,
+                         0};
   impl_->ctx = OSMesaCreateContextAttribs(attribs, nullptr);
   DSPDEM_CHECK(impl_->ctx != nullptr,
                "off-screen rendering: OSMesa could not create an OpenGL 3.2 core-profile context (is libosmesa6 "

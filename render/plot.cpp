@@ -76,9 +76,11 @@ void add_lines(vtkChartXY* chart, const std::string& csv, const PlotSpec& spec, 
   t->SetNumberOfRows(static_cast<vtkIdType>(cols[xi].size()));
   for (std::size_t r = 0; r < cols[xi].size(); ++r) {
     t->SetValue(static_cast<vtkIdType>(r), 0, cols[xi][r]);
-    for (std::size_t k = 0; k < yi.size(); ++k) t->SetValue(static_cast<vtkIdType>(r), static_cast<vtkIdType>(k + 1), cols[yi[k]][r]);
+    for (std::size_t k = 0; k < yi.size(); ++k)
+      t->SetValue(static_cast<vtkIdType>(r), static_cast<vtkIdType>(k + 1), cols[yi[k]][r]);
   }
-  static const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40}, {44, 160, 44}, {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
+  static const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40},   {44, 160, 44},
+                                             {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
   for (std::size_t k = 0; k < yi.size(); ++k) {
     vtkPlot* p = chart->AddPlot(vtkChart::LINE);
     p->SetInputData(t, 0, static_cast<vtkIdType>(k + 1));

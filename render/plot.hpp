@@ -6,9 +6,9 @@
 namespace dspdem::render {
 
 struct PlotSpec {
-  std::string x;                  ///< column for the x axis
-  std::vector<std::string> y;     ///< columns drawn against it
-  std::string reference_csv;      ///< optional: CSV with the same x and y column names, drawn dashed
+  std::string x;               ///< column for the x axis
+  std::vector<std::string> y;  ///< columns drawn against it
+  std::string reference_csv;   ///< optional: CSV with the same x and y column names, drawn dashed
   std::string title;
   int width = 1000, height = 600;
 };

@@ -58,8 +58,8 @@ vtkSmartPointer<vtkUnstructuredGrid> read_frame(const std::string& path) {
   r->SetFileName(path.c_str());
   r->Update();
   vtkUnstructuredGrid* g = r->GetOutput();
-  DSPDEM_CHECK(errors.empty() && g && g->GetNumberOfCells() > 0,
-               "frame '{}' is truncated or unreadable{}", path, errors.empty() ? "" : ": " + errors.substr(0, 300));
+  DSPDEM_CHECK(errors.empty() && g && g->GetNumberOfCells() > 0, "frame '{}' is truncated or unreadable{}", path,
+               errors.empty() ? "" : ": " + errors.substr(0, 300));
   vtkSmartPointer<vtkUnstructuredGrid> out = vtkSmartPointer<vtkUnstructuredGrid>::New();
   out->ShallowCopy(g);
   return out;

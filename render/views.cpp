@@ -2,33 +2,32 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPlane.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkStaticCleanPolyData.h>
 #include <vtkTableBasedClipDataSet.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
-#include <vtkCellArray.h>
-#include <vtkStaticCleanPolyData.h>
-
-#include <map>
-#include <vtkIdList.h>
-#include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <map>
 
 #include "core/error.hpp"
 #include "render/offscreen.hpp"
@@ -36,7 +35,7 @@
 namespace dspdem::render {
 
 const std::vector<std::string>& stress_fields() {
-  static const std::vector<std::string> f = {"von_mises", "max_principal", "sigma_xx", "sigma_yy", "sigma_zz",
+  static const std::vector<std::string> f = {"von_mises", "max_principal", "sigma_xx", "sigma_yy",    "sigma_zz",
                                              "sigma_xy",  "sigma_yz",      "sigma_xz", "displacement"};
   return f;
 }
@@ -45,7 +44,8 @@ std::vector<double> field_values(vtkUnstructuredGrid* g, const std::string& fiel
   const vtkIdType n = g->GetNumberOfCells();
   std::vector<double> out(static_cast<std::size_t>(n));
   auto need = [&](vtkDataArray* a, const char* name) {
-    if (!a) fail("frame '{}' has no '{}' array (needed for field '{}'); write it with [output] fields", file, name, field);
+    if (!a)
+      fail("frame '{}' has no '{}' array (needed for field '{}'); write it with [output] fields", file, name, field);
     return a;
   };
   const char* comps[] = {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_yz", "sigma_xz"};
@@ -81,22 +81,30 @@ std::vector<double> field_values(vtkUnstructuredGrid* g, const std::string& fiel
 
 namespace {
 // 20 well-separated colours (Tableau 20), for fragment ids.
-const unsigned char kPalette[20][3] = {
-    {31, 119, 180}, {255, 127, 14}, {44, 160, 44},   {214, 39, 40},  {148, 103, 189}, {140, 86, 75},  {227, 119, 194},
-    {127, 127, 127}, {188, 189, 34}, {23, 190, 207}, {174, 199, 232}, {255, 187, 120}, {152, 223, 138}, {255, 152, 150},
-    {197, 176, 213}, {196, 156, 148}, {247, 182, 210}, {199, 199, 199}, {219, 219, 141}, {158, 218, 229}};
+const unsigned char kPalette[20][3] = {{31, 119, 180},  {255, 127, 14},  {44, 160, 44},   {214, 39, 40},
+                                       {148, 103, 189}, {140, 86, 75},   {227, 119, 194}, {127, 127, 127},
+                                       {188, 189, 34},  {23, 190, 207},  {174, 199, 232}, {255, 187, 120},
+                                       {152, 223, 138}, {255, 152, 150}, {197, 176, 213}, {196, 156, 148},
+                                       {247, 182, 210}, {199, 199, 199}, {219, 219, 141}, {158, 218, 229}};
 
 void place_camera(vtkRenderer* r, const ViewOptions& o) {
   const double* b = o.bounds;
   const double c[3] = {0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])};
-  const double diag = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  const double diag =
+      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   double dir[3] = {0, 0, 1}, up[3] = {0, 1, 0};
-  if (o.camera == "front") dir[0] = 0, dir[1] = 0, dir[2] = 1;
-  else if (o.camera == "back") dir[0] = 0, dir[1] = 0, dir[2] = -1;
-  else if (o.camera == "top") dir[0] = 0, dir[1] = 1, dir[2] = 0, up[1] = 0, up[2] = -1;
-  else if (o.camera == "side") dir[0] = 1, dir[1] = 0, dir[2] = 0;
-  else if (o.camera == "iso") dir[0] = 1, dir[1] = 0.8, dir[2] = 1.2;
-  else fail("unknown camera preset '{}' (known: front, back, top, side, iso)", o.camera);
+  if (o.camera == "front")
+    dir[0] = 0, dir[1] = 0, dir[2] = 1;
+  else if (o.camera == "back")
+    dir[0] = 0, dir[1] = 0, dir[2] = -1;
+  else if (o.camera == "top")
+    dir[0] = 0, dir[1] = 1, dir[2] = 0, up[1] = 0, up[2] = -1;
+  else if (o.camera == "side")
+    dir[0] = 1, dir[1] = 0, dir[2] = 0;
+  else if (o.camera == "iso")
+    dir[0] = 1, dir[1] = 0.8, dir[2] = 1.2;
+  else
+    fail("unknown camera preset '{}' (known: front, back, top, side, iso)", o.camera);
   const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
   vtkCamera* cam = r->GetActiveCamera();
   cam->SetFocalPoint(c);
@@ -186,7 +194,7 @@ FrameRenderer::~FrameRenderer() { delete impl_; }
 std::string FrameRenderer::gl_info() const { return impl_->win.gl_info(); }
 
 vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, double time, const std::string& file,
-                                                   vtkUnstructuredGrid* joints) {
+                                                    vtkUnstructuredGrid* joints) {
   Impl& s = *impl_;
   const ViewOptions& o = s.opt;
   if (o.view == "cracks") {
@@ -252,10 +260,14 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     const double* b = o.bounds;
     vtkNew<vtkPlane> plane;
     plane->SetOrigin(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
-    if (o.cut == "x") plane->SetNormal(1, 0, 0);
-    else if (o.cut == "y") plane->SetNormal(0, 1, 0);
-    else if (o.cut == "z") plane->SetNormal(0, 0, 1);
-    else fail("unknown cut '{}' (known: none, x, y, z)", o.cut);
+    if (o.cut == "x")
+      plane->SetNormal(1, 0, 0);
+    else if (o.cut == "y")
+      plane->SetNormal(0, 1, 0);
+    else if (o.cut == "z")
+      plane->SetNormal(0, 0, 1);
+    else
+      fail("unknown cut '{}' (known: none, x, y, z)", o.cut);
     vtkNew<vtkTableBasedClipDataSet> clip;
     clip->SetInputData(g);
     clip->SetClipFunction(plane);

@@ -20,12 +20,12 @@ namespace dspdem::render {
 
 struct ViewOptions {
   std::string view = "stress";
-  std::string field = "von_mises";   ///< von_mises, max_principal, sigma_xx ... sigma_xz, displacement
-  double magnify = 1.0;              ///< displacement magnification for drawing
+  std::string field = "von_mises";  ///< von_mises, max_principal, sigma_xx ... sigma_xz, displacement
+  double magnify = 1.0;             ///< displacement magnification for drawing
   bool auto_range = true;
-  double range[2] = {0, 1};          ///< colour range [field unit]
-  std::string camera = "iso";        ///< front, back, top, side, iso
-  std::string cut = "none";          ///< none, x, y, z: keep the half below the mid-plane normal to it
+  double range[2] = {0, 1};    ///< colour range [field unit]
+  std::string camera = "iso";  ///< front, back, top, side, iso
+  std::string cut = "none";    ///< none, x, y, z: keep the half below the mid-plane normal to it
   int width = 1280, height = 720;
   std::array<double, 3> background = {1.0, 1.0, 1.0};
   double bounds[6] = {0, 1, 0, 1, 0, 1};  ///< framing (first frame's bounds)

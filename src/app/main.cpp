@@ -5,13 +5,13 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "app/mesh_command.hpp"
+#include "app/render_command.hpp"
+#include "app/run_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
-#include "app/mesh_command.hpp"
-#include "app/render_command.hpp"
 #include "render/image_compare.hpp"
-#include "app/run_command.hpp"
 
 using namespace dspdem;
 
@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
   mesh->add_option("-o,--out", mesh_out, "Output directory (default: results/<case name>/mesh)");
   mesh->add_option("--set", mesh_sets, "Override a case key: section.key=value (repeatable)");
 
-  auto* rend = app.add_subcommand("render", "Draw a run's frames off-screen: DIR/images/<view>/frame_NNNN.png, animations, plots");
+  auto* rend = app.add_subcommand(
+      "render", "Draw a run's frames off-screen: DIR/images/<view>/frame_NNNN.png, animations, plots");
   RenderArgs ra;
   rend->add_option("run_dir", ra.run_dir, "Output folder of a run (holds run.pvd)")->required();
   rend->add_option("--view", ra.views, "View: stress, fragments, cracks (repeatable; default from the case)");
@@ -54,17 +55,21 @@ int main(int argc, char** argv) {
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
 
-  auto* imgdiff = app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
+  auto* imgdiff =
+      app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
   std::string img_a, img_b, img_diff;
   double img_threshold = 0.002;
   int img_tol = 16;
   imgdiff->add_option("a", img_a, "First image")->required();
   imgdiff->add_option("b", img_b, "Second image (e.g. the baseline)")->required();
-  imgdiff->add_option("--threshold", img_threshold, "Largest accepted fraction of changed pixels (after a one-pixel shift and the channel tolerance)");
+  imgdiff->add_option(
+      "--threshold", img_threshold,
+      "Largest accepted fraction of changed pixels (after a one-pixel shift and the channel tolerance)");
   imgdiff->add_option("--tolerance", img_tol, "Per-channel difference ignored (0-255)");
   imgdiff->add_option("--diff", img_diff, "Where to write the difference image (default: <a>.diff.png)");
 
-  auto* keys = app.add_subcommand("keys", "Print every case-file key (type, default, range, unit, meaning) as Markdown");
+  auto* keys =
+      app.add_subcommand("keys", "Print every case-file key (type, default, range, unit, meaning) as Markdown");
 
   try {
     app.parse(argc, argv);
@@ -83,14 +88,17 @@ int main(int argc, char** argv) {
       const std::string diff = img_diff.empty() ? img_a.substr(0, img_a.rfind('.')) + ".diff.png" : img_diff;
       const render::ImageDiff d = render::compare_png(img_a, img_b, diff, img_tol);
       const bool pass = d.changed_fraction <= img_threshold;
-      fmt::print("{}: {:.4f} % of pixels changed (threshold {:.4f} %; VTK thresholded error {:.4g}), {}x{}; difference "
-                 "image {}\n", pass ? "same" : "DIFFERENT", 100 * d.changed_fraction, 100 * img_threshold, d.vtk_error,
-                 d.width, d.height, diff);
+      fmt::print(
+          "{}: {:.4f} % of pixels changed (threshold {:.4f} %; VTK thresholded error {:.4g}), {}x{}; difference "
+          "image {}\n",
+          pass ? "same" : "DIFFERENT", 100 * d.changed_fraction, 100 * img_threshold, d.vtk_error, d.width, d.height,
+          diff);
       return pass ? 0 : 1;
     }
     if (*mesh) {
       const CaseConfig c = read_case(mesh_case_file, mesh_sets);
-      return mesh_command(c, mesh_out.empty() ? (std::filesystem::path("results") / c.name / "mesh").string() : mesh_out);
+      return mesh_command(c,
+                          mesh_out.empty() ? (std::filesystem::path("results") / c.name / "mesh").string() : mesh_out);
     }
     if (*run) {
       const CaseConfig c = read_case(case_file, sets);

@@ -34,8 +34,9 @@ int mesh_command(const CaseConfig& c, const std::string& out_dir) {
   const meshing::Quality q = meshing::mesh_quality(m);
   std::string params;
   for (const auto& [k, v] : c.mesh_num) params += fmt::format("{}\"{}\": {:.10g}", params.empty() ? "" : ", ", k, v);
-  const std::string extra = fmt::format("  \"case\": \"{}\",\n  \"source\": \"{}\",\n  \"parameters\": {{{}}},\n  \"nodes\": {},\n",
-                                        c.name, source, params, m.n_nodes());
+  const std::string extra =
+      fmt::format("  \"case\": \"{}\",\n  \"source\": \"{}\",\n  \"parameters\": {{{}}},\n  \"nodes\": {},\n", c.name,
+                  source, params, m.n_nodes());
   write_file_atomic((fs::path(out_dir) / "quality.json").string(), meshing::quality_json(q, extra));
   log::info("dspdem mesh: case '{}': {} nodes, {} tet4, {} hex8 in {:.2f} s", c.name, m.n_nodes(), q.n_tet4, q.n_hex8,
             t.seconds());

@@ -63,7 +63,8 @@ void auto_range(const std::vector<render::FrameRef>& frames, const std::vector<s
     for (std::size_t k = 0; k < f.size(); k += stride) v.push_back(f[k]);
   }
   std::sort(v.begin(), v.end());
-  double lo = v[static_cast<std::size_t>(0.005 * (v.size() - 1))], hi = v[static_cast<std::size_t>(0.995 * (v.size() - 1))];
+  double lo = v[static_cast<std::size_t>(0.005 * (v.size() - 1))],
+         hi = v[static_cast<std::size_t>(0.995 * (v.size() - 1))];
   if (o.field == "von_mises" || o.field == "displacement") lo = 0;
   if (!rc.auto_min) lo = rc.range_min;
   if (!rc.auto_max) hi = rc.range_max;
@@ -71,23 +72,32 @@ void auto_range(const std::vector<render::FrameRef>& frames, const std::vector<s
   o.range[0] = lo, o.range[1] = hi;
 }
 
-std::string view_dir(const std::string& run, const std::string& view) { return (fs::path(run) / "images" / view).string(); }
+std::string view_dir(const std::string& run, const std::string& view) {
+  return (fs::path(run) / "images" / view).string();
+}
 
 void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, std::vector<pid_t>& pids) {
   for (int k = 1; k < jobs; ++k) {
-    std::vector<std::string> args = {"/proc/self/exe", "-q", "render", a.run_dir, "--worker", fmt::format("{}/{}", k, jobs),
-                                     "--frames", a.frames, "--field", o.field, "--camera", o.camera, "--cut", o.cut,
-                                     "--magnify", fmt::format("{:.17g}", o.magnify),
-                                     "--range", fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]),
-                                     "--size", fmt::format("{}x{}", o.width, o.height)};
+    std::vector<std::string> args = {"/proc/self/exe", "-q",
+                                     "render",         a.run_dir,
+                                     "--worker",       fmt::format("{}/{}", k, jobs),
+                                     "--frames",       a.frames,
+                                     "--field",        o.field,
+                                     "--camera",       o.camera,
+                                     "--cut",          o.cut,
+                                     "--magnify",      fmt::format("{:.17g}", o.magnify),
+                                     "--range",        fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]),
+                                     "--size",         fmt::format("{}x{}", o.width, o.height)};
     for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
     std::vector<char*> argv;
     for (auto& s : args) argv.push_back(s.data());
     argv.push_back(nullptr);
     pid_t pid = 0;
     const int rc = posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ);
-    if (rc == 0) pids.push_back(pid);
-    else log::warn("could not start render worker {} ({}); rendering its frames here", k, rc);
+    if (rc == 0)
+      pids.push_back(pid);
+    else
+      log::warn("could not start render worker {} ({}); rendering its frames here", k, rc);
   }
 }
 }  // namespace
@@ -107,7 +117,8 @@ int render_command(const RenderArgs& in) {
   o.magnify = a.magnify > 0 ? a.magnify : rc.magnify;
   o.width = rc.width, o.height = rc.height;
   if (!a.size.empty()) {
-    DSPDEM_CHECK(std::sscanf(a.size.c_str(), "%dx%d", &o.width, &o.height) == 2, "--size {}: expected WIDTHxHEIGHT", a.size);
+    DSPDEM_CHECK(std::sscanf(a.size.c_str(), "%dx%d", &o.width, &o.height) == 2, "--size {}: expected WIDTHxHEIGHT",
+                 a.size);
   }
   o.background = {rc.background(0), rc.background(1), rc.background(2)};
 
@@ -117,14 +128,18 @@ int render_command(const RenderArgs& in) {
   auto first = render::read_frame(frames[sel[0]].file);
   first->GetBounds(o.bounds);
   for (const auto& v : a.views) {
-    if (v == "stress") render::field_values(first, o.field, frames[sel[0]].file);
+    if (v == "stress")
+      render::field_values(first, o.field, frames[sel[0]].file);
     else if (v == "fragments") {
       if (!first->GetCellData()->GetArray("fragment") && !first->GetCellData()->GetArray("body"))
-        fail("frame '{}' has neither 'fragment' nor 'body' cell data: the fragments view needs one", frames[sel[0]].file);
+        fail("frame '{}' has neither 'fragment' nor 'body' cell data: the fragments view needs one",
+             frames[sel[0]].file);
     } else if (v == "cracks") {
       if (!fs::exists(fs::path(a.run_dir) / "joints.pvd"))
-        fail("the cracks view needs the joints dataset (joints.pvd), which run '{}' does not have: the run has no "
-             "fracturable body", a.run_dir);
+        fail(
+            "the cracks view needs the joints dataset (joints.pvd), which run '{}' does not have: the run has no "
+            "fracturable body",
+            a.run_dir);
     } else {
       fail("unknown view '{}' (known: stress, fragments, cracks)", v);
     }
@@ -138,7 +153,9 @@ int render_command(const RenderArgs& in) {
 
   int k = 0, n = 1;
   const bool worker = !a.worker.empty();
-  if (worker) DSPDEM_CHECK(std::sscanf(a.worker.c_str(), "%d/%d", &k, &n) == 2 && n > 0 && k >= 0 && k < n, "--worker {}", a.worker);
+  if (worker)
+    DSPDEM_CHECK(std::sscanf(a.worker.c_str(), "%d/%d", &k, &n) == 2 && n > 0 && k >= 0 && k < n, "--worker {}",
+                 a.worker);
   int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   jobs = std::min<int>(jobs, static_cast<int>(sel.size()));
   std::vector<pid_t> pids;
@@ -190,7 +207,8 @@ int render_command(const RenderArgs& in) {
   if (rc.animation && !a.no_animation && sel.size() > 1) {
     for (const auto& view : a.views) {
       std::vector<std::string> pngs;
-      for (std::size_t i : sel) pngs.push_back((fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
+      for (std::size_t i : sel)
+        pngs.push_back((fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
       const auto files = render::write_animation(pngs, (fs::path(a.run_dir) / "images" / view).string(), rc.fps);
       for (const auto& f : files) log::info("  animation {}", f);
     }
@@ -208,8 +226,8 @@ int render_command(const RenderArgs& in) {
       energy.y.insert(energy.y.end(), {"joint_elastic", "fracture_I", "fracture_II"});
     render::plot_csv(csv.string(), energy, (pdir / "energy.png").string());
     // Monitors follow the balance_error column.
-    const std::size_t first_monitor = static_cast<std::size_t>(
-        std::find(names.begin(), names.end(), "balance_error") - names.begin() + 1);
+    const std::size_t first_monitor =
+        static_cast<std::size_t>(std::find(names.begin(), names.end(), "balance_error") - names.begin() + 1);
     for (std::size_t i = first_monitor; i < names.size(); ++i) {
       render::PlotSpec m{"time", {names[i]}, "", names[i]};
       render::plot_csv(csv.string(), m, (pdir / (names[i] + ".png")).string());

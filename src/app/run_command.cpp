@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/case_mesh.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
@@ -14,7 +15,6 @@
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"
 #include "joint/fragments.hpp"
-#include "app/case_mesh.hpp"
 #include "time/integrator.hpp"
 
 namespace dspdem {
@@ -29,10 +29,14 @@ std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.10
 std::string json_escape(const std::string& s) {
   std::string o;
   for (char ch : s) {
-    if (ch == '"' || ch == '\\') o += '\\', o += ch;
-    else if (ch == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(ch) < 0x20) o += ' ';
-    else o += ch;
+    if (ch == '"' || ch == '\\')
+      o += '\\', o += ch;
+    else if (ch == '\n')
+      o += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20)
+      o += ' ';
+    else
+      o += ch;
   }
   return o;
 }
@@ -78,20 +82,25 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
             fem.n_nodes, fem.n_elements, model.body_names.size());
 
   if (model.joints.size() > 0)
-    log::info("  joints: {} ({} triangles, {} quadrilaterals) on fracturable bodies; nodes {} -> {}", model.joint_report.joints,
-              model.joint_report.tri, model.joint_report.quad, model.joint_report.nodes_before, model.joint_report.nodes_after);
+    log::info("  joints: {} ({} triangles, {} quadrilaterals) on fracturable bodies; nodes {} -> {}",
+              model.joint_report.joints, model.joint_report.tri, model.joint_report.quad,
+              model.joint_report.nodes_before, model.joint_report.nodes_after);
   const StableStep crit = stable_step(model);
   const std::size_t lim_tag = fem.elem_tag[crit.element];
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
   log::info("  critical step {:.4g} s, limited by {} at element {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
-            crit.limiter, lim_tag, model.body_names[fem.elem_body[crit.element]], dt, c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
+            crit.limiter, lim_tag, model.body_names[fem.elem_body[crit.element]], dt,
+            c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
   if (c.dt > crit.dt) {
     if (!c.allow_unstable)
-      fail("{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, remove it "
-           "for automatic, or set time.allow_unstable = true to study the instability",
-           c.path, c.dt, crit.dt, lim_tag);
-    log::warn("[time] dt = {:.4g} s is {:.2f} x the critical step {:.4g} s (element {}): expect the run to be stopped "
-              "by the stability checks", c.dt, c.dt / crit.dt, crit.dt, lim_tag);
+      fail(
+          "{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, remove it "
+          "for automatic, or set time.allow_unstable = true to study the instability",
+          c.path, c.dt, crit.dt, lim_tag);
+    log::warn(
+        "[time] dt = {:.4g} s is {:.2f} x the critical step {:.4g} s (element {}): expect the run to be stopped "
+        "by the stability checks",
+        c.dt, c.dt / crit.dt, crit.dt, lim_tag);
   }
   long n_steps = static_cast<long>(std::ceil(c.t_end / dt - 1e-9));
   if (c.max_steps > 0) n_steps = std::min(n_steps, c.max_steps);
@@ -108,7 +117,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   std::vector<Real> stress;
   std::vector<Real> elem_mass(fem.n_elements, 0.0);
   for (const auto& b : fem.blocks)
-    for (Index e = 0; e < b.size(); ++e) elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
+    for (Index e = 0; e < b.size(); ++e)
+      elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
   joint::Fragments frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
   std::vector<std::pair<double, std::string>> joint_frames;
   const std::string joints_pvd = (fs::path(stage.path()) / "joints.pvd").string();
@@ -206,7 +216,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         write_frame();
         while (next_frame <= t + 1e-12 * c.t_end) next_frame += c.frame_interval;
       }
-      if (g_interrupted) throw NumericalError(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
+      if (g_interrupted)
+        throw NumericalError(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
       if (tty_progress && loop.seconds() - last_report > 0.5) {
         last_report = loop.seconds();
         const double rate = static_cast<double>(s + 1) / last_report;

@@ -19,8 +19,7 @@ class Error : public std::runtime_error {
 /// Numerical trouble during a run (NaN, inversion, blow-up): carries where it happened.
 class NumericalError : public Error {
  public:
-  NumericalError(const std::string& what, long step, double time)
-      : Error(what), step(step), time(time) {}
+  NumericalError(const std::string& what, long step, double time) : Error(what), step(step), time(time) {}
   long step;
   double time;
 };
@@ -32,9 +31,9 @@ template <typename... Args>
 
 }  // namespace dspdem
 
-#define DSPDEM_CHECK(cond, ...)                 \
-  do {                                          \
-    if (!(cond)) ::dspdem::fail(__VA_ARGS__);   \
+#define DSPDEM_CHECK(cond, ...)               \
+  do {                                        \
+    if (!(cond)) ::dspdem::fail(__VA_ARGS__); \
   } while (0)
 
 #define DSPDEM_ASSERT(cond) assert(cond)

@@ -32,15 +32,15 @@ struct Material {
 struct FemBlock {
   CellType type = CellType::Tet4;
   Kinematics kin = Kinematics::Corotational;
-  std::vector<Index> conn;     ///< n x npe
-  std::vector<Index> elem;     ///< global element id
-  std::vector<Real> grad;      ///< n x (3 x npe), column-major per element: reference b_I
-  std::vector<Real> vol;       ///< reference volume
+  std::vector<Index> conn;  ///< n x npe
+  std::vector<Index> elem;  ///< global element id
+  std::vector<Real> grad;   ///< n x (3 x npe), column-major per element: reference b_I
+  std::vector<Real> vol;    ///< reference volume
   std::vector<Real> lambda, mu, beta;
-  std::vector<Real> gamma;     ///< hex8: n x (4 x 8)
-  std::vector<Real> khg;       ///< hex8: n x 144
-  std::size_t slot0 = 0;       ///< first force slot of this block
-  bool damped = false;         ///< any element with beta > 0
+  std::vector<Real> gamma;  ///< hex8: n x (4 x 8)
+  std::vector<Real> khg;    ///< hex8: n x 144
+  std::size_t slot0 = 0;    ///< first force slot of this block
+  bool damped = false;      ///< any element with beta > 0
   Index size() const { return static_cast<Index>(elem.size()); }
   int npe() const { return nodes_per_cell(type); }
 };
@@ -48,18 +48,18 @@ struct FemBlock {
 struct FemModel {
   Index n_nodes = 0;
   Index n_elements = 0;
-  std::vector<Real> x0;                ///< reference coordinates
-  std::vector<Real> mass;              ///< lumped nodal mass
-  std::vector<Real> node_alpha;        ///< mass-proportional damping per node
+  std::vector<Real> x0;          ///< reference coordinates
+  std::vector<Real> mass;        ///< lumped nodal mass
+  std::vector<Real> node_alpha;  ///< mass-proportional damping per node
   std::vector<FemBlock> blocks;
-  std::vector<std::size_t> elem_tag;   ///< global element -> gmsh tag
+  std::vector<std::size_t> elem_tag;  ///< global element -> gmsh tag
   std::vector<Index> elem_material;
   std::vector<Index> elem_body;
   std::vector<Index> node_ptr, node_slot;  ///< CSR node -> force slots
   // Per-step work arrays
-  std::vector<Real> slots;             ///< 3 per element node
-  std::vector<Real> elem_energy;       ///< strain energy per element [J]
-  std::vector<Real> elem_dpower;       ///< stiffness-damping dissipation rate per element [W]
+  std::vector<Real> slots;        ///< 3 per element node
+  std::vector<Real> elem_energy;  ///< strain energy per element [J]
+  std::vector<Real> elem_dpower;  ///< stiffness-damping dissipation rate per element [W]
   bool any_stiffness_damping = false;
 };
 

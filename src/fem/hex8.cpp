@@ -30,8 +30,7 @@ Grad shape_derivatives(const Vec3& xi) {
 static Eigen::Matrix<Real, 8, 1> shape_values(const Vec3& xi) {
   const Coords& n = natural_coords();
   Eigen::Matrix<Real, 8, 1> N;
-  for (int I = 0; I < 8; ++I)
-    N(I) = 0.125 * (1 + n(0, I) * xi(0)) * (1 + n(1, I) * xi(1)) * (1 + n(2, I) * xi(2));
+  for (int I = 0; I < 8; ++I) N(I) = 0.125 * (1 + n(0, I) * xi(0)) * (1 + n(1, I) * xi(1)) * (1 + n(2, I) * xi(2));
   return N;
 }
 

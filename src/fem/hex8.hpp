@@ -20,10 +20,10 @@
 namespace dspdem::hex8 {
 
 using Coords = Eigen::Matrix<Real, 3, 8>;
-using Grad = Eigen::Matrix<Real, 3, 8>;        ///< column I is b_I
-using HgVec = Eigen::Matrix<Real, 4, 8>;       ///< row a is gamma_a
-using HgStiff = Eigen::Matrix<Real, 12, 12>;   ///< index i + 3a
-using Stiffness = Eigen::Matrix<Real, 24, 24>; ///< dof 3I + i
+using Grad = Eigen::Matrix<Real, 3, 8>;         ///< column I is b_I
+using HgVec = Eigen::Matrix<Real, 4, 8>;        ///< row a is gamma_a
+using HgStiff = Eigen::Matrix<Real, 12, 12>;    ///< index i + 3a
+using Stiffness = Eigen::Matrix<Real, 24, 24>;  ///< dof 3I + i
 
 /// Natural coordinates of the 8 nodes in gmsh order (columns).
 const Coords& natural_coords();
@@ -34,10 +34,10 @@ Real min_corner_jacobian(const Coords& X);
 
 /// What the kernel needs per element, computed once in the reference configuration.
 struct Reference {
-  Grad b;            ///< uniform gradient
-  Real volume = 0;   ///< exact volume
-  HgVec gamma;       ///< hourglass shape vectors (annihilate linear fields)
-  HgStiff k_hg;      ///< stabilisation stiffness [N/m]
+  Grad b;                                   ///< uniform gradient
+  Real volume = 0;                          ///< exact volume
+  HgVec gamma;                              ///< hourglass shape vectors (annihilate linear fields)
+  HgStiff k_hg;                             ///< stabilisation stiffness [N/m]
   Eigen::Matrix<Real, 8, 1> mass_fraction;  ///< row-sum lumped mass shares (sum 1)
 };
 

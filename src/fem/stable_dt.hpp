@@ -15,8 +15,8 @@
 namespace dspdem {
 
 struct StableStep {
-  Real dt = 0;                  ///< critical step (before any safety factor)
-  Index element = -1;           ///< global element that limits it
+  Real dt = 0;         ///< critical step (before any safety factor)
+  Index element = -1;  ///< global element that limits it
   std::string limiter = "element";
 };
 

@@ -79,7 +79,8 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
 
 template <bool Corot>
 ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s) {
-  if (b.damped) return s ? tet4_kernel<Corot, true, true>(m, b, x, v, s) : tet4_kernel<Corot, true, false>(m, b, x, v, s);
+  if (b.damped)
+    return s ? tet4_kernel<Corot, true, true>(m, b, x, v, s) : tet4_kernel<Corot, true, false>(m, b, x, v, s);
   return s ? tet4_kernel<Corot, false, true>(m, b, x, v, s) : tet4_kernel<Corot, false, false>(m, b, x, v, s);
 }
 }  // namespace

@@ -33,7 +33,7 @@ struct BoundaryConfig {
   std::string group;
   bool dof[3] = {true, true, true};
   Vec3 value = Vec3::Zero();
-  Real ramp = 0;  ///< linear ramp time from zero [s]
+  Real ramp = 0;      ///< linear ramp time from zero [s]
   std::string where;  ///< file:line for messages
 };
 
@@ -66,13 +66,13 @@ struct RenderConfig {
 };
 
 struct CaseConfig {
-  std::string path;         ///< the case file
-  std::string dir;          ///< its directory (relative paths are resolved against it)
+  std::string path;  ///< the case file
+  std::string dir;   ///< its directory (relative paths are resolved against it)
   std::string name, description;
-  std::string mesh_file;    ///< absolute or relative to dir (empty when a generator is used)
-  std::string mesh_generator;                     ///< generator name (empty when a file is used)
-  std::map<std::string, double> mesh_num;         ///< its numeric parameters
-  std::map<std::string, std::string> mesh_str;    ///< its text parameters
+  std::string mesh_file;                        ///< absolute or relative to dir (empty when a generator is used)
+  std::string mesh_generator;                   ///< generator name (empty when a file is used)
+  std::map<std::string, double> mesh_num;       ///< its numeric parameters
+  std::map<std::string, std::string> mesh_str;  ///< its text parameters
   bool mesh_cache = true;
   Vec3 gravity = Vec3::Zero();
   std::vector<Material> materials;

@@ -90,12 +90,12 @@ class Section {
     const auto& k = spec(key, Type::Vec3);
     const toml::node* n = get_or_default(k);
     const toml::array* a = n->as_array();
-    if (!a || a->size() != 3)
-      fail("{}: {} key '{}' must be an array of 3 numbers [x, y, z]", where(key), label_, key);
+    if (!a || a->size() != 3) fail("{}: {} key '{}' must be an array of 3 numbers [x, y, z]", where(key), label_, key);
     Vec3 v;
     for (int i = 0; i < 3; ++i) {
       auto d = a->get(i)->value<double>();
-      if (!d || !std::isfinite(*d)) fail("{}: {} key '{}' entry {} must be a finite number", where(key), label_, key, i + 1);
+      if (!d || !std::isfinite(*d))
+        fail("{}: {} key '{}' entry {} must be a finite number", where(key), label_, key, i + 1);
       check_range(k, *d, key);
       v(i) = *d;
     }
@@ -129,7 +129,8 @@ class Section {
  private:
   const schema::Key& spec(const std::string& key, Type t) const {
     const auto& k = find_key(pattern_, key);
-    if (k.key[0] == '\0' || k.type != t) fail("internal: schema has no {} key '{}.{}'", schema::type_name(t), pattern_, key);
+    if (k.key[0] == '\0' || k.type != t)
+      fail("internal: schema has no {} key '{}.{}'", schema::type_name(t), pattern_, key);
     return k;
   }
   /// The node for a key, inserting the schema default when absent (so the resolved case
@@ -159,13 +160,20 @@ class Section {
   }
   static std::string type_of(const toml::node& n) {
     switch (n.type()) {
-      case toml::node_type::string: return "a string";
-      case toml::node_type::integer: return "an integer";
-      case toml::node_type::floating_point: return "a number";
-      case toml::node_type::boolean: return "a boolean";
-      case toml::node_type::array: return "an array";
-      case toml::node_type::table: return "a table";
-      default: return "a date/time";
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a number";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::array:
+        return "an array";
+      case toml::node_type::table:
+        return "a table";
+      default:
+        return "a date/time";
     }
   }
   const Ctx& ctx_;
@@ -188,7 +196,8 @@ toml::array* array_of_tables(const Ctx& ctx, toml::table& root, const std::strin
   toml::node* n = root.get(name);
   if (!n) return nullptr;
   toml::array* a = n->as_array();
-  if (!a || !a->is_array_of_tables()) fail("{}: '{}' must be an array of tables [[{}]]", ctx.where(n->source()), name, name);
+  if (!a || !a->is_array_of_tables())
+    fail("{}: '{}' must be an array of tables [[{}]]", ctx.where(n->source()), name, name);
   return a;
 }
 
@@ -285,9 +294,12 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       Section g(ctx, sub_table(ctx, mt, c.mesh_generator), pattern, "[" + pattern + "]");
       for (const auto& k : schema::keys()) {
         if (pattern != k.section) continue;
-        if (k.type == Type::String) c.mesh_str[k.key] = g.str(k.key);
-        else if (k.type == Type::Int) c.mesh_num[k.key] = static_cast<double>(g.integer(k.key));
-        else c.mesh_num[k.key] = g.real(k.key);
+        if (k.type == Type::String)
+          c.mesh_str[k.key] = g.str(k.key);
+        else if (k.type == Type::Int)
+          c.mesh_num[k.key] = static_cast<double>(g.integer(k.key));
+        else
+          c.mesh_num[k.key] = g.real(k.key);
       }
       g.finish();
     }
@@ -318,18 +330,23 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
         if (!s.has("damping_frequency"))
           fail("{}: [materials.{}] damping_ratio > 0 needs damping_frequency (Hz)", s.where("damping_ratio"), mname);
         const Real w = 2 * M_PI * s.real("damping_frequency");
-        if (mode == "mass") m.alpha += 2 * ratio * w;
-        else m.beta += 2 * ratio / w;
+        if (mode == "mass")
+          m.alpha += 2 * ratio * w;
+        else
+          m.beta += 2 * ratio / w;
       } else if (s.has("damping_frequency")) {
         s.real("damping_frequency");
       }
       JointMaterial jm;
-      const char* jkeys[] = {"tensile_strength", "fracture_energy_I", "cohesion", "friction_angle", "fracture_energy_II"};
+      const char* jkeys[] = {"tensile_strength", "fracture_energy_I", "cohesion", "friction_angle",
+                             "fracture_energy_II"};
       int present = 0;
       for (const char* k : jkeys) present += s.has(k);
       if (present > 0 && present < 5)
-        fail("{}: [materials.{}] joint parameters come together: give all of tensile_strength, fracture_energy_I, "
-             "cohesion, friction_angle, fracture_energy_II", s.where(), mname);
+        fail(
+            "{}: [materials.{}] joint parameters come together: give all of tensile_strength, fracture_energy_I, "
+            "cohesion, friction_angle, fracture_energy_II",
+            s.where(), mname);
       if (present == 5) {
         jm.given = true;
         jm.ft = s.real("tensile_strength");
@@ -366,15 +383,19 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       b.kinematics = s.str("kinematics") == "small_strain" ? Kinematics::SmallStrain : Kinematics::Corotational;
       b.split_components = s.boolean("split_components");
       const std::string fr = s.str("fracture");
-      b.fracture = fr == "all" ? BodyConfig::Fracture::All : fr == "groups" ? BodyConfig::Fracture::Groups : BodyConfig::Fracture::None;
+      b.fracture = fr == "all"      ? BodyConfig::Fracture::All
+                   : fr == "groups" ? BodyConfig::Fracture::Groups
+                                    : BodyConfig::Fracture::None;
       b.fracture_groups = s.strings("fracture_groups");
       if (b.fracture == BodyConfig::Fracture::Groups && b.fracture_groups.empty())
         fail("{}: [[bodies]] '{}' has fracture = \"groups\" but no fracture_groups", s.where("fracture"), b.name);
       if (b.fracture != BodyConfig::Fracture::None) {
         const Index mi = material_index(b.material, s.where("material"));
         if (!c.joint_materials[mi].given)
-          fail("{}: [[bodies]] '{}' is fracturable but [materials.{}] has no joint parameters (tensile_strength, "
-               "fracture_energy_I, cohesion, friction_angle, fracture_energy_II)", s.where("fracture"), b.name, b.material);
+          fail(
+              "{}: [[bodies]] '{}' is fracturable but [materials.{}] has no joint parameters (tensile_strength, "
+              "fracture_energy_I, cohesion, friction_angle, fracture_energy_II)",
+              s.where("fracture"), b.name, b.material);
       }
       for (const auto& o : c.bodies)
         DSPDEM_CHECK(o.name != b.name, "{}: body name '{}' used twice", s.where("name"), b.name);
@@ -391,7 +412,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       b.where = s.where();
       b.group = s.str("group");
       const std::string type = s.str("type");
-      b.type = type == "fixed" ? BoundaryConfig::Type::Fixed
+      b.type = type == "fixed"      ? BoundaryConfig::Type::Fixed
                : type == "velocity" ? BoundaryConfig::Type::Velocity
                                     : BoundaryConfig::Type::Force;
       const std::string dofs = s.str("dofs");
@@ -444,15 +465,19 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       m.name = s.str("name");
       const std::string type = s.str("type");
       using MT = MonitorConfig::Type;
-      m.type = type == "reaction" ? MT::Reaction
-               : type == "displacement" ? MT::Displacement
+      m.type = type == "reaction"                  ? MT::Reaction
+               : type == "displacement"            ? MT::Displacement
                : type == "displacement_difference" ? MT::DisplacementDifference
-               : type == "velocity" ? MT::Velocity
-                                    : MT::MaxDisplacement;
-      if (s.has("group")) m.group = s.str("group");
-      else DSPDEM_CHECK(m.type == MT::MaxDisplacement, "{}: [[monitors]] '{}' needs a group", s.where(), m.name);
-      if (s.has("group2")) m.group2 = s.str("group2");
-      else DSPDEM_CHECK(m.type != MT::DisplacementDifference, "{}: [[monitors]] '{}' needs group2", s.where(), m.name);
+               : type == "velocity"                ? MT::Velocity
+                                                   : MT::MaxDisplacement;
+      if (s.has("group"))
+        m.group = s.str("group");
+      else
+        DSPDEM_CHECK(m.type == MT::MaxDisplacement, "{}: [[monitors]] '{}' needs a group", s.where(), m.name);
+      if (s.has("group2"))
+        m.group2 = s.str("group2");
+      else
+        DSPDEM_CHECK(m.type != MT::DisplacementDifference, "{}: [[monitors]] '{}' needs group2", s.where(), m.name);
       m.component = component_index(s.str("component"));
       for (const auto& o : c.monitors)
         DSPDEM_CHECK(o.name != m.name, "{}: monitor name '{}' used twice", s.where("name"), m.name);

@@ -12,9 +12,23 @@ using T = Type;
 }  // namespace
 
 const std::vector<const char*>& sections() {
-  static const std::vector<const char*> s = {"case", "mesh", "mesh.brazilian_disc", "mesh.galvez_beam", "mesh.murray_beam",
-                                             "mesh.sphere_plate", "mesh.packing", "physics", "materials.<name>", "bodies[]",
-                                             "boundary[]", "initial[]", "time", "output", "monitors[]", "render", "checks"};
+  static const std::vector<const char*> s = {"case",
+                                             "mesh",
+                                             "mesh.brazilian_disc",
+                                             "mesh.galvez_beam",
+                                             "mesh.murray_beam",
+                                             "mesh.sphere_plate",
+                                             "mesh.packing",
+                                             "physics",
+                                             "materials.<name>",
+                                             "bodies[]",
+                                             "boundary[]",
+                                             "initial[]",
+                                             "time",
+                                             "output",
+                                             "monitors[]",
+                                             "render",
+                                             "checks"};
   return s;
 }
 
@@ -139,12 +153,18 @@ const std::vector<Key>& keys() {
 
 const char* type_name(Type t) {
   switch (t) {
-    case Type::Real: return "number";
-    case Type::Int: return "integer";
-    case Type::Bool: return "boolean";
-    case Type::String: return "string";
-    case Type::Vec3: return "[x, y, z]";
-    case Type::StringList: return "list of strings";
+    case Type::Real:
+      return "number";
+    case Type::Int:
+      return "integer";
+    case Type::Bool:
+      return "boolean";
+    case Type::String:
+      return "string";
+    case Type::Vec3:
+      return "[x, y, z]";
+    case Type::StringList:
+      return "list of strings";
   }
   return "?";
 }
@@ -152,8 +172,7 @@ const char* type_name(Type t) {
 std::string range_text(const Key& k) {
   if (k.type != Type::Real && k.type != Type::Int) return k.choices ? std::string(k.choices) : "";
   const bool has_lo = k.lo > -inf, has_hi = k.hi < inf;
-  if (has_lo && has_hi)
-    return fmt::format("{}{}, {}{}", k.lo_open ? "(" : "[", k.lo, k.hi, k.hi_open ? ")" : "]");
+  if (has_lo && has_hi) return fmt::format("{}{}, {}{}", k.lo_open ? "(" : "[", k.lo, k.hi, k.hi_open ? ")" : "]");
   if (has_lo) return fmt::format("{} {}", k.lo_open ? ">" : ">=", k.lo);
   if (has_hi) return fmt::format("{} {}", k.hi_open ? "<" : "<=", k.hi);
   return "";

@@ -12,8 +12,8 @@ struct Key {
   const char* section;  ///< "time", "materials.<name>", "bodies[]" ...
   const char* key;
   Type type;
-  const char* def;      ///< default as written in TOML; nullptr = required; "auto" = derived
-  double lo, hi;        ///< numeric range
+  const char* def;  ///< default as written in TOML; nullptr = required; "auto" = derived
+  double lo, hi;    ///< numeric range
   bool lo_open, hi_open;
   const char* unit;
   const char* choices;  ///< "a|b|c" for strings, or nullptr

@@ -37,8 +37,10 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compres
   w->SetInputData(grid);
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
-  if (compress) w->SetCompressorTypeToZLib();
-  else w->SetCompressorTypeToNone();
+  if (compress)
+    w->SetCompressorTypeToZLib();
+  else
+    w->SetCompressorTypeToNone();
   DSPDEM_CHECK(w->Write() == 1, "could not write '{}'", tmp);
   std::filesystem::rename(tmp, path);
 }
@@ -162,7 +164,9 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {
-  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
+  std::string s =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  "
+      "<Collection>\n";
   for (const auto& [t, file] : frames)
     s += fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", t, file);
   s += "  </Collection>\n</VTKFile>\n";

@@ -12,8 +12,8 @@ namespace dspdem {
 
 struct FrameData {
   const Mesh* mesh = nullptr;
-  const Real* x = nullptr;       ///< current positions (the grid's points)
-  const Real* x0 = nullptr;      ///< reference positions (for displacement)
+  const Real* x = nullptr;   ///< current positions (the grid's points)
+  const Real* x0 = nullptr;  ///< reference positions (for displacement)
   const Real* v = nullptr;
   const Real* stress = nullptr;  ///< 6 per element (xx yy zz xy yz xz), global element order
   const Index* body = nullptr;
@@ -26,7 +26,9 @@ struct FrameData {
 /// Writes the frame to `path` (through a temporary name). Throws Error on failure.
 void write_vtu(const std::string& path, const FrameData& f);
 
-namespace joint { struct JointSet; }
+namespace joint {
+struct JointSet;
+}
 /// Writes the joints as their own dataset: one polygon per joint on its mid-surface with
 /// cell data state (0 intact, 1 softening, 2 broken), damage (0-1, the eq. 6 measure),
 /// opening and slip (means over the points) [m].

@@ -31,25 +31,25 @@
 namespace dspdem::joint {
 
 struct CohesiveParams {
-  Real kn = 0, ks = 0;      ///< penalty stiffness [Pa/m]
-  Real ft = 0;              ///< tensile strength [Pa]
-  Real GfI = 0, GfII = 0;   ///< fracture energies [J/m^2]
-  Real c = 0;               ///< cohesion [Pa]
-  Real tan_phi = 0;         ///< tan of the friction angle
+  Real kn = 0, ks = 0;     ///< penalty stiffness [Pa/m]
+  Real ft = 0;             ///< tensile strength [Pa]
+  Real GfI = 0, GfII = 0;  ///< fracture energies [J/m^2]
+  Real c = 0;              ///< cohesion [Pa]
+  Real tan_phi = 0;        ///< tan of the friction angle
 };
 
 enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
 
 /// History and last state of one integration point.
 struct CohesiveState {
-  Real dn_max = 0;     ///< largest opening reached [m]
-  Real ds_max = 0;     ///< largest slip reached [m]
-  Real ds_plastic = 0; ///< plastic slip of the residual friction (broken joints) [m]
-  Real ks_secant = -1; ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
-  Real diss_II_at_break = 0;  ///< mode-II dissipation when the point failed [J/m^2]
-  Real friction = 0;          ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
-  Real dn = 0, ds = 0; ///< last opening and slip [m]
-  Real sn = 0, ss = 0; ///< last tractions [Pa]
+  Real dn_max = 0;              ///< largest opening reached [m]
+  Real ds_max = 0;              ///< largest slip reached [m]
+  Real ds_plastic = 0;          ///< plastic slip of the residual friction (broken joints) [m]
+  Real ks_secant = -1;          ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
+  Real diss_II_at_break = 0;    ///< mode-II dissipation when the point failed [J/m^2]
+  Real friction = 0;            ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
+  Real dn = 0, ds = 0;          ///< last opening and slip [m]
+  Real sn = 0, ss = 0;          ///< last tractions [Pa]
   Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
   JointStatus status = JointStatus::Intact;
 
@@ -82,8 +82,10 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   } else {
     s.dn_max = std::max(s.dn_max, dn);
     const Real m = s.dn_max;
-    if (m <= w_ft) sn = p.kn * dn;
-    else sn = std::max<Real>(0.0, p.ft * (1.0 - (m - w_ft) / w_GI)) / m * dn;  // secant below the envelope
+    if (m <= w_ft)
+      sn = p.kn * dn;
+    else
+      sn = std::max<Real>(0.0, p.ft * (1.0 - (m - w_ft) / w_GI)) / m * dn;  // secant below the envelope
   }
   Real ss;
   if (s.status == JointStatus::Broken) {

@@ -25,8 +25,10 @@ Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector
     for (Index e = 0; e < b.size(); ++e, ++g)
       for (int i = 0; i < b.npe(); ++i) {
         Index& f = first[b.conn[static_cast<std::size_t>(e) * b.npe() + i]];
-        if (f < 0) f = g;
-        else unite(f, g);
+        if (f < 0)
+          f = g;
+        else
+          unite(f, g);
       }
   for (Index j = 0; j < js.size(); ++j)
     if (js.status[j] != JointStatus::Broken) unite(js.ea[j], js.eb[j]);

@@ -10,9 +10,9 @@
 namespace dspdem::joint {
 
 struct Fragments {
-  std::vector<Index> id;      ///< per global element
+  std::vector<Index> id;  ///< per global element
   Index count = 0;
-  std::vector<Real> mass;     ///< per fragment, largest first
+  std::vector<Real> mass;  ///< per fragment, largest first
 };
 
 /// `elem_mass` per global element.

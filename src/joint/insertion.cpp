@@ -51,14 +51,14 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
       for (int f = 0; f < static_cast<int>(fl.size()); ++f) {
         FaceRef& r = faces[nf++];
         r.key.fill(-1);
-        for (std::size_t k = 0; k < fl[f].size(); ++k) r.key[k] = blk.conn[static_cast<std::size_t>(e) * blk.npe() + fl[f][k]];
+        for (std::size_t k = 0; k < fl[f].size(); ++k)
+          r.key[k] = blk.conn[static_cast<std::size_t>(e) * blk.npe() + fl[f][k]];
         std::sort(r.key.begin(), r.key.begin() + static_cast<long>(fl[f].size()));
         r.elem = offset[b] + e, r.block = static_cast<int>(b), r.local_elem = e, r.face = f;
       }
   }
-  std::sort(faces.begin(), faces.end(), [](const FaceRef& x, const FaceRef& y) {
-    return x.key != y.key ? x.key < y.key : x.elem < y.elem;
-  });
+  std::sort(faces.begin(), faces.end(),
+            [](const FaceRef& x, const FaceRef& y) { return x.key != y.key ? x.key < y.key : x.elem < y.elem; });
 
   std::vector<std::size_t> parent(n_inc);
   std::iota(parent.begin(), parent.end(), 0);
@@ -96,7 +96,8 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
   const Index nn_old = mesh.n_nodes();
   std::vector<std::vector<std::size_t>> node_inc(nn_old);
   for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
-    for (std::size_t k = 0; k < mesh.blocks[b].conn.size(); ++k) node_inc[mesh.blocks[b].conn[k]].push_back(inc0[b] + k);
+    for (std::size_t k = 0; k < mesh.blocks[b].conn.size(); ++k)
+      node_inc[mesh.blocks[b].conn[k]].push_back(inc0[b] + k);
   std::vector<Index> inc_node(n_inc, -1);
   std::vector<Real> x;
   std::vector<std::size_t> tags;

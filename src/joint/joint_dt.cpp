@@ -21,8 +21,10 @@ StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const 
     const CohesiveParams& p = js.params[js.param[j]];
     const Real k = max_stiffness(p) * js.area0[j] / js.npf[j];
     for (int s = 0; s < js.npf[j]; ++s) {
-      kj[js.a[4 * static_cast<std::size_t>(j) + s]] += k, joint_elem[js.a[4 * static_cast<std::size_t>(j) + s]] = js.ea[j];
-      kj[js.b[4 * static_cast<std::size_t>(j) + s]] += k, joint_elem[js.b[4 * static_cast<std::size_t>(j) + s]] = js.eb[j];
+      kj[js.a[4 * static_cast<std::size_t>(j) + s]] += k,
+          joint_elem[js.a[4 * static_cast<std::size_t>(j) + s]] = js.ea[j];
+      kj[js.b[4 * static_cast<std::size_t>(j) + s]] += k,
+          joint_elem[js.b[4 * static_cast<std::size_t>(j) + s]] = js.eb[j];
     }
   }
   StableStep s;

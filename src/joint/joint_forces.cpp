@@ -64,8 +64,8 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
       const Real wa = w[g] * js.area0[j];
       for (int k = 0; k < npf; ++k)
         for (int d = 0; d < 3; ++d) {
-          out[3 * k + d] -= N[g][k] * wa * t(d);      // side A
-          out[12 + 3 * k + d] += N[g][k] * wa * t(d); // side B
+          out[3 * k + d] -= N[g][k] * wa * t(d);       // side A
+          out[12 + 3 * k + d] += N[g][k] * wa * t(d);  // side B
         }
     }
     // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and

@@ -10,11 +10,11 @@
 namespace dspdem::joint {
 
 struct JointTotals {
-  Real elastic = 0;       ///< recoverable energy in the joints [J]
-  Real fracture_I = 0;    ///< dissipated, mode I [J]
-  Real fracture_II = 0;   ///< dissipated, mode II (and residual friction) [J]
-  Index broken = 0;       ///< failed joints
-  Real broken_area = 0;   ///< their reference area: the crack area [m^2]
+  Real elastic = 0;      ///< recoverable energy in the joints [J]
+  Real fracture_I = 0;   ///< dissipated, mode I [J]
+  Real fracture_II = 0;  ///< dissipated, mode II (and residual friction) [J]
+  Index broken = 0;      ///< failed joints
+  Real broken_area = 0;  ///< their reference area: the crack area [m^2]
 };
 
 /// Updates every joint at positions x and adds its nodal forces to f. Deterministic: joint

@@ -14,15 +14,15 @@ namespace dspdem::joint {
 /// the coincident face B of element eb; node k of side A and node k of side B were the
 /// same node before insertion. Triangles (between tet4) and quadrilaterals (between hex8).
 struct JointSet {
-  std::vector<int> npf;              ///< nodes per face: 3 or 4
-  std::vector<Index> a, b;           ///< 4 slots per joint (the 4th unused for triangles)
-  std::vector<Index> ea, eb;         ///< element on each side (global ids)
-  std::vector<Real> area0;           ///< reference area [m^2]
-  std::vector<Index> param;          ///< index into params
+  std::vector<int> npf;       ///< nodes per face: 3 or 4
+  std::vector<Index> a, b;    ///< 4 slots per joint (the 4th unused for triangles)
+  std::vector<Index> ea, eb;  ///< element on each side (global ids)
+  std::vector<Real> area0;    ///< reference area [m^2]
+  std::vector<Index> param;   ///< index into params
   std::vector<CohesiveParams> params;
   // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint).
   std::vector<CohesiveState> state;
-  std::vector<JointStatus> status;   ///< per joint: Broken once any of its points fails
+  std::vector<JointStatus> status;  ///< per joint: Broken once any of its points fails
   Index size() const { return static_cast<Index>(npf.size()); }
 };
 

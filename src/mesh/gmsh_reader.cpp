@@ -67,7 +67,10 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
     return it->second;
   };
   // entity tag -> (block, first, count) ranges so volume groups can list their elements
-  struct Range { int block; Index first, count; };
+  struct Range {
+    int block;
+    Index first, count;
+  };
   std::unordered_map<int, std::vector<Range>> entity_ranges;
 
   for (auto [dim, tag] : vols) {
@@ -77,13 +80,21 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
     for (std::size_t k = 0; k < types.size(); ++k) {
       ElementBlock* blk = nullptr;
       int b = -1;
-      if (types[k] == kGmshTet4) { blk = &tets; b = 0; }
-      else if (types[k] == kGmshHex8) { blk = &hexes; b = 1; }
-      else {
-        std::string name; int d, order, nn, npn; std::vector<double> lc;
+      if (types[k] == kGmshTet4) {
+        blk = &tets;
+        b = 0;
+      } else if (types[k] == kGmshHex8) {
+        blk = &hexes;
+        b = 1;
+      } else {
+        std::string name;
+        int d, order, nn, npn;
+        std::vector<double> lc;
         gmsh::model::mesh::getElementProperties(types[k], name, d, order, nn, lc, npn);
-        fail("mesh '{}': volume {} holds {} element(s) of type '{}' (e.g. tag {}); only linear tetrahedra "
-             "and hexahedra are supported", source, tag, etags[k].size(), name, etags[k].empty() ? 0 : etags[k][0]);
+        fail(
+            "mesh '{}': volume {} holds {} element(s) of type '{}' (e.g. tag {}); only linear tetrahedra "
+            "and hexahedra are supported",
+            source, tag, etags[k].size(), name, etags[k].empty() ? 0 : etags[k][0]);
       }
       const int npe = blk->npe();
       entity_ranges[tag].push_back({b, blk->size(), static_cast<Index>(etags[k].size())});
@@ -123,8 +134,7 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
     g.dim = dim;
     gmsh::model::getPhysicalName(dim, ptag, g.name);
     if (g.name.empty()) g.name = std::to_string(ptag);
-    DSPDEM_CHECK(mesh.find_group(g.name) == nullptr, "mesh '{}': physical group name '{}' used twice", source,
-                 g.name);
+    DSPDEM_CHECK(mesh.find_group(g.name) == nullptr, "mesh '{}': physical group name '{}' used twice", source, g.name);
     std::vector<int> ents;
     gmsh::model::getEntitiesForPhysicalGroup(dim, ptag, ents);
     if (dim == 3) {

@@ -39,8 +39,8 @@ void check_element_volumes(const Mesh& mesh) {
       const Index* c = &blk.conn[static_cast<std::size_t>(e) * npe];
       bool ok = true;
       if (blk.type == CellType::Tet4) {
-        const Real v = tet4_volume(node_pos(mesh.x, c[0]), node_pos(mesh.x, c[1]), node_pos(mesh.x, c[2]),
-                                   node_pos(mesh.x, c[3]));
+        const Real v =
+            tet4_volume(node_pos(mesh.x, c[0]), node_pos(mesh.x, c[1]), node_pos(mesh.x, c[2]), node_pos(mesh.x, c[3]));
         // Relative threshold: a tet whose volume is a tiny fraction of its edge cube is degenerate.
         const Real h = (node_pos(mesh.x, c[1]) - node_pos(mesh.x, c[0])).norm();
         ok = v > 1e-12 * h * h * h;

@@ -26,16 +26,16 @@ struct ElementBlock {
 struct Group {
   std::string name;
   int dim = 0;
-  std::vector<Index> nodes;                   ///< sorted, unique
-  std::vector<std::vector<Index>> elements;   ///< dim 3: per block, element indices
-  std::vector<Index> tri;                     ///< dim 2: triangles, 3 node indices each
-  std::vector<Index> quad;                    ///< dim 2: quadrilaterals, 4 node indices each
+  std::vector<Index> nodes;                  ///< sorted, unique
+  std::vector<std::vector<Index>> elements;  ///< dim 3: per block, element indices
+  std::vector<Index> tri;                    ///< dim 2: triangles, 3 node indices each
+  std::vector<Index> quad;                   ///< dim 2: quadrilaterals, 4 node indices each
 };
 
 struct Mesh {
-  std::string source;                  ///< file it came from, for messages
-  std::vector<Real> x;                 ///< 3 x n_nodes, xyz interleaved
-  std::vector<std::size_t> node_tag;   ///< original node tags
+  std::string source;                 ///< file it came from, for messages
+  std::vector<Real> x;                ///< 3 x n_nodes, xyz interleaved
+  std::vector<std::size_t> node_tag;  ///< original node tags
   std::vector<ElementBlock> blocks;
   std::vector<Group> groups;
 

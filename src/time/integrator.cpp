@@ -147,10 +147,11 @@ void Integrator::check_energy(Real factor) const {
     Index worst = 0;
     for (Index k = 1; k < m_.fem.n_elements; ++k)
       if (m_.fem.elem_energy[k] > m_.fem.elem_energy[worst]) worst = k;
-    throw NumericalError(fmt::format("energy blow-up at step {}, t = {:.6g} s: kinetic + internal = {:.4g} J exceeds "
-                                     "{} x (initial + work + dissipated = {:.4g} J); largest strain energy in element {}",
-                                     n_, t_, e.kinetic + e.internal, factor, budget, element_tag(worst)),
-                         n_, t_);
+    throw NumericalError(
+        fmt::format("energy blow-up at step {}, t = {:.6g} s: kinetic + internal = {:.4g} J exceeds "
+                    "{} x (initial + work + dissipated = {:.4g} J); largest strain energy in element {}",
+                    n_, t_, e.kinetic + e.internal, factor, budget, element_tag(worst)),
+        n_, t_);
   }
 }
 
@@ -174,9 +175,12 @@ Real Integrator::monitor(const MonitorSet& ms) const {
         if (ms.dof_in_group[k]) r(k % 3) += reaction_[k];
       return pick(r);
     }
-    case T::Displacement: return pick(mean_of(ms.nodes, true));
-    case T::Velocity: return pick(mean_of(ms.nodes, false));
-    case T::DisplacementDifference: return pick(Vec3(mean_of(ms.nodes2, true) - mean_of(ms.nodes, true)));
+    case T::Displacement:
+      return pick(mean_of(ms.nodes, true));
+    case T::Velocity:
+      return pick(mean_of(ms.nodes, false));
+    case T::DisplacementDifference:
+      return pick(Vec3(mean_of(ms.nodes2, true) - mean_of(ms.nodes, true)));
     case T::MaxDisplacement: {
       Real mx = 0;
       for (Index n : ms.nodes) {

@@ -11,8 +11,9 @@ namespace dspdem {
 namespace {
 const Group& need_group(const Mesh& mesh, const std::string& name, const std::string& where) {
   const Group* g = mesh.find_group(name);
-  if (!g) fail("{}: group '{}' is not a physical group of mesh '{}' (groups: {})", where, name, mesh.source,
-               mesh.group_names());
+  if (!g)
+    fail("{}: group '{}' is not a physical group of mesh '{}' (groups: {})", where, name, mesh.source,
+         mesh.group_names());
   if (g->nodes.empty()) fail("{}: group '{}' of mesh '{}' has no nodes", where, name, mesh.source);
   return *g;
 }
@@ -75,13 +76,17 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     for (const auto& gname : bc.groups) {
       const Group* g = me.find_group(gname);
       const std::string where = fmt::format("{}: [[bodies]] '{}'", c.path, bc.name);
-      if (!g) fail("{}: group '{}' is not a physical group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
-      if (g->dim != 3) fail("{}: group '{}' has dimension {}; bodies are made of volume (3D) groups", where, gname, g->dim);
+      if (!g)
+        fail("{}: group '{}' is not a physical group of mesh '{}' (groups: {})", where, gname, me.source,
+             me.group_names());
+      if (g->dim != 3)
+        fail("{}: group '{}' has dimension {}; bodies are made of volume (3D) groups", where, gname, g->dim);
       for (std::size_t b = 0; b < g->elements.size(); ++b)
         for (Index e : g->elements[b]) {
           const Index gid = block_offset[b] + e;
           if (body[gid] >= 0 && body[gid] != static_cast<Index>(bi))
-            fail("{}: element {} is in body '{}' and in body '{}'", where, me.blocks[b].tag[e], c.bodies[body[gid]].name, bc.name);
+            fail("{}: element {} is in body '{}' and in body '{}'", where, me.blocks[b].tag[e],
+                 c.bodies[body[gid]].name, bc.name);
           body[gid] = static_cast<Index>(bi);
           material[gid] = mat;
         }
@@ -93,8 +98,10 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     for (Index e = 0; e < me.blocks[b].size(); ++e)
       if (body[block_offset[b] + e] < 0 && orphans++ == 0) first_orphan = me.blocks[b].tag[e];
   if (orphans > 0)
-    fail("{}: {} element(s) of mesh '{}' belong to no body (first: element {}); list their volume groups in [[bodies]] groups",
-         c.path, orphans, me.source, first_orphan);
+    fail(
+        "{}: {} element(s) of mesh '{}' belong to no body (first: element {}); list their volume groups in [[bodies]] "
+        "groups",
+        c.path, orphans, me.source, first_orphan);
 
   const std::vector<Index> cfg_body = body;  // before splitting into components
   // Split bodies into connected components where asked (e.g. one body per particle).
@@ -160,7 +167,8 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       for (const auto& gname : bc.fracture_groups) {
         const Group* g = me.find_group(gname);
         const std::string where = fmt::format("{}: [[bodies]] '{}' fracture_groups", c.path, bc.name);
-        if (!g || g->dim != 3) fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
+        if (!g || g->dim != 3)
+          fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
         for (std::size_t b = 0; b < g->elements.size(); ++b)
           for (Index e : g->elements[b]) {
             const Index gid = block_offset[b] + e;
@@ -236,8 +244,10 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
   for (const auto& mc : c.monitors) {
     MonitorSet ms;
     ms.cfg = mc;
-    if (!mc.group.empty()) ms.nodes = need_group(me, mc.group, mc.where).nodes;
-    else for (Index n = 0; n < me.n_nodes(); ++n) ms.nodes.push_back(n);
+    if (!mc.group.empty())
+      ms.nodes = need_group(me, mc.group, mc.where).nodes;
+    else
+      for (Index n = 0; n < me.n_nodes(); ++n) ms.nodes.push_back(n);
     if (!mc.group2.empty()) ms.nodes2 = need_group(me, mc.group2, mc.where).nodes;
     if (mc.type == MonitorConfig::Type::Reaction) {
       ms.dof_in_group.assign(3 * static_cast<std::size_t>(me.n_nodes()), 0);
@@ -245,7 +255,8 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       for (Index n : ms.nodes)
         for (int d = 0; d < 3; ++d)
           if (cons.count(3 * n + d)) ms.dof_in_group[3 * n + d] = 1, any = true;
-      if (!any) fail("{}: reaction monitor '{}': group '{}' has no fixed or velocity-driven dofs", mc.where, mc.name, mc.group);
+      if (!any)
+        fail("{}: reaction monitor '{}': group '{}' has no fixed or velocity-driven dofs", mc.where, mc.name, mc.group);
     }
     m.monitors.push_back(std::move(ms));
   }

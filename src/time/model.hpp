@@ -6,17 +6,17 @@
 
 #include "fem/fem_model.hpp"
 #include "fem/stable_dt.hpp"
-#include "joint/joint_set.hpp"
 #include "io/case_config.hpp"
+#include "joint/joint_set.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dspdem {
 
 /// A prescribed-velocity degree of freedom (fixed = zero velocity).
 struct Constraint {
-  Index dof;        ///< 3 * node + component
-  Real value;       ///< target velocity [m/s]
-  Real ramp;        ///< ramp time [s]
+  Index dof;   ///< 3 * node + component
+  Real value;  ///< target velocity [m/s]
+  Real ramp;   ///< ramp time [s]
 };
 
 /// A nodal force component from a force boundary condition.

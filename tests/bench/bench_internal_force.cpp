@@ -39,13 +39,13 @@ Setup& setup(CellType type, Kinematics kin) {
   s.f.assign(s.x.size(), 0.0);
   const FemBlock& b = s.fem.blocks.at(0);
   const double n = ne, npe = b.npe(), nn = s.fem.n_nodes;
-  double bytes = npe * 4                                        // connectivity
-                 + 3 * npe * 8 + 4 * 8                           // gradients, vol, lambda, mu, beta
-                 + (type == CellType::Hex8 ? (32 + 144) * 8 : 0) // gamma, K_hg
-                 + 2 * npe * 3 * 8                               // x and x0 of its nodes
-                 + 3 * npe * 8 + 8 + 4                           // force slots written, energy, elem id
-                 + 3 * npe * 8 + npe * 4;                        // gather: slots read, slot index
-  bytes += (nn * 3 * 8 + (nn + 1) * 4) / n;                      // nodal force written, CSR pointer
+  double bytes = npe * 4                                          // connectivity
+                 + 3 * npe * 8 + 4 * 8                            // gradients, vol, lambda, mu, beta
+                 + (type == CellType::Hex8 ? (32 + 144) * 8 : 0)  // gamma, K_hg
+                 + 2 * npe * 3 * 8                                // x and x0 of its nodes
+                 + 3 * npe * 8 + 8 + 4                            // force slots written, energy, elem id
+                 + 3 * npe * 8 + npe * 4;                         // gather: slots read, slot index
+  bytes += (nn * 3 * 8 + (nn + 1) * 4) / n;                       // nodal force written, CSR pointer
   s.bytes_per_elem = bytes;
   return cache.emplace(key, std::move(s)).first->second;
 }
@@ -64,7 +64,8 @@ void BM_InternalForce(benchmark::State& state, CellType type, Kinematics kin) {
   state.counters["elements"] = ne;
   state.counters["elem_per_s"] = benchmark::Counter(ne, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["bytes_per_elem"] = s.bytes_per_elem;
-  state.counters["GBps"] = benchmark::Counter(ne * s.bytes_per_elem * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["GBps"] =
+      benchmark::Counter(ne * s.bytes_per_elem * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_StreamTriad(benchmark::State& state) {
@@ -83,9 +84,25 @@ void BM_StreamTriad(benchmark::State& state) {
 }
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_InternalForce, tet4_corotational, CellType::Tet4, Kinematics::Corotational)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_InternalForce, tet4_small_strain, CellType::Tet4, Kinematics::SmallStrain)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_InternalForce, hex8_corotational, CellType::Hex8, Kinematics::Corotational)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_InternalForce, hex8_small_strain, CellType::Hex8, Kinematics::SmallStrain)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_InternalForce, tet4_corotational, CellType::Tet4, Kinematics::Corotational)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_InternalForce, tet4_small_strain, CellType::Tet4, Kinematics::SmallStrain)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_InternalForce, hex8_corotational, CellType::Hex8, Kinematics::Corotational)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_InternalForce, hex8_small_strain, CellType::Hex8, Kinematics::SmallStrain)
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StreamTriad)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -43,7 +43,8 @@ std::string replace(std::string s, const std::string& from, const std::string& t
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("dspdem_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = fs::temp_directory_path() /
+           ("dspdem_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "meshes");
     fs::copy_file(fs::path(DSPDEM_SOURCE_DIR) / "cases/meshes/cantilever_hex.geo", dir_ / "meshes/cantilever_hex.geo");
@@ -95,7 +96,10 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   EXPECT_EQ(g->GetCellData()->GetArray("stress")->GetNumberOfComponents(), 6);
   // series.csv: header with the monitors and one row per series step.
   const std::string csv = slurp(out / "series.csv");
-  EXPECT_EQ(csv.rfind("time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,crack_area,balance_error,tip_uy,clamp_reaction_y", 0), 0u);
+  EXPECT_EQ(csv.rfind("time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_"
+                      "joints,crack_area,balance_error,tip_uy,clamp_reaction_y",
+                      0),
+            0u);
   EXPECT_TRUE(fs::exists(out / "case.resolved.toml"));
   for (const auto& e : fs::directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().rfind(".staging", 0), std::string::npos) << "staging folder left behind";
@@ -136,9 +140,17 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
       {"density", replace(good_, "density = 2400.0", "density = -2400.0"), "", {"'density'"}},
       {"dt", replace(good_, "end = 2.0e-3", "end = 2.0e-3\ndt = 0.0"), "", {"'dt'"}},
       {"dt_unstable", good_, "--set time.dt=1.0", {"exceeds the critical step", "element"}},
-      {"missing_mesh", replace(good_, "meshes/cantilever_hex.geo", "meshes/none.msh"), "", {"none.msh", "does not exist"}},
-      {"inverted", replace(good_, "meshes/cantilever_hex.geo", "meshes/inverted.msh"), "", {"inverted", "element tags: 1"}},
-      {"unknown_group", replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""), "",
+      {"missing_mesh",
+       replace(good_, "meshes/cantilever_hex.geo", "meshes/none.msh"),
+       "",
+       {"none.msh", "does not exist"}},
+      {"inverted",
+       replace(good_, "meshes/cantilever_hex.geo", "meshes/inverted.msh"),
+       "",
+       {"inverted", "element tags: 1"}},
+      {"unknown_group",
+       replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""),
+       "",
        {"'top'", "clamp, tip"}},
   };
   for (const auto& b : cases) {
@@ -146,7 +158,8 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
     const Result r = run("run " + c.string() + " --out " + out.string() + " " + b.args);
     EXPECT_EQ(r.code, 2) << b.name << ": " << r.out;
     EXPECT_NE(r.out.find("error:"), std::string::npos) << b.name << ": " << r.out;
-    for (const auto& e : b.expect) EXPECT_NE(r.out.find(e), std::string::npos) << b.name << ": '" << e << "' in " << r.out;
+    for (const auto& e : b.expect)
+      EXPECT_NE(r.out.find(e), std::string::npos) << b.name << ": '" << e << "' in " << r.out;
     EXPECT_EQ(slurp(out / "summary.json"), before) << b.name << " changed earlier results";
     EXPECT_EQ(slurp(out / "run.pvd"), pvd_before) << b.name << " changed earlier results";
   }
@@ -157,7 +170,8 @@ TEST_F(Cli, NumericalFailureNamesStepAndElementAndKeepsEarlierResults) {
   const fs::path c = write("good.toml", good_);
   ASSERT_EQ(run("run " + c.string() + " --out " + out.string()).code, 0);
   const std::string before = slurp(out / "summary.json");
-  const Result r = run("run " + c.string() + " --out " + out.string() + " --set time.dt=1.2e-5 --set time.allow_unstable=true");
+  const Result r =
+      run("run " + c.string() + " --out " + out.string() + " --set time.dt=1.2e-5 --set time.allow_unstable=true");
   EXPECT_EQ(r.code, 3) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex("element [0-9]+"))) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex("step [0-9]+, t = "))) << r.out;
@@ -167,14 +181,16 @@ TEST_F(Cli, NumericalFailureNamesStepAndElementAndKeepsEarlierResults) {
 }
 
 TEST_F(Cli, ProgressLineOnRequest) {
-  const Result r = run("run " + write("good.toml", good_).string() + " --out " + (dir_ / "out").string() + " --progress");
+  const Result r =
+      run("run " + write("good.toml", good_).string() + " --out " + (dir_ / "out").string() + " --progress");
   ASSERT_EQ(r.code, 0) << r.out;
   // The loop reports every 0.5 s of wall time; a 2 ms case may finish before the first
   // report, so ask for a longer one.
   const Result r2 = run("run " + write("long.toml", good_).string() + " --out " + (dir_ / "out").string() +
                         " --progress --set time.end=0.05");
   ASSERT_EQ(r2.code, 0) << r2.out;
-  for (const char* s : {"step ", "t = ", "steps/s", "ETA"}) EXPECT_NE(r2.out.find(s), std::string::npos) << s << " in " << r2.out;
+  for (const char* s : {"step ", "t = ", "steps/s", "ETA"})
+    EXPECT_NE(r2.out.find(s), std::string::npos) << s << " in " << r2.out;
 }
 
 TEST_F(Cli, GeneratedMeshRunsEndToEndAndIsCached) {
@@ -196,14 +212,16 @@ TEST_F(Cli, GeneratedMeshRunsEndToEndAndIsCached) {
 }
 
 TEST_F(Cli, MeshCommandWritesMshAndQuality) {
-  const Result r = run("mesh " + std::string(DSPDEM_SOURCE_DIR) + "/cases/murray_beam.toml --out " + (dir_ / "m").string());
+  const Result r =
+      run("mesh " + std::string(DSPDEM_SOURCE_DIR) + "/cases/murray_beam.toml --out " + (dir_ / "m").string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(dir_ / "m/murray_beam.msh"));
   const std::string q = slurp(dir_ / "m/quality.json");
   for (const char* k : {"\"beam\": 4080", "\"min_dihedral_deg\"", "\"quality_p01\"", "\"slivers\""})
     EXPECT_NE(q.find(k), std::string::npos) << k << " in " << q;
-  const Result bad = run("mesh " + std::string(DSPDEM_SOURCE_DIR) +
-                         "/cases/galvez_beam.toml --set mesh.galvez_beam.notch_depth=0.3 --out " + (dir_ / "m2").string());
+  const Result bad =
+      run("mesh " + std::string(DSPDEM_SOURCE_DIR) +
+          "/cases/galvez_beam.toml --set mesh.galvez_beam.notch_depth=0.3 --out " + (dir_ / "m2").string());
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.out.find("mesh.galvez_beam.notch_depth"), std::string::npos) << bad.out;
 }
@@ -214,7 +232,8 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   // crack through the notch ligament; a few single elements may come loose along it), with
   // the energy balance closed to 1e-3 of the largest term.
   const fs::path out = dir_ / "nb";
-  const Result r = run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml --out " + out.string());
+  const Result r =
+      run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string s = slurp(out / "summary.json");
   std::smatch m;
@@ -233,7 +252,8 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   EXPECT_TRUE(fs::exists(out / "joints.pvd"));
   EXPECT_NE(slurp(out / "series.csv").find("broken_joints,crack_area"), std::string::npos);
   // The cracks view draws the broken joints from the joints dataset.
-  const Result rr = run("-q render " + out.string() + " --view cracks --view fragments --frames last --size 320x240 "
+  const Result rr = run("-q render " + out.string() +
+                        " --view cracks --view fragments --frames last --size 320x240 "
                         "--no-animation");
   EXPECT_EQ(rr.code, 0) << rr.out;
   EXPECT_TRUE(fs::exists(out / "images/cracks/frame_0010.png"));

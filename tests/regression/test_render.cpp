@@ -55,9 +55,12 @@ void golden(const std::string& scene, const std::string& view, const std::string
   const fs::path diff = fails / (scene + ".diff.png");
   // Threshold 0.2 % of the pixels: a one-pixel shift and anti-aliasing give 0; another
   // frame of the same run or another camera changes several per cent (ImgDiff test).
-  const Result r = sh(bin() + " imgdiff " + img.string() + " " + base.string() + " --threshold 0.002 --diff " + diff.string());
-  if (r.code != 0) fs::copy_file(img, fails / (scene + ".png"), fs::copy_options::overwrite_existing);
-  else fs::remove(diff);
+  const Result r =
+      sh(bin() + " imgdiff " + img.string() + " " + base.string() + " --threshold 0.002 --diff " + diff.string());
+  if (r.code != 0)
+    fs::copy_file(img, fails / (scene + ".png"), fs::copy_options::overwrite_existing);
+  else
+    fs::remove(diff);
   EXPECT_EQ(r.code, 0) << r.out << "\nnew image and difference kept in " << fails;
 }
 }  // namespace
@@ -82,8 +85,8 @@ TEST(Render, WritesFramesAnimationAndPlotsWithoutDisplay) {
   ASSERT_EQ(r.code, 0) << r.out;
   ASSERT_NE(r.out.find("OSMesa"), std::string::npos) << "GL path not reported: " << r.out;
   EXPECT_EQ(r.out.find("GLEW"), std::string::npos) << "GLEW noise leaked: " << r.out;
-  for (const char* f : {"images/stress/frame_0000.png", "images/stress/frame_0002.png", "images/fragments/frame_0001.png",
-                        "images/plots/energy.png"})
+  for (const char* f : {"images/stress/frame_0000.png", "images/stress/frame_0002.png",
+                        "images/fragments/frame_0001.png", "images/plots/energy.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   // bar_tension.toml turns animations off; a second render with them on writes the .ogv.
   const fs::path out2 = fs::temp_directory_path() / "dspdem_render_anim";

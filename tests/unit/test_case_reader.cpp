@@ -69,16 +69,22 @@ TEST(CaseReader, GoodCaseResolvesDefaults) {
 }
 
 TEST(CaseReader, SyntaxErrorHasLine) { expect_error(replace(kGood, "nu = 0.2", "nu = = 0.2"), {":8:", "syntax"}); }
-TEST(CaseReader, UnknownKey) { expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\nYoung = 3"), {":9:", "Young", "materials.rock"}); }
+TEST(CaseReader, UnknownKey) {
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\nYoung = 3"), {":9:", "Young", "materials.rock"});
+}
 TEST(CaseReader, UnknownSection) { expect_error(std::string(kGood) + "[solver]\nx = 1\n", {":15:", "solver"}); }
 TEST(CaseReader, NonPositiveE) { expect_error(replace(kGood, "E = 30.0e9", "E = 0.0"), {":7:", "'E'", "range"}); }
 TEST(CaseReader, NuTooLarge) { expect_error(replace(kGood, "nu = 0.2", "nu = 0.5"), {":8:", "'nu'", "(-1, 0.5)"}); }
 TEST(CaseReader, NuTooSmall) { expect_error(replace(kGood, "nu = 0.2", "nu = -1.0"), {":8:", "'nu'"}); }
-TEST(CaseReader, NegativeDensity) { expect_error(replace(kGood, "density = 2500.0", "density = -1.0"), {":6:", "'density'"}); }
+TEST(CaseReader, NegativeDensity) {
+  expect_error(replace(kGood, "density = 2500.0", "density = -1.0"), {":6:", "'density'"});
+}
 TEST(CaseReader, NonPositiveDt) { expect_error(std::string(kGood) + "dt = 0.0\n", {":15:", "'dt'", "> 0"}); }
 TEST(CaseReader, WrongType) { expect_error(replace(kGood, "E = 30.0e9", "E = \"stiff\""), {":7:", "'E'", "number"}); }
 TEST(CaseReader, MissingRequired) { expect_error(replace(kGood, "E = 30.0e9\n", ""), {"missing", "'E'"}); }
-TEST(CaseReader, UnknownMaterial) { expect_error(replace(kGood, "material = \"rock\"", "material = \"granite\""), {":12:", "granite"}); }
+TEST(CaseReader, UnknownMaterial) {
+  expect_error(replace(kGood, "material = \"rock\"", "material = \"granite\""), {":12:", "granite"});
+}
 TEST(CaseReader, BadChoice) {
   expect_error(std::string(kGood) + "[[monitors]]\nname = \"m\"\ntype = \"stress\"\n", {":17:", "'type'", "reaction"});
 }
@@ -88,6 +94,4 @@ TEST(CaseReader, OverrideIsValidated) {
   EXPECT_DOUBLE_EQ(c.t_end, 2e-3);
   EXPECT_EQ(c.name, "renamed");
 }
-TEST(CaseReader, MissingFile) {
-  EXPECT_THROW(read_case("/nonexistent/case.toml"), Error);
-}
+TEST(CaseReader, MissingFile) { EXPECT_THROW(read_case("/nonexistent/case.toml"), Error); }

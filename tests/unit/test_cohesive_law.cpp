@@ -57,7 +57,7 @@ TEST(CohesiveLaw, UnloadingAndReloadingFollowTheSecant) {
     ASSERT_NEAR(s.sn, secant * m * i / 1000, 1e-9 * p.ft);
   }
   EXPECT_NEAR(s.dissipated_I(p), diss_at_m, 1e-9 * p.GfI);  // unloading dissipates nothing
-  for (int i = 1; i <= 1000; ++i) {  // reload along the same secant
+  for (int i = 1; i <= 1000; ++i) {                         // reload along the same secant
     cohesive_update(p, m * i / 1000, 0, s);
     ASSERT_NEAR(s.sn, secant * m * i / 1000, 1e-9 * p.ft);
   }

@@ -126,7 +126,9 @@ TEST(Kinematics, RigidRotationIsStressFreeOnlyWhenCorotational) {
     internal_forces(fm, x.data(), v.data(), f.data(), s.data());
     Real smax = 0;
     for (Real si : s) smax = std::max(smax, std::abs(si));
-    if (kin == Kinematics::Corotational) EXPECT_LT(smax, 1e-6 * 30e9 * 1e-6);
-    else EXPECT_GT(smax, 1e-2 * 30e9);  // a 0.8 rad rotation reads as ~30 % strain
+    if (kin == Kinematics::Corotational)
+      EXPECT_LT(smax, 1e-6 * 30e9 * 1e-6);
+    else
+      EXPECT_GT(smax, 1e-2 * 30e9);  // a 0.8 rad rotation reads as ~30 % strain
   }
 }

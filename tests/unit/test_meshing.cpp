@@ -20,9 +20,10 @@ meshing::Params params(const std::string& gen, const std::vector<std::string>& s
   const fs::path dir = fs::temp_directory_path() / "dspdem_meshing_test";
   fs::create_directories(dir);
   const fs::path f = dir / (gen + ".toml");
-  std::ofstream(f) << "[mesh]\ngenerator = \"" << gen
-                   << "\"\n[materials.m]\ndensity = 1.0\nE = 1.0\nnu = 0.2\n[[bodies]]\nname = \"b\"\ngroups = [\"x\"]\n"
-                      "material = \"m\"\n[time]\nend = 1.0\n";
+  std::ofstream(f)
+      << "[mesh]\ngenerator = \"" << gen
+      << "\"\n[materials.m]\ndensity = 1.0\nE = 1.0\nnu = 0.2\n[[bodies]]\nname = \"b\"\ngroups = [\"x\"]\n"
+         "material = \"m\"\n[time]\nend = 1.0\n";
   std::vector<std::string> ov;
   for (const auto& s : sets) ov.push_back("mesh." + gen + "." + s);
   const CaseConfig c = read_case(f.string(), ov);
@@ -161,7 +162,8 @@ std::string slurp(const std::string& p) {
 
 TEST(Generators, PackingNoOverlapAndReproducible) {
   const fs::path dir = fs::temp_directory_path() / "dspdem_meshing_test";
-  const std::string a = (dir / "pack_a.msh").string(), b = (dir / "pack_b.msh").string(), c = (dir / "pack_c.msh").string();
+  const std::string a = (dir / "pack_a.msh").string(), b = (dir / "pack_b.msh").string(),
+                    c = (dir / "pack_c.msh").string();
   const Mesh m = meshing::generate(params("packing"), a);
   expect_groups(m, {"container", "particles"});
   const Group& pg = *m.find_group("particles");

@@ -11,7 +11,9 @@ using namespace dspdem;
 using namespace dspdem::testsupport;
 
 namespace {
-struct Result { Real deflection, reference; };
+struct Result {
+  Real deflection, reference;
+};
 
 Result cantilever(CellType type, int nx, int ny, int nz, Real L, Real H) {
   const Real E = 30e9, rho = 2400, P = 1e3;

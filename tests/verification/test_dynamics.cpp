@@ -1,7 +1,6 @@
 // Time-integration checks: energy conservation without damping, objectivity under rigid
 // spin, Rayleigh damping ratio, and detection of an unstable time step.
 #include <gtest/gtest.h>
-
 #include <omp.h>
 
 #include <numeric>
@@ -46,9 +45,9 @@ TEST(Energy, UndampedFreeVibrationDoesNotDrift) {
 
 namespace {
 struct SpinResult {
-  Real von_mises;      ///< largest element von Mises stress [Pa]
-  Real edge_change;    ///< largest relative change of a node-to-node distance
-  Real angle;          ///< rotation reached [rad]
+  Real von_mises;    ///< largest element von Mises stress [Pa]
+  Real edge_change;  ///< largest relative change of a node-to-node distance
+  Real angle;        ///< rotation reached [rad]
 };
 
 SpinResult spin(Kinematics kin, long steps) {
@@ -106,8 +105,10 @@ std::pair<Real, Real> measured_damping(const std::string& mode, Real ratio, Real
   const Real L = 1.0, E = 30e9, nu = 0.25, rho = 2400;
   CaseConfig c = simple_case(E, nu, rho, Kinematics::SmallStrain);
   const Real w = 2 * M_PI * freq;
-  if (mode == "mass") c.materials[0].alpha = 2 * ratio * w;
-  else c.materials[0].beta = 2 * ratio / w;
+  if (mode == "mass")
+    c.materials[0].alpha = 2 * ratio * w;
+  else
+    c.materials[0].beta = 2 * ratio / w;
   c.boundaries.push_back(fixed("all", "yz"));
   c.boundaries.push_back(fixed("xmin"));
   const int nx = 40;
@@ -219,7 +220,8 @@ TEST(Ledger, GravityReactionAndMonitorsAtRest) {
   MonitorConfig r;
   r.type = MonitorConfig::Type::Reaction, r.name = "r", r.group = "ymin", r.component = 1;
   MonitorConfig d;
-  d.type = MonitorConfig::Type::DisplacementDifference, d.name = "d", d.group = "ymin", d.group2 = "ymax", d.component = 1;
+  d.type = MonitorConfig::Type::DisplacementDifference, d.name = "d", d.group = "ymin", d.group2 = "ymax",
+  d.component = 1;
   MonitorConfig mx;
   mx.type = MonitorConfig::Type::MaxDisplacement, mx.name = "mx", mx.component = 3;
   c.monitors = {r, d, mx};

@@ -80,7 +80,8 @@ TEST(Joints, UniformOpeningGivesTheLawAndGfTimesArea) {
 TEST(Joints, RigidRotationNeitherOpensNorShears) {
   Model m = two_blocks();
   std::vector<Real> slots;
-  const Vec3 F = force_on_b(m, place(m, Vec3::Zero(), Mat3(Eigen::AngleAxis<Real>(2.0, Vec3(0.3, 1, 0.2).normalized()))), slots);
+  const Vec3 F =
+      force_on_b(m, place(m, Vec3::Zero(), Mat3(Eigen::AngleAxis<Real>(2.0, Vec3(0.3, 1, 0.2).normalized()))), slots);
   EXPECT_LT(F.norm(), 1e-6);  // N, against forces of order f_t A = 3e4 N
   EXPECT_EQ(m.joints.status[0], joint::JointStatus::Intact);
 }
@@ -92,10 +93,11 @@ TEST(Joints, ShearUnderCompressionThroughTheKernel) {
   const Real fs = p.c - sigma * p.tan_phi, df = fs / p.ks + 2 * p.GfII / fs;
   std::vector<Real> slots;
   Vec3 F;
-  for (int i = 1; i <= 4000; ++i) F = force_on_b(m, place(m, Vec3(dn, 1.3 * df * i / 4000, 0), Mat3::Identity()), slots);
+  for (int i = 1; i <= 4000; ++i)
+    F = force_on_b(m, place(m, Vec3(dn, 1.3 * df * i / 4000, 0), Mat3::Identity()), slots);
   EXPECT_EQ(m.joints.status[0], joint::JointStatus::Broken);
-  EXPECT_NEAR(F(0) / (-sigma * A), 1.0, 1e-6);                 // compression still carried
-  EXPECT_NEAR(-F(1) / (-sigma * p.tan_phi * A), 1.0, 1e-6);     // residual friction
+  EXPECT_NEAR(F(0) / (-sigma * A), 1.0, 1e-6);               // compression still carried
+  EXPECT_NEAR(-F(1) / (-sigma * p.tan_phi * A), 1.0, 1e-6);  // residual friction
   const joint::JointTotals t = joint::joint_totals(m.joints);
   // Mode II dissipation: G_fII A up to failure, plus friction over the slip after it.
   const Real slip_after = 1.3 * df - df;
@@ -143,7 +145,8 @@ TEST(Joints, AddedComplianceWithTheDefaultPenalty) {
   for (Real p : {10.0, 50.0, 100.0, 200.0}) {
     const auto [k, dt] = block_stiffness(true, p);
     const Real err = 1 - k / k0;
-    RecordProperty(fmt::format("penalty_{:g}", p), fmt::format("dt/dt_elements={:.3f} stiffness_error={:.4f}", dt / dt0, err));
+    RecordProperty(fmt::format("penalty_{:g}", p),
+                   fmt::format("dt/dt_elements={:.3f} stiffness_error={:.4f}", dt / dt0, err));
     if (p == 100.0) {
       EXPECT_LT(std::abs(err), 0.02) << "stiffness error " << err;
     }
@@ -160,7 +163,8 @@ std::pair<Real, Real> break_bar(int n) {
   make_fracturable(c, 3e6, GfI, 10e6, 30, 1000);
   c.boundaries.push_back(fixed("xmin"));
   BoundaryConfig pull;
-  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);  // slow: stress waves of 0.1 MPa, far below f_t
+  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax",
+  pull.value = Vec3(0.01, 0, 0);  // slow: stress waves of 0.1 MPa, far below f_t
   pull.dof[1] = pull.dof[2] = false;
   pull.ramp = 2e-5;
   c.boundaries.push_back(pull);
@@ -168,8 +172,9 @@ std::pair<Real, Real> break_bar(int n) {
   Integrator it(m, 0.9 * critical_dt(m));
   while (it.energy().broken_joints == 0 && it.time() < 0.05) it.step();
   const Energy e = it.energy();
-  ::testing::Test::RecordProperty(fmt::format("cells_{}_breakdown", n), fmt::format("I={:.5g} II={:.5g} area={:.5g} t={:.4g}", e.fracture_I,
-                                                                   e.fracture_II, e.crack_area, it.time()));
+  ::testing::Test::RecordProperty(
+      fmt::format("cells_{}_breakdown", n),
+      fmt::format("I={:.5g} II={:.5g} area={:.5g} t={:.4g}", e.fracture_I, e.fracture_II, e.crack_area, it.time()));
   EXPECT_EQ(e.broken_joints, 1);
   return {(e.fracture_I + e.fracture_II) / (GfI * e.crack_area), e.crack_area};
 }
