@@ -52,29 +52,29 @@ const std::vector<Generator>& registry() {
        "Disc (axis z, diameter D, thickness L, centred at the origin) between two flat loading plates above and "
        "below (load along y), each plate a separate body touching the disc. Volumes: disc, plate_top, plate_bottom. "
        "Surfaces: plate_top_load (top face of the top plate), plate_bottom_load (bottom face of the bottom plate).",
-       build_brazilian_disc},
+       build_brazilian_disc, "disc"},
       {"galvez_beam",
        "Galvez et al. (1998) notched beam for mixed-mode fracture (four-point shear): beam along x (bottom at y = 0, "
        "mid-thickness at z = 0) with a notch at mid-span from the bottom. Volume: beam. Curves across the width: "
        "support_left, support_right (bottom), load_inner, load_outer (top). Curves: cmod_left, cmod_right (the two "
        "notch-mouth edges).",
-       build_galvez_beam},
+       build_galvez_beam, "beam"},
       {"murray_beam",
        "Murray et al. (2007) plain concrete beam for impact: box along x (centred at the origin, depth along y, width "
        "along z), structured hexahedra, split at the support and impactor lines. Volumes: beam, impactor_left, "
        "impactor_right, support_left, support_right (cylinders along z). Curves: midspan_bottom. Surfaces: "
        "beam_bottom, beam_top.",
-       build_murray_beam},
+       build_murray_beam, nullptr},
       {"sphere_plate",
        "Sphere (centre at the origin) above a plate below it (-y), touching or with a gap. Volumes: sphere, plate. "
        "Surfaces: plate_top, plate_bottom.",
-       build_sphere_plate},
+       build_sphere_plate, "sphere"},
       {"packing",
        "Open-top rigid box (inner size lx x ly(height) x lz, floor at y = 0) made of five wall slabs, and N "
        "tetrahedral particles (one tet4 each, randomly oriented, edge length uniform in [size_min, size_max], "
        "vertices jittered by 'irregularity') on a lattice inside and above it, without overlaps; deterministic for a "
        "seed. Volumes: container, particles (each particle is a connected component: use split_components = true).",
-       build_packing},
+       build_packing, nullptr},
   };
   return r;
 }
@@ -88,9 +88,10 @@ const Generator& find_generator(const std::string& name) {
   fail("unknown mesh generator '{}' (known: {})", name, names);
 }
 
-Mesh generate(const Params& p, const std::string& msh_path) {
-  const Generator& g = find_generator(p.generator);
-  GmshSession session;
+namespace {
+// One gmsh model built by the generator; the mesh stays loaded in gmsh for writing.
+Mesh build_once(const Generator& g, const Params& p) {
+  gmsh::clear();
   gmsh::model::add(p.generator);
   gmsh::option::setNumber("General.NumThreads", 1);  // deterministic meshes
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);    // Delaunay
@@ -100,7 +101,35 @@ Mesh generate(const Params& p, const std::string& msh_path) {
   std::string err;
   gmsh::logger::getLastError(err);
   DSPDEM_CHECK(err.empty(), "mesh generator '{}': gmsh reported: {}", p.generator, err);
-  Mesh m = mesh_from_gmsh_model("generator " + p.generator);
+  return mesh_from_gmsh_model("generator " + p.generator);
+}
+
+Index group_count(const Mesh& m, const std::string& group) {
+  const Group* grp = m.find_group(group);
+  DSPDEM_CHECK(grp != nullptr, "internal: generator has no group '{}'", group);
+  Index n = 0;
+  for (const auto& e : grp->elements) n += static_cast<Index>(e.size());
+  return n;
+}
+}  // namespace
+
+Mesh generate(const Params& p_in, const std::string& msh_path) {
+  const Generator& g = find_generator(p_in.generator);
+  GmshSession session;
+  Params p = p_in;
+  Mesh m = build_once(g, p);
+  // Element-count target: rescale the size by (count / target)^(1/3) until within 3 %.
+  auto target = p.num.find("target_elements");
+  if (target != p.num.end() && target->second > 0 && g.count_group) {
+    for (int it = 0; it < 6; ++it) {
+      const double n = group_count(m, g.count_group);
+      if (std::abs(n / target->second - 1.0) <= 0.03) break;
+      p.num["size"] *= std::cbrt(n / target->second);
+      m = build_once(g, p);
+    }
+    log::info("  mesh: {} elements in '{}' for target_elements = {} (size {:.4g} m)", group_count(m, g.count_group),
+              g.count_group, target->second, p.num["size"]);
+  }
   if (!msh_path.empty()) {
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 0);

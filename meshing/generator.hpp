@@ -32,6 +32,7 @@ struct Generator {
   const char* name;
   const char* doc;               ///< geometry, groups, and where defaults come from
   void (*build)(const Params&);  ///< builds and meshes the current gmsh model, adds groups
+  const char* count_group;       ///< group counted for target_elements (null: no target)
 };
 
 /// All generators, by name.

@@ -104,6 +104,12 @@ TEST(Generators, SpherePlate) {
   EXPECT_LT(err_fine, err);
 }
 
+TEST(Generators, ElementCountTarget) {
+  // target_elements rescales the size until the count is within 3 % (the documented bound).
+  const Mesh m = meshing::generate(params("sphere_plate", {"target_elements=8000"}));
+  EXPECT_NEAR(count(m, "sphere") / 8000.0, 1.0, 0.03);
+}
+
 TEST(Generators, MurrayBeamHexahedra) {
   const Mesh m = meshing::generate(params("murray_beam"));
   expect_groups(m, {"beam", "impactor_left", "impactor_right", "support_left", "support_right", "midspan_bottom",
