@@ -119,16 +119,28 @@ Mesh generate(const Params& p_in, const std::string& msh_path) {
   Params p = p_in;
   Mesh m = build_once(g, p);
   // Element-count target: rescale the size by (count / target)^(1/3) until within 3 %.
+  // gmsh's count jumps with the size, so keep the closest mesh and damp later steps.
   auto target = p.num.find("target_elements");
   if (target != p.num.end() && target->second > 0 && g.count_group) {
-    for (int it = 0; it < 6; ++it) {
+    const double want = target->second;
+    double best_err = std::abs(group_count(m, g.count_group) / want - 1.0), best_size = p.num["size"];
+    for (int it = 0; it < 12 && best_err > 0.03; ++it) {
       const double n = group_count(m, g.count_group);
-      if (std::abs(n / target->second - 1.0) <= 0.03) break;
-      p.num["size"] *= std::cbrt(n / target->second);
+      const double damp = it < 3 ? 1.0 : 0.5;
+      p.num["size"] *= std::pow(n / want, damp / 3.0) * (it >= 6 ? 1.0 + 0.01 * ((it % 2) ? 1 : -1) : 1.0);
+      m = build_once(g, p);
+      const double err = std::abs(group_count(m, g.count_group) / want - 1.0);
+      if (err < best_err) best_err = err, best_size = p.num["size"];
+    }
+    if (p.num["size"] != best_size) {
+      p.num["size"] = best_size;
       m = build_once(g, p);
     }
+    if (best_err > 0.03)
+      log::warn("mesh generator '{}': target_elements = {} reached only within {:.1f} %", p.generator, want,
+                100 * best_err);
     log::info("  mesh: {} elements in '{}' for target_elements = {} (size {:.4g} m)", group_count(m, g.count_group),
-              g.count_group, target->second, p.num["size"]);
+              g.count_group, want, p.num["size"]);
   }
   if (!msh_path.empty()) {
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
