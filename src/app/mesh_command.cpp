@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "app/case_mesh.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
@@ -11,8 +12,6 @@
 #include "meshing/quality.hpp"
 
 namespace dspdem {
-
-meshing::Params generator_params(const CaseConfig& c);
 
 int mesh_command(const CaseConfig& c, const std::string& out_dir) {
   namespace fs = std::filesystem;
