@@ -354,6 +354,12 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
         jm.c = s.real("cohesion");
         jm.phi_deg = s.real("friction_angle");
         jm.GfII = s.real("fracture_energy_II");
+        const Real cut = jm.ft * std::tan(jm.phi_deg * M_PI / 180.0);
+        if (!(jm.c > cut))
+          fail(
+              "{}: [materials.{}] cohesion = {:g} Pa must exceed tensile_strength x tan(friction_angle) = {:g} Pa: "
+              "the shear strength at the tension cut-off, c - f_t tan(phi) (METHOD.md eq. 5), must stay positive",
+              s.where("cohesion"), mname, jm.c, cut);
       }
       jm.penalty = s.real("joint_penalty");
       if (s.has("joint_kn")) jm.kn = s.real("joint_kn");

@@ -16,8 +16,9 @@
 //    raise s_s and a closed path could create energy (seen in a notched-bar run);
 //  - compression is a penalty and never damages the joint;
 //  - once broken, a joint carries no tension; in compression it keeps the normal penalty and
-//    a Coulomb residual friction |s_s| <= -s_n tan(phi) (elastic-plastic in the slip
-//    magnitude, with a plastic slip history);
+//    a Coulomb residual friction |s_s| <= -s_n tan(phi) (elastic-plastic along the slip
+//    magnitude, with a plastic slip history; a slip that turns in the tangent plane without
+//    changing its magnitude is not resisted: the contact issue's tangential history will be);
 //  - energy: the work of the tractions is integrated (trapezoid) per mode; dissipation is
 //    work minus the recoverable elastic energy (1/2 s dn on the secant), so at complete
 //    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n); residual friction dissipates
@@ -89,19 +90,22 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   }
   Real ss;
   if (s.status == JointStatus::Broken) {
-    // Residual Coulomb friction, elastic-plastic in the slip magnitude.
-    // Dissipation is cap x plastic slip, exactly (no quadrature across the stick/slip kink).
+    // Residual Coulomb friction, elastic-plastic along the slip: |s_s| <= cap, with the sign
+    // allowed to reverse so that sliding back is resisted too. Dissipation, exactly: first
+    // the cap changes at fixed slip (a drop releases (s^2 - cap^2) / 2 k_s), then the slip
+    // increment slides at the cap (cap x plastic slip).
     const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
-    Real trial = p.ks * (ds - s.ds_plastic);
-    if (trial > cap) {
-      const Real plastic = ds - cap / p.ks;
-      s.friction += cap * (plastic - s.ds_plastic);
-      s.ds_plastic = plastic;
-      trial = cap;
-    } else if (trial < 0) {
-      s.ds_plastic = ds;
-      trial = 0;
+    Real e = s.ss;
+    if (std::abs(e) > cap) {
+      s.friction += (e * e - cap * cap) / (2.0 * p.ks);
+      e = e > 0 ? cap : -cap;
     }
+    Real trial = e + p.ks * (ds - s.ds);
+    if (std::abs(trial) > cap) {
+      s.friction += cap * (std::abs(trial) - cap) / p.ks;
+      trial = trial > 0 ? cap : -cap;
+    }
+    s.ds_plastic = ds - trial / p.ks;
     ss = trial;
   } else {
     const Real fs = shear_strength(p, sn);
@@ -137,7 +141,8 @@ inline void force_break(CohesiveState& s) {
   if (s.status == JointStatus::Broken) return;
   s.status = JointStatus::Broken;
   s.ds_plastic = s.ds;
-  s.diss_II_at_break = s.work_s;
+  s.diss_II_at_break = s.work_s;  // the stored shear energy is released: no elastic part is left
+  s.ss = 0.0;
 }
 
 /// Largest stiffness the joint presents (for the stable time step).

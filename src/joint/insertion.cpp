@@ -153,6 +153,7 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     for (Index n : g.nodes) nodes.insert(nodes.end(), copies[n].begin(), copies[n].end());
     std::sort(nodes.begin(), nodes.end());
     g.nodes = std::move(nodes);
+    bool unmatched = false;
     auto remap_faces = [&](std::vector<Index>& f, int npf) {
       for (std::size_t i = 0; i < f.size(); i += static_cast<std::size_t>(npf)) {
         FaceRef probe;
@@ -161,7 +162,10 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
         std::sort(probe.key.begin(), probe.key.begin() + npf);
         auto it = std::lower_bound(faces.begin(), faces.end(), probe,
                                    [](const FaceRef& x, const FaceRef& y) { return x.key < y.key; });
-        if (it == faces.end() || it->key != probe.key) continue;  // not a cell face: keep as is
+        if (it == faces.end() || it->key != probe.key) {  // not a cell face: cannot be remapped
+          unmatched = true;
+          continue;
+        }
         const auto& blk = mesh.blocks[it->block];
         for (int k = 0; k < npf; ++k)
           for (int c = 0; c < blk.npe(); ++c)
@@ -173,6 +177,7 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     };
     remap_faces(g.tri, 3);
     remap_faces(g.quad, 4);
+    if (unmatched && report) report->unmatched_face_groups.push_back(g.name);
   }
   if (report) {
     report->joints = js.size();

@@ -37,6 +37,8 @@ struct InsertionReport {
   Index joints = 0, tri = 0, quad = 0;
   Index nodes_before = 0, nodes_after = 0;
   std::vector<std::vector<Index>> copies;  ///< per original node, its new nodes
+  /// Surface groups with faces that are not element faces (their faces keep stale node ids).
+  std::vector<std::string> unmatched_face_groups;
 };
 
 /// Duplicates nodes so that jointed faces no longer share nodes, rewrites the mesh

@@ -143,14 +143,14 @@ void Integrator::check_energy(Real factor) const {
   const Energy e = energy();
   const Real budget = e.initial + std::abs(e.external_work) + e.damping + e.fracture_I + e.fracture_II;
   const Real floor = 1e-9 * std::max<Real>(1.0, budget);
-  if (e.kinetic + e.internal > factor * budget + floor) {
+  if (e.kinetic + e.internal + e.joint_elastic > factor * budget + floor) {
     Index worst = 0;
     for (Index k = 1; k < m_.fem.n_elements; ++k)
       if (m_.fem.elem_energy[k] > m_.fem.elem_energy[worst]) worst = k;
     throw NumericalError(
-        fmt::format("energy blow-up at step {}, t = {:.6g} s: kinetic + internal = {:.4g} J exceeds "
+        fmt::format("energy blow-up at step {}, t = {:.6g} s: kinetic + internal (+ joint) = {:.4g} J exceeds "
                     "{} x (initial + work + dissipated = {:.4g} J); largest strain energy in element {}",
-                    n_, t_, e.kinetic + e.internal, factor, budget, element_tag(worst)),
+                    n_, t_, e.kinetic + e.internal + e.joint_elastic, factor, budget, element_tag(worst)),
         n_, t_);
   }
 }

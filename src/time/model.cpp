@@ -180,7 +180,17 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     }
     if (any) {
       m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
-      for (auto& fw : force_weights) {
+      // Loads on surfaces whose faces are element faces are spread again by area over the
+      // copies that own those faces; otherwise each node's share is split among its copies.
+      for (std::size_t bi = 0; bi < c.boundaries.size(); ++bi) {
+        auto& fw = force_weights[bi];
+        if (fw.empty()) continue;
+        const Group& g = need_group(me, c.boundaries[bi].group, c.boundaries[bi].where);
+        const auto& um = m.joint_report.unmatched_face_groups;
+        if ((!g.tri.empty() || !g.quad.empty()) && std::find(um.begin(), um.end(), g.name) == um.end()) {
+          fw = load_weights(me, g);
+          continue;
+        }
         std::vector<std::pair<Index, Real>> split;
         for (auto [n, w] : fw) {
           const auto& cp = m.joint_report.copies[n];

@@ -155,3 +155,21 @@ TEST(CohesiveLaw, NoPathCreatesEnergy) {
     }
   }
 }
+
+TEST(CohesiveLaw, ResidualFrictionResistsReversal) {
+  // After a shear failure under 5 MPa compression: slide forward, then back. The friction
+  // changes sign and holds |s_s| = -s_n tan(phi) both ways; sliding back dissipates too.
+  const CohesiveParams p = disc_params();
+  const Real sigma = -5e6, dn = sigma / p.kn, cap = -sigma * p.tan_phi;
+  const Real fs = p.c - sigma * p.tan_phi, df = fs / p.ks + 2 * p.GfII / fs;
+  CohesiveState s;
+  for (int i = 1; i <= 20000; ++i) cohesive_update(p, dn, 1.2 * df * i / 20000, s);
+  ASSERT_EQ(s.status, JointStatus::Broken);
+  EXPECT_NEAR(s.ss, cap, 1e-6 * cap);
+  const Real forward = s.dissipated_II(p);
+  const Real back = 0.1 * df;
+  for (int i = 1; i <= 2000; ++i) cohesive_update(p, dn, 1.2 * df - back * i / 2000, s);
+  EXPECT_NEAR(s.ss, -cap, 1e-6 * cap);
+  // Sliding back by `back` (less the elastic reversal 2 cap / k_s) dissipates cap x that.
+  EXPECT_NEAR((s.dissipated_II(p) - forward) / (cap * (back - 2 * cap / p.ks)), 1.0, 1e-3);
+}
