@@ -85,6 +85,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     log::info("  joints: {} ({} triangles, {} quadrilaterals) on fracturable bodies; nodes {} -> {}",
               model.joint_report.joints, model.joint_report.tri, model.joint_report.quad,
               model.joint_report.nodes_before, model.joint_report.nodes_after);
+  if (model.joint_report.split_without_joint > 0)
+    log::warn(
+        "{} node(s) were split into unconnected copies with no joint between them (elements meeting only at an "
+        "edge or a vertex, or across a tet/hex interface): the pieces there are not tied together",
+        model.joint_report.split_without_joint);
   const StableStep crit = stable_step(model);
   const std::size_t lim_tag = fem.elem_tag[crit.element];
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;

@@ -74,6 +74,7 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     fail("internal: node {} not in element", node);
   };
   std::vector<std::pair<FaceRef, FaceRef>> jointed;
+  std::vector<char> touched(mesh.n_nodes(), 0);  // node lies on a jointed face
   for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
     if (faces[i].key != faces[i + 1].key) continue;
     const FaceRef &A = faces[i], &B = faces[i + 1];
@@ -83,6 +84,8 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     const bool joint = in.fracturable[A.elem] && in.fracturable[B.elem] && in.body[A.elem] == in.body[B.elem];
     if (joint) {
       jointed.emplace_back(A, B);
+      for (Index n : A.key)
+        if (n >= 0) touched[n] = 1;
     } else {
       for (Index n : A.key)
         if (n >= 0) {
@@ -186,6 +189,7 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     report->nodes_before = nn_old;
     report->nodes_after = static_cast<Index>(tags.size());
     report->copies = copies;
+    for (Index n = 0; n < nn_old; ++n) report->split_without_joint += copies[n].size() > 1 && !touched[n];
   }
   mesh.x = std::move(x);
   mesh.node_tag = std::move(tags);

@@ -39,6 +39,9 @@ struct InsertionReport {
   std::vector<std::vector<Index>> copies;  ///< per original node, its new nodes
   /// Surface groups with faces that are not element faces (their faces keep stale node ids).
   std::vector<std::string> unmatched_face_groups;
+  /// Nodes split into copies although no joint touches them: elements meeting only at an
+  /// edge or vertex, or across a tet/hex interface. They are no longer connected.
+  Index split_without_joint = 0;
 };
 
 /// Duplicates nodes so that jointed faces no longer share nodes, rewrites the mesh

@@ -217,3 +217,27 @@ TEST(Joints, StableAtPointNineCaughtAtTwice) {
   EXPECT_NE(msg.find("step"), std::string::npos) << msg;
   EXPECT_NE(msg.find("element"), std::string::npos) << msg;
 }
+
+TEST(Joints, NodesSplitWithoutAJointAreCounted) {
+  // Two tets of one fracturable body that share only an edge: inserting joints splits the
+  // edge's nodes although no joint ties them; the report must say so.
+  Mesh m;
+  m.source = "two tets on an edge";
+  const Real p[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, -1}};
+  for (int i = 0; i < 6; ++i) {
+    m.x.insert(m.x.end(), {p[i][0], p[i][1], p[i][2]});
+    m.node_tag.push_back(i + 1);
+  }
+  ElementBlock tets{CellType::Tet4, {0, 1, 2, 3, 0, 1, 4, 5}, {1, 2}};
+  m.blocks.push_back(tets);
+  m.blocks.push_back(ElementBlock{CellType::Hex8, {}, {}});
+  check_element_volumes(m);
+  joint::InsertionInput in;
+  in.fracturable = {1, 1};
+  in.body = {0, 0};
+  joint::InsertionReport rep;
+  const joint::JointSet js = joint::insert_joints(m, in, &rep);
+  EXPECT_EQ(js.size(), 0);
+  EXPECT_EQ(rep.split_without_joint, 2);
+  EXPECT_EQ(m.n_nodes(), 8);
+}
