@@ -28,6 +28,7 @@ int face_quadrature(int npf, double N[4][4], double w[4]) {
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots) {
   const Index nj = js.size();
   slots.resize(24 * static_cast<std::size_t>(nj));
+  js.newly_failed.resize(nj);
 #pragma omp parallel for schedule(static)
   for (Index j = 0; j < nj; ++j) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
@@ -72,11 +73,14 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     // a half-failed facet would otherwise hold two separated pieces together.
     if (broken > 0 && broken < ng)
       for (int g = 0; g < ng; ++g) force_break(js.state[js4 + g]);
+    const JointStatus before = js.status[j];
     js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
+    js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
   }
   for (Index j = 0; j < nj; ++j) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
     const Real* s = &slots[24 * static_cast<std::size_t>(j)];
+    if (js.newly_failed[j]) js.failed.push_back(j);
     for (int k = 0; k < js.npf[j]; ++k)
       for (int d = 0; d < 3; ++d) {
         f[3 * js.a[js4 + k] + d] += s[3 * k + d];

@@ -23,6 +23,10 @@ struct JointSet {
   // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint).
   std::vector<CohesiveState> state;
   std::vector<JointStatus> status;  ///< per joint: Broken once any of its points fails
+  /// Failed joints in the order they failed: their two faces (a, b) are new free surface,
+  /// the list the contact stage consumes. Appended in joint order within a step.
+  std::vector<Index> failed;
+  std::vector<char> newly_failed;  ///< scratch: per joint, failed during the current update
   Index size() const { return static_cast<Index>(npf.size()); }
 };
 
