@@ -78,7 +78,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   Mesh mesh = load_case_mesh(c);
   Model model = build_model(c, std::move(mesh));
   const FemModel& fem = model.fem;
-  log::info("  mesh {}: {} nodes, {} elements, {} bodies", c.mesh_generator.empty() ? c.mesh_file : c.mesh_generator,
+  log::info("  mesh {}: {} nodes, {} elements, {} body(ies)", c.mesh_generator.empty() ? c.mesh_file : c.mesh_generator,
             fem.n_nodes, fem.n_elements, model.body_names.size());
 
   if (model.joints.size() > 0)
@@ -93,8 +93,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const StableStep crit = stable_step(model);
   const std::size_t lim_tag = fem.elem_tag[crit.element];
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
-  log::info("  critical step {:.4g} s, limited by {} at element {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
-            crit.limiter, lim_tag, model.body_names[fem.elem_body[crit.element]], dt,
+  log::info("  critical step {:.4g} s, limited by {} {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
+            crit.limiter == "joint" ? "a joint of element" : "element", lim_tag,
+            model.body_names[fem.elem_body[crit.element]], dt,
             c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
   if (c.dt > crit.dt) {
     if (!c.allow_unstable)
