@@ -96,8 +96,9 @@ TEST(CaseReader, OverrideIsValidated) {
 }
 TEST(CaseReader, JointParametersComeTogetherAndStayConsistent) {
   expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\ntensile_strength = 3.0e6"), {"joint parameters come together"});
-  const std::string joint = "nu = 0.2\ntensile_strength = 3.0e6\nfracture_energy_I = 10.0\ncohesion = 1.0e6\n"
-                            "friction_angle = 45.0\nfracture_energy_II = 100.0";
+  const std::string joint =
+      "nu = 0.2\ntensile_strength = 3.0e6\nfracture_energy_I = 10.0\ncohesion = 1.0e6\n"
+      "friction_angle = 45.0\nfracture_energy_II = 100.0";
   // c = 1 MPa < f_t tan(45 deg) = 3 MPa: no shear strength left at the tension cut-off.
   expect_error(replace(kGood, "nu = 0.2", joint), {":11:", "cohesion", "eq. 5"});
 }
