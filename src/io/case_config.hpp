@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/contact_system.hpp"
 #include "core/types.hpp"
 #include "fem/fem_model.hpp"
 
@@ -16,6 +17,18 @@ struct JointMaterial {
   bool given = false;
   Real ft = 0, GfI = 0, c = 0, phi_deg = 0, GfII = 0;
   Real penalty = 100, kn = 0, ks = 0;  ///< kn, ks = 0: from the penalty factor
+};
+
+/// [contact] and [[walls]].
+struct ContactConfig {
+  bool enabled = false;
+  contact::ContactSettings settings;
+};
+
+struct WallConfig {
+  contact::Wall wall;  ///< pose, motion and contact parameters (density -> mass for free boxes)
+  Vec3 velocity = Vec3::Zero();
+  std::string where;
 };
 
 struct BodyConfig {
@@ -77,6 +90,9 @@ struct CaseConfig {
   Vec3 gravity = Vec3::Zero();
   std::vector<Material> materials;
   std::vector<JointMaterial> joint_materials;  ///< parallel to materials
+  std::vector<contact::ContactMaterial> contact_materials;  ///< parallel to materials
+  ContactConfig contact;
+  std::vector<WallConfig> walls;
   std::vector<BodyConfig> bodies;
   std::vector<BoundaryConfig> boundaries;
   std::vector<InitialConfig> initial;

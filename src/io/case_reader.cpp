@@ -364,9 +364,18 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       jm.penalty = s.real("joint_penalty");
       if (s.has("joint_kn")) jm.kn = s.real("joint_kn");
       if (s.has("joint_ks")) jm.ks = s.real("joint_ks");
+      contact::ContactMaterial cm;
+      if (s.has("contact_radius")) cm.radius = s.real("contact_radius");
+      cm.radius_fraction = s.real("contact_radius_fraction");
+      cm.penalty = s.real("contact_penalty");
+      if (s.has("contact_kn")) cm.kn = s.real("contact_kn");
+      cm.kt_ratio = s.real("contact_kt_ratio");
+      cm.friction = s.real("friction");
+      cm.damping_ratio = s.real("contact_damping");
       s.finish();
       c.materials.push_back(m);
       c.joint_materials.push_back(jm);
+      c.contact_materials.push_back(cm);
     }
   }
   auto material_index = [&](const std::string& name, const std::string& where) {
@@ -445,6 +454,57 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       c.initial.push_back(ic);
     }
   }
+  {
+    Section s(ctx, sub_table(ctx, root, "contact"), "contact", "[contact]");
+    c.contact.enabled = s.boolean("enabled");
+    if (s.has("skin")) c.contact.settings.skin = s.real("skin");
+    s.finish();
+  }
+  if (toml::array* a = array_of_tables(ctx, root, "walls")) {
+    int i = 0;
+    for (auto& n : *a) {
+      Section s(ctx, *n.as_table(), "walls[]", fmt::format("[[walls]] #{}", ++i));
+      WallConfig wc;
+      wc.where = s.where();
+      contact::Wall& w = wc.wall;
+      w.name = s.str("name");
+      for (const auto& o : c.walls)
+        DSPDEM_CHECK(o.wall.name != w.name, "{}: wall name '{}' used twice", s.where("name"), w.name);
+      w.type = s.str("type") == "box" ? contact::Wall::Type::Box : contact::Wall::Type::Plane;
+      w.centre = s.vec3("point");
+      const Vec3 nrm = s.vec3("normal");
+      if (w.type == contact::Wall::Type::Plane && !(nrm.norm() > 0))
+        fail("{}: [[walls]] '{}' key 'normal' must not be zero", s.where("normal"), w.name);
+      if (nrm.norm() > 0) w.normal0 = nrm.normalized();
+      w.half = s.vec3("half_size");
+      if (w.type == contact::Wall::Type::Box && !(w.half.minCoeff() > 0))
+        fail("{}: [[walls]] '{}' is a box: half_size needs three positive extents", s.where("half_size"), w.name);
+      w.velocity_target = s.vec3("velocity");
+      w.ramp = s.real("ramp");
+      w.free = s.boolean("free");
+      if (w.free) {
+        if (w.type != contact::Wall::Type::Box)
+          fail("{}: [[walls]] '{}': only boxes can be free (a plane has no mass)", s.where("free"), w.name);
+        if (!s.has("density")) fail("{}: [[walls]] '{}' is free: give its density", s.where("free"), w.name);
+        const Real rho = s.real("density");
+        const Vec3 d = 2 * w.half;
+        w.mass = rho * d.prod();
+        w.inertia_body = Mat3::Zero();
+        w.inertia_body(0, 0) = w.mass * (d(1) * d(1) + d(2) * d(2)) / 12;
+        w.inertia_body(1, 1) = w.mass * (d(0) * d(0) + d(2) * d(2)) / 12;
+        w.inertia_body(2, 2) = w.mass * (d(0) * d(0) + d(1) * d(1)) / 12;
+        w.velocity = w.velocity_target;
+      } else if (s.has("density")) {
+        s.real("density");
+      }
+      if (s.has("friction")) w.mu = s.real("friction");
+      if (s.has("kn")) w.kn = s.real("kn");
+      s.finish();
+      c.walls.push_back(wc);
+    }
+  }
+  if (!c.walls.empty() && !c.contact.enabled)
+    fail("{}: [[walls]] are given but [contact] enabled = false: walls act only through contact", path);
   {
     Section s(ctx, sub_table(ctx, root, "time"), "time", "[time]");
     c.t_end = s.real("end");

@@ -10,7 +10,8 @@ namespace dspdem {
 
 Real Energy::largest() const {
   return std::max({std::abs(kinetic), std::abs(internal), std::abs(external_work), std::abs(damping), std::abs(initial),
-                   std::abs(joint_elastic), std::abs(fracture_I), std::abs(fracture_II)});
+                   std::abs(joint_elastic), std::abs(fracture_I), std::abs(fracture_II), std::abs(contact_elastic),
+                   std::abs(friction), std::abs(contact_damping)});
 }
 
 Real Energy::balance_error() const {
@@ -33,12 +34,13 @@ Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
     constrained_[c.dof] = 1;
     v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
   }
-  compute_forces(v_);
+  if (m.contact.enabled()) m.contact.kick_walls(0.0, 0.0, m.gravity);  // prescribed wall velocities at t = 0
+  compute_forces(v_, 0.0);
   const Energy e = energy();
-  e0_ = e.kinetic + e.internal + e.joint_elastic;
+  e0_ = e.kinetic + e.internal + e.joint_elastic + e.contact_elastic;
 }
 
-void Integrator::compute_forces(const std::vector<Real>& vel) {
+void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact) {
   const ForceStatus st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data());
   if (st.inverted_element >= 0)
     throw NumericalError(fmt::format("element {} inverted (det F = {:.3g}) at step {}, t = {:.6g} s; the time step "
@@ -46,6 +48,8 @@ void Integrator::compute_forces(const std::vector<Real>& vel) {
                                      element_tag(st.inverted_element), st.min_detF, n_, t_),
                          n_, t_);
   if (m_.joints.size() > 0) joint::add_joint_forces(m_.joints, x_.data(), f_.data(), joint_slots_);
+  // Contact forces are internal between bodies and external from walls; both go to f_.
+  if (m_.contact.enabled()) m_.contact.add_forces(m_.mesh, m_.joints, x_.data(), vel.data(), dt_contact, f_.data());
   const Index nn = m_.fem.n_nodes;
   const Real* mass = m_.fem.mass.data();
   const Real* alpha = m_.fem.node_alpha.data();
@@ -79,6 +83,7 @@ void Integrator::kick(Real h, Real t_target) {
   const Real* im = inv_mass_.data();
   for (std::size_t k = 0; k < nd; ++k) v_[k] += h * f_[k] * im[k / 3];
   for (const auto& c : m_.constraints) v_[c.dof] = c.value * ramp_factor(t_target, c.ramp);
+  if (m_.contact.enabled()) m_.contact.kick_walls(h, t_target, m_.gravity);
 }
 
 void Integrator::step() {
@@ -91,12 +96,16 @@ void Integrator::step() {
     x_[k] += dx;
     w += 0.5 * f_ext_[k] * dx;
   }
+  const bool contact = m_.contact.enabled();
+  const Real wall_power0 = contact ? m_.contact.wall_power() : 0.0;
+  if (contact) m_.contact.drift_walls(h, m_.gravity);
   t_ += h;
   ++n_;
-  compute_forces(v_);  // v_ holds the mid-step velocity: damping is lagged by h/2
+  compute_forces(v_, h);  // v_ holds the mid-step velocity: damping is lagged by h/2
   damp_ += h * dpower_;
   for (std::size_t k = 0; k < x_.size(); ++k) w += 0.5 * f_ext_[k] * h * v_[k];
   w_ext_ += w;
+  if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
   kick(0.5 * h, t_);
   bool finite = std::isfinite(w);
   for (std::size_t k = 0; k < v_.size() && finite; ++k) finite = std::isfinite(v_[k]) && std::isfinite(x_[k]);
@@ -136,14 +145,21 @@ Energy Integrator::energy() const {
     e.joint_elastic = t.elastic, e.fracture_I = t.fracture_I, e.fracture_II = t.fracture_II;
     e.broken_joints = t.broken, e.crack_area = t.broken_area;
   }
+  if (m_.contact.enabled()) {
+    const contact::ContactTotals t = m_.contact.totals();
+    e.contact_elastic = t.elastic, e.friction = t.friction, e.contact_damping = t.damping;
+    e.kinetic += t.wall_kinetic;
+    e.external_work += t.wall_work;
+  }
   return e;
 }
 
 void Integrator::check_energy(Real factor) const {
   const Energy e = energy();
-  const Real budget = e.initial + std::abs(e.external_work) + e.damping + e.fracture_I + e.fracture_II;
+  const Real budget =
+      e.initial + std::abs(e.external_work) + e.damping + e.fracture_I + e.fracture_II + e.friction + e.contact_damping;
   const Real floor = 1e-9 * std::max<Real>(1.0, budget);
-  if (e.kinetic + e.internal + e.joint_elastic > factor * budget + floor) {
+  if (e.kinetic + e.internal + e.joint_elastic + e.contact_elastic > factor * budget + floor) {
     Index worst = 0;
     for (Index k = 1; k < m_.fem.n_elements; ++k)
       if (m_.fem.elem_energy[k] > m_.fem.elem_energy[worst]) worst = k;

@@ -20,8 +20,10 @@ struct Energy {
   Real joint_elastic = 0, fracture_I = 0, fracture_II = 0;  ///< joints (zero without)
   Index broken_joints = 0;
   Real crack_area = 0;
+  Real contact_elastic = 0, friction = 0, contact_damping = 0;  ///< contact (zero without)
   Real balance() const {
-    return kinetic + internal + joint_elastic + damping + fracture_I + fracture_II - initial - external_work;
+    return kinetic + internal + joint_elastic + contact_elastic + damping + fracture_I + fracture_II + friction +
+           contact_damping - initial - external_work;
   }
   Real largest() const;
   Real balance_error() const;  ///< |balance| / largest term
@@ -54,7 +56,8 @@ class Integrator {
   std::size_t element_tag(Index e) const { return m_.fem.elem_tag[e]; }
 
  private:
-  void compute_forces(const std::vector<Real>& vel);
+  /// dt_contact: time since the last evaluation (0 at the start), for contact histories.
+  void compute_forces(const std::vector<Real>& vel, Real dt_contact);
   void kick(Real h, Real t_target);
   [[noreturn]] void non_finite_state() const;
 

@@ -1,6 +1,7 @@
 #include "time/model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "core/error.hpp"
@@ -46,8 +47,17 @@ std::vector<std::pair<Index, Real>> load_weights(const Mesh& mesh, const Group& 
 StableStep stable_step(const Model& m) {
   std::vector<Real> per_element;
   const StableStep s = element_stable_step(m.fem, m.materials, &per_element);
-  if (m.joints.size() == 0) return s;
-  return joint::stable_step_with_joints(m.fem, m.joints, per_element);
+  StableStep out = m.joints.size() == 0 ? s : joint::stable_step_with_joints(m.fem, m.joints, per_element);
+  if (!m.contact.enabled()) return out;
+  // A node in contact adds the contact spring to its element stiffness: frequencies add
+  // in squares (as for joints), w^2 <= w_s^2 + w_c^2.
+  Index ce = -1;
+  const Real dtc = m.contact.stable_dt(&ce);
+  if (!(dtc < INFINITY)) return out;
+  const Real dt = 1.0 / std::sqrt(1.0 / (out.dt * out.dt) + 1.0 / (dtc * dtc));
+  if (dtc < out.dt) out.limiter = "contact", out.element = ce;
+  out.dt = dt;
+  return out;
 }
 
 Model build_model(const CaseConfig& c, Mesh mesh) {
@@ -224,6 +234,17 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
   }
 
   m.fem = build_fem_model(me, m.materials, material, body, body_kin);
+
+  if (c.contact.enabled) {
+    std::vector<Real> elem_E(ne);
+    for (Index e = 0; e < ne; ++e) elem_E[e] = c.materials[material[e]].E;
+    std::vector<contact::Wall> walls;
+    for (const auto& wc : c.walls) walls.push_back(wc.wall);
+    m.contact.setup(me, m.joints, material, c.contact_materials, elem_E, m.fem.mass, walls, c.contact.settings);
+    if (!m.contact.setup_error().empty())
+      fail("{}: contact: {}; lower contact_radius or contact_radius_fraction of its material", c.path,
+           m.contact.setup_error());
+  }
 
   // Constraints: the last condition on a dof wins; say so when two disagree.
   std::map<Index, Constraint> cons;

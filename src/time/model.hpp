@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/contact_system.hpp"
 #include "fem/fem_model.hpp"
 #include "fem/stable_dt.hpp"
 #include "io/case_config.hpp"
@@ -44,6 +45,7 @@ struct Model {
   std::vector<std::string> body_names;
   joint::JointSet joints;
   joint::InsertionReport joint_report;
+  contact::ContactSystem contact;  ///< disabled unless [contact] enabled
 };
 
 /// Ramp factor of a boundary value at time t: min(1, t / ramp), or 1 without a ramp.
@@ -51,7 +53,8 @@ inline Real ramp_factor(Real t, Real ramp) { return ramp > 0 ? std::min<Real>(1.
 /// Its time derivative (for the inertia part of reactions).
 inline Real ramp_rate(Real t, Real ramp) { return ramp > 0 && t < ramp ? 1.0 / ramp : 0.0; }
 
-/// Critical time step of the model: elements, then joint penalties (limiter says which).
+/// Critical time step of the model: elements, joint penalties and contact springs
+/// (limiter says which).
 StableStep stable_step(const Model& m);
 
 /// Builds the model from a case and a mesh. Throws Error naming the case key for groups or

@@ -1,0 +1,353 @@
+#include "contact/contact_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/error.hpp"
+#include "joint/fragments.hpp"
+
+namespace dspdem::contact {
+
+std::size_t ContactSystem::KeyHash::operator()(const Key& k) const {
+  std::size_t h = static_cast<std::size_t>(k.ea) * 0x9E3779B97F4A7C15ull;
+  h ^= static_cast<std::size_t>(k.eb + 0x7fffffff) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+  h ^= static_cast<std::size_t>(k.kind * 4096 + k.fa * 64 + k.fb) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+  return h;
+}
+
+void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std::vector<Index>& elem_material,
+                          const std::vector<ContactMaterial>& materials, const std::vector<Real>& elem_E,
+                          const std::vector<Real>& node_mass, std::vector<Wall> walls, const ContactSettings& s) {
+  enabled_ = true;
+  settings_ = s;
+  materials_ = materials;
+  walls_ = std::move(walls);
+  elem_material_ = elem_material;
+  const Index ne = mesh.n_elements();
+  elems_.clear();
+  for (const auto& b : mesh.blocks)
+    for (Index e = 0; e < b.size(); ++e) {
+      Elem el{b.type, b.npe(), {}, b.tag[e]};
+      std::copy_n(&b.conn[static_cast<std::size_t>(e) * b.npe()], b.npe(), el.conn);
+      elems_.push_back(el);
+    }
+  // Free faces by node matching; jointed faces lost their twin at insertion, so they are
+  // counted here too and taken off below.
+  outer_faces_.assign(ne, 0);
+  std::map<std::array<Index, 4>, std::pair<Index, int>> faces;  // sorted nodes -> (element, count)
+  for (Index e = 0; e < ne; ++e)
+    for (const auto& f : joint::cell_faces(elems_[e].type)) {
+      // Sorted node ids, padded with -1 (insertion sort: at most 4 entries).
+      std::array<Index, 4> key{-1, -1, -1, -1};
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        std::size_t i = k;
+        const Index n = elems_[e].conn[f[k]];
+        for (; i > 0 && key[i - 1] > n; --i) key[i] = key[i - 1];
+        key[i] = n;
+      }
+      auto [it, inserted] = faces.try_emplace(key, e, 0);
+      ++it->second.second;
+    }
+  for (const auto& [key, ec] : faces)
+    if (ec.second == 1) ++outer_faces_[ec.first];
+  std::vector<Index> jointed(ne, 0);
+  for (Index j = 0; j < js.size(); ++j) ++jointed[js.ea[j]], ++jointed[js.eb[j]];
+  for (Index e = 0; e < ne; ++e) outer_faces_[e] -= jointed[e];
+
+  // Skeletons of every element that is or may become surface.
+  radius_.assign(ne, 0), kn_.assign(ne, 0), elem_node_mass_.assign(ne, 0);
+  skel_off_.assign(ne, -1);
+  skel_w_.clear();
+  setup_error_.clear();
+  Real size_sum = 0;
+  Index size_n = 0;
+  for (Index e = 0; e < ne; ++e) {
+    const Elem& el = elems_[e];
+    Real m = INFINITY;
+    for (int i = 0; i < el.npe; ++i) m = std::min(m, node_mass[el.conn[i]]);
+    elem_node_mass_[e] = m;
+    if (outer_faces_[e] <= 0 && jointed[e] == 0) continue;
+    Vec3 xe[8];
+    for (int i = 0; i < el.npe; ++i) xe[i] = node_pos(mesh.x, el.conn[i]);
+    const ContactMaterial& cm = materials_[elem_material[e]];
+    const Real rho = inradius(el.type, xe);
+    radius_[e] = cm.radius > 0 ? cm.radius : cm.radius_fraction * rho;
+    Skeleton sk;
+    const std::string why = make_skeleton(el.type, xe, radius_[e], sk);
+    if (!why.empty()) {
+      if (setup_error_.empty()) setup_error_ = fmt::format("element {}: {}", el.tag, why);
+      continue;
+    }
+    kn_[e] = cm.kn > 0 ? cm.kn : cm.penalty * elem_E[e] * 2 * rho;
+    skel_off_[e] = static_cast<Index>(skel_w_.size());
+    skel_w_.insert(skel_w_.end(), sk.w.begin(), sk.w.begin() + el.npe * el.npe);
+    size_sum += 2 * rho + 2 * radius_[e];
+    ++size_n;
+  }
+  skin_ = settings_.skin > 0 ? settings_.skin : (size_n > 0 ? 0.2 * size_sum / size_n : 0.0);
+  built_ = false;
+  failed_seen_ = 0;
+  history_.clear();
+  totals_ = {};
+}
+
+Poly ContactSystem::skeleton_poly(Index e, const Real* x) const {
+  const Elem& el = elems_[e];
+  Poly p;
+  p.topo = &topology(el.type == CellType::Tet4 ? Shape::Tet : Shape::Hex);
+  const Real* w = &skel_w_[skel_off_[e]];
+  for (int k = 0; k < el.npe; ++k) {
+    Vec3 s = Vec3::Zero();
+    for (int j = 0; j < el.npe; ++j) s += w[k * el.npe + j] * node_pos_ptr(x, el.conn[j]);
+    p.v[k] = s;
+  }
+  return p;
+}
+
+void ContactSystem::touches_of(Index ea, Index eb, const Real* x, std::vector<Touch>& out) const {
+  out.clear();
+  find_touches(skeleton_poly(ea, x), radius_[ea], skeleton_poly(eb, x), radius_[eb], out);
+}
+
+bool ContactSystem::needs_rebuild(const joint::JointSet& js, const Real* x) const {
+  if (!built_ || js.failed.size() != failed_seen_) return true;
+  const Real lim2 = 0.25 * skin_ * skin_;
+  for (std::size_t i = 0; i < x_build_.size(); i += 3) {
+    const Real dx = x[i] - x_build_[i], dy = x[i + 1] - x_build_[i + 1], dz = x[i + 2] - x_build_[i + 2];
+    if (dx * dx + dy * dy + dz * dz > lim2) return true;
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const Wall& wl = walls_[w];
+    const Real turn = wl.q.angularDistance(wall_q_build_[w]) * wl.half.norm();
+    if ((wl.centre - wall_build_[w]).norm() + turn > 0.5 * skin_) return true;
+  }
+  return false;
+}
+
+void ContactSystem::rebuild(const Mesh& mesh, const joint::JointSet& js, const Real* x) {
+  const Index ne = static_cast<Index>(elems_.size());
+  surface_.assign(ne, 0);
+  for (Index e = 0; e < ne; ++e) surface_[e] = outer_faces_[e] > 0 && skel_off_[e] >= 0;
+  for (Index j : js.failed) {
+    if (skel_off_[js.ea[j]] >= 0) surface_[js.ea[j]] = 1;
+    if (skel_off_[js.eb[j]] >= 0) surface_[js.eb[j]] = 1;
+  }
+  fragment_ = joint::find_fragments(mesh, js, std::vector<Real>(ne, 0.0)).id;
+  surface_list_.clear();
+  for (Index e = 0; e < ne; ++e)
+    if (surface_[e]) surface_list_.push_back(e);
+  const Index ns = static_cast<Index>(surface_list_.size());
+  Boxes boxes;
+  boxes.lo.resize(3 * static_cast<std::size_t>(ns));
+  boxes.hi.resize(3 * static_cast<std::size_t>(ns));
+  std::vector<Index> group(ns);
+  for (Index i = 0; i < ns; ++i) {
+    const Index e = surface_list_[i];
+    const Poly p = skeleton_poly(e, x);
+    Vec3 lo = p.v[0], hi = p.v[0];
+    for (int k = 1; k < p.topo->nv; ++k) lo = lo.cwiseMin(p.v[k]), hi = hi.cwiseMax(p.v[k]);
+    const Real pad = radius_[e] + 0.5 * skin_;
+    for (int d = 0; d < 3; ++d) boxes.lo[3 * i + d] = lo(d) - pad, boxes.hi[3 * i + d] = hi(d) + pad;
+    group[i] = fragment_[e];
+  }
+  PairList local;
+  grid_.find(boxes, local, &group);
+  pairs_.clear();
+  for (auto [i, j] : local) pairs_.emplace_back(surface_list_[i], surface_list_[j]);
+  // Walls: linear in the number of surface elements per wall.
+  wall_pairs_.clear();
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const Wall& wl = walls_[w];
+    Vec3 wlo, whi;
+    if (wl.type == Wall::Type::Box) {
+      const Poly bp = wl.box_poly();
+      wlo = whi = bp.v[0];
+      for (int k = 1; k < 8; ++k) wlo = wlo.cwiseMin(bp.v[k]), whi = whi.cwiseMax(bp.v[k]);
+      wlo.array() -= 0.5 * skin_, whi.array() += 0.5 * skin_;
+    }
+    const Vec3 n = wl.plane_normal();
+    for (Index i = 0; i < ns; ++i) {
+      const Vec3 lo(boxes.lo[3 * i], boxes.lo[3 * i + 1], boxes.lo[3 * i + 2]);
+      const Vec3 hi(boxes.hi[3 * i], boxes.hi[3 * i + 1], boxes.hi[3 * i + 2]);
+      bool hit;
+      if (wl.type == Wall::Type::Plane) {
+        const Vec3 c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+        hit = (c - wl.centre).dot(n) - h.dot(n.cwiseAbs()) < 0.5 * skin_;
+      } else {
+        hit = (lo.array() <= whi.array()).all() && (wlo.array() <= hi.array()).all();
+      }
+      if (hit) wall_pairs_.emplace_back(static_cast<Index>(w), surface_list_[i]);
+    }
+  }
+  x_build_.assign(x, x + 3 * static_cast<std::size_t>(mesh.n_nodes()));
+  wall_build_.clear(), wall_q_build_.clear();
+  for (const Wall& wl : walls_) wall_build_.push_back(wl.centre), wall_q_build_.push_back(wl.q);
+  failed_seen_ = js.failed.size();
+  built_ = true;
+  ++totals_.rebuilds;
+  totals_.surface_elements = ns;
+}
+
+LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
+  const ContactMaterial& ma = materials_[elem_material_[ea]];
+  LawParams p;
+  Real m;
+  if (w) {
+    p.kn = w->kn > 0 ? kn_[ea] * w->kn / (kn_[ea] + w->kn) : kn_[ea];
+    p.mu = w->mu >= 0 ? w->mu : ma.friction;
+    m = elem_node_mass_[ea];
+    p.kt = ma.kt_ratio * p.kn;
+    p.cn = 2 * ma.damping_ratio * std::sqrt(p.kn * m);
+    return p;
+  }
+  const ContactMaterial& mb = materials_[elem_material_[eb]];
+  p.kn = kn_[ea] * kn_[eb] / (kn_[ea] + kn_[eb]);
+  p.kt = 0.5 * (ma.kt_ratio + mb.kt_ratio) * p.kn;
+  p.mu = std::min(ma.friction, mb.friction);
+  m = elem_node_mass_[ea] * elem_node_mass_[eb] / (elem_node_mass_[ea] + elem_node_mass_[eb]);
+  p.cn = 2 * std::max(ma.damping_ratio, mb.damping_ratio) * std::sqrt(p.kn * m);
+  return p;
+}
+
+void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x,
+                          const Real* v, Real dt, Real* f) {
+  const Real ra = radius_[ea], rb = wall ? 0.0 : radius_[eb];
+  const Real overlap = ra + rb - t.d;
+  if (overlap <= 0) return;
+  totals_.max_overlap = std::max(totals_.max_overlap, overlap / (ra + rb));
+  // One contact point for both sides (the middle of the overlap), so the pair's forces
+  // are equal, opposite and collinear: momentum and angular momentum are exact.
+  const Vec3 c = 0.5 * (t.pa - ra * t.n + t.pb + rb * t.n);
+  auto spread = [&](Index e, Real* N) {
+    const Elem& el = elems_[e];
+    Vec3 xe[8];
+    for (int i = 0; i < el.npe; ++i) xe[i] = node_pos_ptr(x, el.conn[i]);
+    shape_at(el.type, xe, c, N);
+    Vec3 vel = Vec3::Zero();
+    for (int i = 0; i < el.npe; ++i) vel += N[i] * node_pos_ptr(v, el.conn[i]);
+    return vel;
+  };
+  Real Na[8], Nb[8];
+  const Vec3 va = spread(ea, Na);
+  const Vec3 vb = wall ? wall->velocity_at(c) : spread(eb, Nb);
+  const Key key{ea, wall ? -1 - wall_id : eb, static_cast<int>(t.kind), t.fa, t.fb};
+  auto it = history_.find(key);
+  Vec3 xi = it != history_.end() ? it->second : Vec3::Zero();
+  LawResult r = contact_law(pair_params(ea, eb, wall), overlap, t.n, va - vb, dt, xi);
+  r.force *= t.weight, r.elastic *= t.weight, r.slip_work *= t.weight, r.damping_power *= t.weight;
+  history_next_[key] = xi;
+  elastic_ += r.elastic;
+  totals_.friction += r.slip_work;
+  totals_.damping += dt * r.damping_power;
+  ++totals_.contacts;
+  // Normal force at the skeleton points pa, pb with their own weights: the exact gradient of
+  // the overlap energy (energy-conserving). Tangential force at the common point c with
+  // the element's shape functions (eq. 16): equal, opposite and collinear, so angular
+  // momentum is exact; friction dissipates anyway.
+  const Vec3 fn = r.force.dot(t.n) * t.n, ft = r.force - fn;
+  auto skeleton_weights = [&](Index e, const std::array<int, 3>& iv, const std::array<Real, 3>& wv, Real* Ws) {
+    const Elem& el = elems_[e];
+    const Real* W = &skel_w_[skel_off_[e]];
+    for (int j = 0; j < el.npe; ++j) Ws[j] = 0;
+    for (int m = 0; m < 3; ++m)
+      if (wv[m] != 0)
+        for (int j = 0; j < el.npe; ++j) Ws[j] += wv[m] * W[iv[m] * el.npe + j];
+  };
+  Real Wa[8];
+  skeleton_weights(ea, t.ia, t.wa, Wa);
+  const Elem& a = elems_[ea];
+  for (int i = 0; i < a.npe; ++i)
+    for (int d = 0; d < 3; ++d) f[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * fn(d) + Na[i] * ft(d);
+  if (wall) {
+    Wall& w = walls_[wall_id];
+    w.force -= r.force;
+    w.torque -= (c - w.centre).cross(r.force);
+    return;
+  }
+  Real Wb[8];
+  skeleton_weights(eb, t.ib, t.wb, Wb);
+  const Elem& b = elems_[eb];
+  for (int i = 0; i < b.npe; ++i)
+    for (int d = 0; d < 3; ++d) f[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * fn(d) + Nb[i] * ft(d);
+}
+
+void ContactSystem::add_forces(const Mesh& mesh, const joint::JointSet& js, const Real* x, const Real* v, Real dt,
+                               Real* f) {
+  if (!enabled_) return;
+  if (needs_rebuild(js, x)) rebuild(mesh, js, x);
+  history_next_.clear();
+  elastic_ = 0;
+  totals_.contacts = 0;
+  totals_.max_overlap = 0;
+  for (Wall& w : walls_) w.force.setZero(), w.torque.setZero();
+  for (auto [ea, eb] : pairs_) {
+    const Poly A = skeleton_poly(ea, x), B = skeleton_poly(eb, x);
+    touches_.clear();
+    find_touches(A, radius_[ea], B, radius_[eb], touches_);
+    for (const Touch& t : touches_) apply(ea, eb, nullptr, -1, t, x, v, dt, f);
+  }
+  for (auto [w, e] : wall_pairs_) {
+    const Wall& wl = walls_[w];
+    const Poly A = skeleton_poly(e, x);
+    touches_.clear();
+    if (wl.type == Wall::Type::Plane)
+      find_plane_touches(A, radius_[e], wl.centre, wl.plane_normal(), touches_);
+    else
+      find_touches(A, radius_[e], wl.box_poly(), 0.0, touches_);
+    for (const Touch& t : touches_) apply(e, -1, &wl, static_cast<int>(w), t, x, v, dt, f);
+  }
+  std::swap(history_, history_next_);
+  wall_power_ = 0;
+  for (const Wall& w : walls_)
+    if (!w.free) wall_power_ -= w.force.dot(w.velocity) + w.torque.dot(w.omega);
+}
+
+void ContactSystem::kick_walls(Real h, Real t, const Vec3& gravity) {
+  for (Wall& w : walls_) {
+    if (!w.free) {
+      const Real ramp = w.ramp > 0 ? std::min<Real>(1.0, t / w.ramp) : 1.0;
+      w.velocity = ramp * w.velocity_target;
+      continue;
+    }
+    w.velocity += h * (w.force / w.mass + gravity);
+    w.momentum_angular += h * w.torque;
+    w.update_omega();
+  }
+}
+
+void ContactSystem::drift_walls(Real h, const Vec3& gravity) {
+  for (Wall& w : walls_) {
+    w.centre += h * w.velocity;
+    if (w.free) {
+      totals_.wall_work += w.mass * gravity.dot(h * w.velocity);
+      const Real angle = h * w.omega.norm();
+      if (angle > 0) w.q = Eigen::Quaternion<Real>(Eigen::AngleAxis<Real>(angle, w.omega.normalized())) * w.q;
+      w.q.normalize();
+      w.update_omega();
+    }
+  }
+}
+
+Real ContactSystem::stable_dt(Index* element) const {
+  Real dt = INFINITY;
+  for (std::size_t e = 0; e < kn_.size(); ++e) {
+    if (skel_off_[e] < 0 || kn_[e] <= 0) continue;
+    const Real d = std::sqrt(elem_node_mass_[e] / (4 * kn_[e]));  // half the stability limit 2 sqrt(m / 4 kn)
+    if (d < dt) {
+      dt = d;
+      if (element) *element = static_cast<Index>(e);
+    }
+  }
+  return dt;
+}
+
+ContactTotals ContactSystem::totals() const {
+  ContactTotals t = totals_;
+  t.elastic = elastic_;
+  t.pairs = static_cast<Index>(pairs_.size() + wall_pairs_.size());
+  for (const Wall& w : walls_) t.wall_kinetic += w.kinetic_energy();
+  return t;
+}
+
+}  // namespace dspdem::contact

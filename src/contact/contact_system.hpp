@@ -1,0 +1,140 @@
+// Contact between the pieces of a model (METHOD.md section 3): which elements can touch,
+// the broad phase with a skin, the narrow phase per candidate pair, the force law with its
+// tangential history, nodal forces by the original element's shape functions (eq. 16),
+// rigid walls, the energy terms and the contact limit of the time step.
+//
+// Candidates: elements with a free face (outer boundary, or a face of a broken joint), in
+// pairs from different fragments (pieces connected through nodes or unbroken joints never
+// touch each other). The candidate list is rebuilt when a node has moved more than half the
+// skin since the last build, when a wall has, or when joints have failed.
+#pragma once
+#include <unordered_map>
+#include <vector>
+
+#include "contact/broad_phase.hpp"
+#include "contact/contact_law.hpp"
+#include "contact/narrow_phase.hpp"
+#include "contact/skeleton.hpp"
+#include "contact/walls.hpp"
+#include "joint/joint_set.hpp"
+#include "mesh/mesh.hpp"
+
+namespace dspdem::contact {
+
+/// Contact properties of a material.
+struct ContactMaterial {
+  Real radius = 0;  ///< dilation radius [m]; 0: radius_fraction x inradius
+  Real radius_fraction = 0.1;
+  Real penalty = 10;       ///< kn = penalty x E x 2 inradius of the element, when kn = 0
+  Real kn = 0;             ///< [N/m]
+  Real kt_ratio = 1.0;     ///< kt = kt_ratio x kn
+  Real friction = 0.5;     ///< Coulomb coefficient
+  Real damping_ratio = 0;  ///< normal viscous damping, fraction of critical
+};
+
+struct ContactSettings {
+  Real skin = 0;  ///< broad-phase skin [m]; 0: 0.2 x the mean radius-inflated element size
+};
+
+struct ContactTotals {
+  Real elastic = 0;       ///< stored in the springs now [J]
+  Real friction = 0;      ///< dissipated by sliding so far [J]
+  Real damping = 0;       ///< dissipated by normal damping so far [J]
+  Real wall_work = 0;     ///< work of prescribed walls on the model so far [J]
+  Real wall_kinetic = 0;  ///< kinetic energy of free walls [J]
+  Index contacts = 0, pairs = 0, surface_elements = 0, rebuilds = 0;
+  Real max_overlap = 0;  ///< largest overlap / (r_a + r_b) in the last evaluation (> 1: skeletons touch)
+};
+
+class ContactSystem {
+ public:
+  bool enabled() const { return enabled_; }
+
+  /// Prepares the contact data of a model. `E` per global element (for the penalty),
+  /// `mat` per global element into `materials`, `mass` lumped nodal masses.
+  void setup(const Mesh& mesh, const joint::JointSet& js, const std::vector<Index>& elem_material,
+             const std::vector<ContactMaterial>& materials, const std::vector<Real>& elem_E,
+             const std::vector<Real>& node_mass, std::vector<Wall> walls, const ContactSettings& s);
+
+  /// Adds contact forces to f (3 x nodes) at positions x and velocities v; dt for the
+  /// tangential increment. Updates the tangential history (call once per step).
+  void add_forces(const Mesh& mesh, const joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f);
+
+  /// Kick and drift of the walls (free: from their contact force and gravity; prescribed:
+  /// to the velocity of time t).
+  void kick_walls(Real h, Real t, const Vec3& gravity);
+  void drift_walls(Real h, const Vec3& gravity);
+  /// Power of the prescribed walls on the model at the last force evaluation [W].
+  Real wall_power() const { return wall_power_; }
+  void add_wall_work(Real w) { totals_.wall_work += w; }
+
+  /// Step of the contact springs: sqrt(m / (n kn)), m the smallest nodal mass of a candidate
+  /// element, n = 4 simultaneous contacts per node. That is half the stability limit
+  /// 2 sqrt(m / (n kn)), on purpose: an impact lasts only a few steps and the penalty's
+  /// energy error grows as (w dt)^2 (two cubes colliding at the limit gained 5 %, at half
+  /// of it 0.3 %).
+  Real stable_dt(Index* element = nullptr) const;
+
+  ContactTotals totals() const;
+  /// Candidate pairs of the last build (element ids), and the contacts of one pair at x.
+  const PairList& pairs() const { return pairs_; }
+  void touches_of(Index ea, Index eb, const Real* x, std::vector<Touch>& out) const;
+  Real radius(Index e) const { return radius_[e]; }
+  /// Skeleton of element e at positions x.
+  Poly skeleton_poly(Index e, const Real* x) const;
+  const std::vector<Wall>& walls() const { return walls_; }
+  std::vector<Wall>& walls() { return walls_; }
+  /// Skeleton error for the first element whose radius empties it ("" when none).
+  const std::string& setup_error() const { return setup_error_; }
+
+ private:
+  struct Key {
+    Index ea, eb;
+    int kind, fa, fb;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const;
+  };
+  struct Elem {
+    CellType type;
+    int npe;
+    Index conn[8];
+    std::size_t tag;
+  };
+
+  void rebuild(const Mesh& mesh, const joint::JointSet& js, const Real* x);
+  bool needs_rebuild(const joint::JointSet& js, const Real* x) const;
+  LawParams pair_params(Index ea, Index eb, const Wall* w) const;
+  void apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x, const Real* v, Real dt,
+             Real* f);
+
+  bool enabled_ = false;
+  ContactSettings settings_;
+  std::vector<ContactMaterial> materials_;
+  std::vector<Elem> elems_;
+  std::vector<Index> elem_material_;
+  std::vector<Real> radius_, kn_, elem_node_mass_;  ///< per global element
+  std::vector<Index> skel_off_;                     ///< per element into skel_w_, -1: none
+  std::vector<Real> skel_w_;
+  std::vector<Index> outer_faces_;  ///< per element
+  std::vector<char> surface_;       ///< per element: candidate
+  std::vector<Index> surface_list_, fragment_;
+  std::vector<Wall> walls_;
+  std::vector<Real> x_build_;
+  std::vector<Vec3> wall_build_;  ///< centres at the last build
+  std::vector<Eigen::Quaternion<Real>> wall_q_build_;
+  std::size_t failed_seen_ = 0;
+  bool built_ = false;
+  Real skin_ = 0;
+  PairList pairs_;
+  std::vector<std::pair<Index, Index>> wall_pairs_;  ///< (wall, element)
+  GridBroadPhase grid_;
+  std::unordered_map<Key, Vec3, KeyHash> history_, history_next_;
+  std::vector<Touch> touches_;
+  ContactTotals totals_;
+  Real elastic_ = 0, wall_power_ = 0;
+  std::string setup_error_;
+};
+
+}  // namespace dspdem::contact

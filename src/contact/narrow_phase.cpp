@@ -1,0 +1,247 @@
+#include "contact/narrow_phase.hpp"
+
+#include <cmath>
+
+namespace dspdem::contact {
+
+namespace {
+
+// Barycentric coordinates of the projection of p on triangle (a, b, c), and its unit normal.
+struct TriProj {
+  Real l0, l1, l2, d;  ///< d: signed distance along the outward normal
+  Vec3 n;
+};
+
+TriProj project(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  TriProj r;
+  const Vec3 nn = (b - a).cross(c - a);
+  const Real area2 = nn.norm();
+  if (area2 <= 0) return {-1, -1, -1, 0, Vec3::UnitZ()};
+  r.n = nn / area2;
+  r.d = (p - a).dot(r.n);
+  const Vec3 q = p - r.d * r.n;
+  r.l0 = (b - q).cross(c - q).dot(r.n) / area2;
+  r.l1 = (c - q).cross(a - q).dot(r.n) / area2;
+  r.l2 = 1.0 - r.l0 - r.l1;
+  return r;
+}
+
+// Region tests are generous by this band (a fraction of the feature's size), so that a
+// point on the boundary between two regions, where aligned stacks sit and where rounding
+// or a slightly warped face decides, is never in neither: it may be in both, and the
+// duplicates are blended into one contact (weigh below). The band must exceed the tilt of
+// element edges under strain times gap/length (~1e-3 x 0.1), and stay far below r/L.
+constexpr Real kBand = 1e-3;
+
+// Inside the triangle, up to the band.
+bool inside(const TriProj& t, int) { return t.l0 > -kBand && t.l1 > -kBand && t.l2 > -kBand; }
+
+// Position of p along the edge from a to b, as a fraction of its length. Every vertex and
+// edge test below uses this one expression so that the regions meet without gaps.
+Real along(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 e = b - a;
+  const Real ee = e.squaredNorm();
+  return ee > 0 ? (p - a).dot(e) / ee : 0.0;
+}
+
+// Normal from B to A for points that (nearly) coincide: fall back on the centres.
+Vec3 separation(const Vec3& pa, const Vec3& pb, const Vec3& ca, const Vec3& cb, Real& d) {
+  Vec3 n = pa - pb;
+  d = n.norm();
+  if (d > 1e-12 * (ca - cb).norm()) return n / d;
+  n = ca - cb;
+  d = 0;
+  return n.normalized();
+}
+
+// Edges closer to parallel than this (sin^2 of the angle) meet along a line: their contact
+// is carried by the end points of the overlap (vertex-edge pairs from both sides), not by
+// an edge-edge pair whose closest points run off to infinity as the angle vanishes.
+constexpr Real kParallel2 = 2.5e-3;  // 0.05 rad
+
+bool nearly_parallel(const Vec3& u, const Vec3& v) {
+  return u.cross(v).squaredNorm() <= kParallel2 * u.squaredNorm() * v.squaredNorm();
+}
+
+// Is q in the vertex region of vertex i of P: no edge of i points towards q? Edges nearly
+// parallel to `along_dir` (the other side's edge, for vertex-edge pairs) do not count.
+bool in_vertex_cone(const Poly& P, int i, const Vec3& q, const Vec3& along_dir = Vec3::Zero()) {
+  for (int k : P.topo->neighbours[i]) {
+    if (along(q, P.v[i], P.v[k]) <= kBand) continue;
+    if (along_dir.squaredNorm() > 0 && nearly_parallel(P.v[k] - P.v[i], along_dir)) continue;
+    return false;
+  }
+  return true;
+}
+
+// Does q project inside a face of P that contains vertex i (then a face pair owns it)?
+bool in_face_of_vertex(const Poly& P, int i, const Vec3& q) {
+  const Topology& t = *P.topo;
+  for (std::size_t k = 0; k < t.tris.size(); ++k) {
+    const auto& tr = t.tris[k];
+    if (tr[0] != i && tr[1] != i && tr[2] != i) {
+      // The other triangle of a split face also belongs to the face.
+      bool face_has_i = false;
+      for (int f : t.vertex_faces[i]) face_has_i |= f == t.tri_face[k];
+      if (!face_has_i) continue;
+    }
+    const TriProj pr = project(q, P.v[tr[0]], P.v[tr[1]], P.v[tr[2]]);
+    if (inside(pr, t.tri_diag[k])) return true;
+  }
+  return false;
+}
+
+// Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
+void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector<Touch>& out) {
+  const Topology& tq = *Q.topo;
+  const Vec3 cp = P.centre(), cq = Q.centre();
+  // Vertex ip of P against a point of Q combining Q's vertices iq with weights wq.
+  auto emit = [&](Feature k_pa, Feature k_pb, int fp, int fq, const Vec3& pp, const Vec3& pq, const Vec3& n_qp, Real d,
+                  int ip, std::array<int, 3> iq, std::array<Real, 3> wq) {
+    // n_qp points from Q to P.
+    Touch t{flip ? k_pb : k_pa, fp, fq, pp, pq, n_qp, d};
+    t.ia = {ip, 0, 0}, t.wa = {1, 0, 0}, t.ib = iq, t.wb = wq;
+    if (flip) {
+      std::swap(t.fa, t.fb), std::swap(t.pa, t.pb), std::swap(t.ia, t.ib), std::swap(t.wa, t.wb);
+      t.n = -t.n;
+    }
+    out.push_back(t);
+  };
+  // Each vertex of P makes at most one contact with Q: with the face whose prism holds it
+  // (the most separating one), else with its nearest edge region, else with a vertex.
+  // Noise on a region boundary (aligned stacks sit there) then cannot count it twice.
+  for (int i = 0; i < P.topo->nv; ++i) {
+    const Vec3& p = P.v[i];
+    std::array<char, 8> in_face{};
+    int best = -1;
+    TriProj bp{};
+    for (std::size_t k = 0; k < tq.tris.size(); ++k) {
+      const auto& t = tq.tris[k];
+      const TriProj pr = project(p, Q.v[t[0]], Q.v[t[1]], Q.v[t[2]]);
+      if (!inside(pr, tq.tri_diag[k])) continue;
+      in_face[tq.tri_face[k]] = 1;
+      if (best < 0 || pr.d > bp.d) best = static_cast<int>(k), bp = pr;
+    }
+    if (best >= 0) {
+      if (bp.d < R && bp.d > -R) {
+        const auto& t = tq.tris[best];
+        emit(Feature::VF, Feature::FV, i, best, p, Vec3(p - bp.d * bp.n), bp.n, bp.d, i, {t[0], t[1], t[2]},
+             {bp.l0, bp.l1, bp.l2});
+      }
+      continue;
+    }
+    // Vertex-edge: inside the edge's span and no edge of the vertex points towards the
+    // contact (that is an edge-edge pair).
+    int best_e = -1;
+    Real best_d2 = 0, best_t = 0;
+    Vec3 best_q;
+    for (std::size_t e = 0; e < tq.edges.size(); ++e) {
+      const Vec3 &a = Q.v[tq.edges[e][0]], &b = Q.v[tq.edges[e][1]];
+      const Real t = along(p, a, b);
+      if (!(t > -kBand && along(p, b, a) > -kBand)) continue;
+      const Vec3 q = a + t * (b - a);
+      if (!in_vertex_cone(P, i, q, b - a)) continue;
+      const Real d2 = (p - q).squaredNorm();
+      if (best_e < 0 || d2 < best_d2) best_e = static_cast<int>(e), best_d2 = d2, best_q = q, best_t = t;
+    }
+    if (best_e >= 0) {
+      if (best_d2 < R * R) {
+        Real d;
+        const Vec3 n = separation(p, best_q, cp, cq, d);
+        emit(Feature::VE, Feature::EV, i, best_e, p, best_q, n, d, i, {tq.edges[best_e][0], tq.edges[best_e][1], 0},
+             {1 - best_t, best_t, 0});
+      }
+      continue;
+    }
+    // Vertex-vertex (once: only from A's side), each in the other's vertex region.
+    if (flip) continue;
+    for (int j = 0; j < tq.nv; ++j) {
+      const Vec3& q = Q.v[j];
+      if ((p - q).squaredNorm() >= R * R) continue;
+      if (!in_vertex_cone(Q, j, p) || !in_vertex_cone(P, i, q) || in_face_of_vertex(P, i, q)) continue;
+      Real d;
+      const Vec3 n = separation(p, q, cp, cq, d);
+      Touch t{Feature::VV, i, j, p, q, n, d};
+      t.ia = {i, 0, 0}, t.ib = {j, 0, 0}, t.wb = {1, 0, 0};
+      out.push_back(t);
+      break;
+    }
+  }
+}
+
+// Closest points of segments (a0, a1) and (b0, b1) when both lie strictly inside.
+bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, Vec3& pa, Vec3& pb, Real& s_out,
+               Real& t_out) {
+  const Vec3 u = a1 - a0, v = b1 - b0, w = a0 - b0;
+  const Real a = u.dot(u), b = u.dot(v), c = v.dot(v), d = u.dot(w), e = v.dot(w);
+  const Real den = a * c - b * b;
+  if (den <= kParallel2 * a * c) return false;  // (nearly) parallel: the end points carry it (VE, EV)
+  const Real s = (b * e - c * d) / den, t = (a * e - b * d) / den;
+  if (!(s > -kBand && s < 1 + kBand && t > -kBand && t < 1 + kBand)) return false;  // interior, up to the band
+  pa = a0 + s * u, pb = b0 + t * v;
+  s_out = s, t_out = t;
+  return true;
+}
+
+// Weights that make the pair's total force continuous where contacts split or merge. Two
+// contacts of a pair closer than l = rA + rB are the same geometric contact seen through
+// two feature pairs (an aligned corner is VV, VF, FV and EE at once; a slightly turned
+// corner is two contacts a hair apart): each contact gets w_i = 1 / sum_j phi(|x_i - x_j|/l)
+// with phi(0) = 1, phi(>= 1) = 0, so a cluster of coincident contacts counts once and
+// contacts farther apart than l count fully, with a smooth blend in between.
+void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
+  auto phi = [](Real s2) { return s2 < 1 ? (1 - s2) * (1 - s2) : 0.0; };
+  const Real inv_l2 = 1.0 / (l * l);
+  for (std::size_t i = first; i < out.size(); ++i) {
+    Real sum = 0;
+    const Vec3 xi = out[i].pa + out[i].pb;
+    for (std::size_t j = first; j < out.size(); ++j)
+      sum += phi(0.25 * (out[j].pa + out[j].pb - xi).squaredNorm() * inv_l2);
+    out[i].weight = 1.0 / sum;
+  }
+}
+}  // namespace
+
+void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out) {
+  const Real R = rA + rB;
+  const std::size_t first = out.size();
+  vertex_against(A, B, R, false, out);
+  vertex_against(B, A, R, true, out);
+  const Topology &ta = *A.topo, &tb = *B.topo;
+  const Vec3 ca = A.centre(), cb = B.centre();
+  for (std::size_t i = 0; i < ta.edges.size(); ++i)
+    for (std::size_t j = 0; j < tb.edges.size(); ++j) {
+      Vec3 pa, pb;
+      Real s, t;
+      if (!edge_edge(A.v[ta.edges[i][0]], A.v[ta.edges[i][1]], B.v[tb.edges[j][0]], B.v[tb.edges[j][1]], pa, pb, s, t))
+        continue;
+      if ((pa - pb).squaredNorm() >= R * R) continue;
+      Real d;
+      Vec3 n = separation(pa, pb, ca, cb, d);
+      // Crossing skeletons: the line of centres tells the side.
+      if (d == 0) {
+        n = (A.v[ta.edges[i][1]] - A.v[ta.edges[i][0]]).cross(B.v[tb.edges[j][1]] - B.v[tb.edges[j][0]]).normalized();
+        if (n.dot(ca - cb) < 0) n = -n;
+      }
+      Touch tc{Feature::EE, static_cast<int>(i), static_cast<int>(j), pa, pb, n, d};
+      tc.ia = {ta.edges[i][0], ta.edges[i][1], 0}, tc.wa = {1 - s, s, 0};
+      tc.ib = {tb.edges[j][0], tb.edges[j][1], 0}, tc.wb = {1 - t, t, 0};
+      out.push_back(tc);
+    }
+  weigh(out, first, R);
+}
+
+void find_plane_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& n, std::vector<Touch>& out) {
+  const std::size_t first = out.size();
+  for (int i = 0; i < A.topo->nv; ++i) {
+    const Real d = (A.v[i] - p).dot(n);
+    if (d < rA) {
+      Touch t{Feature::VF, i, 0, A.v[i], Vec3(A.v[i] - d * n), n, d};
+      t.ia = {i, 0, 0};
+      out.push_back(t);
+    }
+  }
+  weigh(out, first, rA);
+}
+
+}  // namespace dspdem::contact

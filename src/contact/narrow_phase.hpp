@@ -1,0 +1,51 @@
+// Narrow phase between two spheropolyhedra (METHOD.md section 3, paper eq. 8): skeletons A
+// and B (convex polytopes) dilated by spheres of radii rA and rB. Every pair of features
+// closer than rA + rB is a contact; each geometric contact is counted once:
+//
+//   vertex-face (VF, FV): the vertex projects strictly inside the triangle and lies within
+//     (-R, R) of its plane (R = rA + rB). No condition on the vertex's own side, so a face
+//     resting on a face is held by all its corners and tilting it changes forces smoothly.
+//   vertex-edge (VE, EV): the closest point is inside the edge, the vertex is outside the
+//     prisms of the edge's two triangles (those belong to VF) and no edge of the vertex's
+//     own polytope points towards the contact (that belongs to edge-edge).
+//   edge-edge (EE): the closest points are inside both edges.
+//   vertex-vertex (VV): each vertex lies in the other's vertex cone.
+//
+// The conditions are complementary at every hand-over (VF->VE at the prism side, VE->VV at
+// the edge end, VE->EE when the vertex's edge turns towards the contact), so the force is
+// continuous as a vertex slides across a face onto an edge and off it.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "contact/polytope.hpp"
+
+namespace dspdem::contact {
+
+enum class Feature : int { VV = 0, VE = 1, EV = 2, EE = 3, VF = 4, FV = 5 };
+
+/// One contact: closest points pa on skeleton A and pb on skeleton B, unit normal n from B
+/// to A, gap d = (pa - pb) . n (negative when the skeletons interpenetrate).
+struct Touch {
+  Feature kind;
+  int fa, fb;  ///< feature index on A and on B (vertex, edge or triangle, by kind)
+  Vec3 pa, pb, n;
+  Real d;
+  Real weight = 1;  ///< share of a cluster of coincident contacts (see find_touches)
+  /// pa and pb as combinations of skeleton vertices (up to 3, unused weights 0): the
+  /// normal force is spread with these, which makes it the exact gradient of the overlap
+  /// energy (the rotation of a face or edge included, by the envelope theorem).
+  std::array<int, 3> ia{0, 0, 0}, ib{0, 0, 0};
+  std::array<Real, 3> wa{1, 0, 0}, wb{0, 0, 0};
+};
+
+/// Appends the contacts between A (radius rA) and B (radius rB) to `out`. Contacts closer
+/// than rA + rB to each other are blended (Touch::weight) so that one geometric contact
+/// found through several feature pairs counts once and the total force stays continuous.
+void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out);
+
+/// Contacts of skeleton A with the half-space {x : (x - p) . n <= 0} (a rigid plane of
+/// radius 0): one per vertex closer than rA (kind VF, fb = 0).
+void find_plane_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& n, std::vector<Touch>& out);
+
+}  // namespace dspdem::contact

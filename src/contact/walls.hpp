@@ -1,0 +1,45 @@
+// Rigid walls: analytic planes (half-spaces) and boxes that contact the deformable
+// elements with the same law. A wall either follows a prescribed velocity (with an optional
+// ramp) or moves freely as a rigid body (mass, inertia tensor, quaternion orientation),
+// integrated with the same kick-drift-kick scheme as the nodes.
+#pragma once
+#include <Eigen/Geometry>
+#include <string>
+
+#include "contact/polytope.hpp"
+
+namespace dspdem::contact {
+
+struct Wall {
+  enum class Type { Plane, Box } type = Type::Plane;
+  std::string name;
+  // Pose: centre (plane: a point on it) and orientation; the plane's outward normal is
+  // the body z axis rotated, the box's half sizes are along the body axes.
+  Vec3 centre = Vec3::Zero();
+  Eigen::Quaternion<Real> q = Eigen::Quaternion<Real>::Identity();
+  Vec3 normal0 = Vec3::UnitZ();  ///< plane: outward normal in the reference pose
+  Vec3 half = Vec3::Zero();      ///< box: half sizes
+  // Motion.
+  bool free = false;
+  Vec3 velocity = Vec3::Zero(), omega = Vec3::Zero();
+  Real ramp = 0;  ///< prescribed walls: velocity ramp time [s]
+  Vec3 velocity_target = Vec3::Zero();
+  Real mass = 0;  ///< free walls
+  Mat3 inertia_body = Mat3::Zero();
+  Vec3 momentum_angular = Vec3::Zero();
+  // Contact parameters (< 0: take the element's).
+  Real kn = -1, mu = -1;
+  // Results of the last force evaluation.
+  Vec3 force = Vec3::Zero();   ///< total contact force on the wall [N]
+  Vec3 torque = Vec3::Zero();  ///< about its centre [N m]
+
+  Vec3 plane_normal() const { return q * normal0; }
+  /// Box as a polytope (hexahedron topology, corners in gmsh order).
+  Poly box_poly() const;
+  Vec3 velocity_at(const Vec3& x) const { return velocity + omega.cross(x - centre); }
+  Real kinetic_energy() const;
+  /// Updates omega from the angular momentum (free walls).
+  void update_omega();
+};
+
+}  // namespace dspdem::contact
