@@ -224,6 +224,8 @@ int render_command(const RenderArgs& in) {
     render::PlotSpec energy{"time", {"kinetic", "internal", "external_work", "damping"}, "", "energy ledger [J]"};
     if (std::find(names.begin(), names.end(), "fracture_I") != names.end())
       energy.y.insert(energy.y.end(), {"joint_elastic", "fracture_I", "fracture_II"});
+    if (std::find(names.begin(), names.end(), "contact_elastic") != names.end())
+      energy.y.insert(energy.y.end(), {"contact_elastic", "friction", "contact_damping"});
     render::plot_csv(csv.string(), energy, (pdir / "energy.png").string());
     // Monitors follow the balance_error column.
     const std::size_t first_monitor =

@@ -53,15 +53,24 @@ class Series {
   Series(const std::string& path, const Model& m) : f_(path) {
     DSPDEM_CHECK(f_.good(), "cannot write '{}'", path);
     f_ << "time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,"
-          "crack_area,balance_error";
+          "crack_area";
+    if (m.contact.enabled()) f_ << ",contact_elastic,friction,contact_damping,contacts";
+    f_ << ",balance_error";  // monitors follow this column (dspdem render plots each)
+    for (const auto& w : m.contact.walls()) f_ << ',' << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
     for (const auto& ms : m.monitors) f_ << ',' << ms.cfg.name;
     f_ << '\n';
   }
   void row(const Integrator& it, const Model& m) {
     const Energy e = it.energy();
-    f_ << fmt::format("{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{:.10g},{:.4g}", it.time(),
+    f_ << fmt::format("{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{:.10g}", it.time(),
                       it.steps(), e.kinetic, e.internal, e.external_work, e.damping, e.joint_elastic, e.fracture_I,
-                      e.fracture_II, e.broken_joints, e.crack_area, e.balance_error());
+                      e.fracture_II, e.broken_joints, e.crack_area);
+    if (m.contact.enabled())
+      f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{}", e.contact_elastic, e.friction, e.contact_damping,
+                        m.contact.totals().contacts);
+    f_ << fmt::format(",{:.4g}", e.balance_error());
+    for (const auto& w : m.contact.walls())
+      f_ << fmt::format(",{:.10g},{:.10g},{:.10g}", w.force(0), w.force(1), w.force(2));
     for (const auto& ms : m.monitors) f_ << fmt::format(",{:.10g}", it.monitor(ms));
     f_ << '\n';
     f_.flush();
@@ -94,9 +103,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const std::size_t lim_tag = fem.elem_tag[crit.element];
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
   log::info("  critical step {:.4g} s, limited by {} {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
-            crit.limiter == "joint" ? "a joint of element" : "element", lim_tag,
-            model.body_names[fem.elem_body[crit.element]], dt,
+            crit.limiter == "joint"     ? "a joint of element"
+            : crit.limiter == "contact" ? "the contact springs of element"
+                                        : "element",
+            lim_tag, model.body_names[fem.elem_body[crit.element]], dt,
             c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
+  if (model.contact.enabled())
+    log::info("  contact: on, {} wall(s); candidates: elements with a free face, refreshed as joints fail",
+              model.contact.walls().size());
   if (c.dt > crit.dt) {
     if (!c.allow_unstable)
       fail(
@@ -187,9 +201,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     kv("element_steps_per_s", json_number(ws > 0 ? static_cast<double>(it.steps()) * fem.n_elements / ws : 0.0));
     s += fmt::format(
         "  \"energy\": {{\"kinetic\": {}, \"internal\": {}, \"external_work\": {}, \"damping\": {}, \"initial\": {}, "
-        "\"joint_elastic\": {}, \"fracture_I\": {}, \"fracture_II\": {}, \"balance_error\": {}}}\n}}\n",
+        "\"joint_elastic\": {}, \"fracture_I\": {}, \"fracture_II\": {}, \"contact_elastic\": {}, \"friction\": {}, "
+        "\"contact_damping\": {}, \"balance_error\": {}}}\n}}\n",
         json_number(e.kinetic), json_number(e.internal), json_number(e.external_work), json_number(e.damping),
         json_number(e.initial), json_number(e.joint_elastic), json_number(e.fracture_I), json_number(e.fracture_II),
+        json_number(e.contact_elastic), json_number(e.friction), json_number(e.contact_damping),
         json_number(e.balance_error()));
     write_file_atomic((fs::path(dir) / "summary.json").string(), s);
   };

@@ -37,16 +37,15 @@ inline LawResult contact_law(const LawParams& p, Real overlap, const Vec3& n, co
   xi -= xi.dot(n) * n;
   const Real len2 = xi.norm();
   if (len2 > 0) xi *= len / len2;
-  xi += (vrel - vn * n) * dt;
+  const Vec3 xi_old = xi, du = (vrel - vn * n) * dt;
+  xi += du;
   const Real cap = p.mu * fe;
   const Real ft = p.kt * xi.norm();
-  if (ft > cap) {
-    // The spring energy given up while sliding is dissipated (exact also when the cap
-    // drops with the normal force).
-    const Real before = xi.squaredNorm();
-    xi *= cap / ft;
-    r.slip_work = 0.5 * p.kt * (before - xi.squaredNorm());
-  }
+  if (ft > cap) xi *= cap / ft;  // slide: the spring stays at the Coulomb cap
+  // Dissipated = work put in by the relative motion (trapezoidal, force from the spring
+  // before and after) minus the change of stored energy: zero while sticking, cap x slip
+  // while sliding, and exact when the cap drops with the normal force.
+  if (p.kt > 0) r.slip_work = 0.5 * p.kt * (xi_old.squaredNorm() + (xi_old + xi).dot(du) - xi.squaredNorm());
   r.force = fn * n - p.kt * xi;
   r.elastic = 0.5 * p.kn * overlap * overlap + (p.kt > 0 ? 0.5 * p.kt * xi.squaredNorm() : 0.0);
   return r;

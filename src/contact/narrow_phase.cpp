@@ -107,64 +107,73 @@ void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector
     }
     out.push_back(t);
   };
-  // Each vertex of P makes at most one contact with Q: with the face whose prism holds it
-  // (the most separating one), else with its nearest edge region, else with a vertex.
-  // Noise on a region boundary (aligned stacks sit there) then cannot count it twice.
+  // Each vertex of P makes at most one contact with Q, with the feature of Q nearest to it
+  // (the face whose prism holds it, an edge whose span holds it, or a vertex whose region
+  // holds it: over a convex skeleton the nearest of these is the closest point). Noise on
+  // a region boundary (aligned stacks sit there) then cannot count it twice.
   for (int i = 0; i < P.topo->nv; ++i) {
     const Vec3& p = P.v[i];
-    std::array<char, 8> in_face{};
-    int best = -1;
-    TriProj bp{};
+    enum { None, Face, Edge, Vertex } kind = None;
+    int feat = -1;
+    Real best = INFINITY, edge_t = 0;
+    TriProj bp{-1, -1, -1, 0, Vec3::UnitZ()};
+    Real deepest = -INFINITY;  // for a vertex inside Q: the face it is least deep behind
+    int deep_face = -1;
+    TriProj dp{-1, -1, -1, 0, Vec3::UnitZ()};
+    bool outside = false;
     for (std::size_t k = 0; k < tq.tris.size(); ++k) {
       const auto& t = tq.tris[k];
       const TriProj pr = project(p, Q.v[t[0]], Q.v[t[1]], Q.v[t[2]]);
+      outside |= pr.d > 0;
       if (!inside(pr, tq.tri_diag[k])) continue;
-      in_face[tq.tri_face[k]] = 1;
-      if (best < 0 || pr.d > bp.d) best = static_cast<int>(k), bp = pr;
+      if (pr.d > 0 && pr.d < best) kind = Face, feat = static_cast<int>(k), best = pr.d, bp = pr;
+      if (pr.d <= 0 && pr.d > deepest) deepest = pr.d, deep_face = static_cast<int>(k), dp = pr;
     }
-    if (best >= 0) {
-      if (bp.d < R && bp.d > -R) {
-        const auto& t = tq.tris[best];
-        emit(Feature::VF, Feature::FV, i, best, p, Vec3(p - bp.d * bp.n), bp.n, bp.d, i, {t[0], t[1], t[2]},
+    if (!outside) {
+      // Inside Q's skeleton (deep penetration): push out through the nearest face.
+      if (deep_face >= 0 && deepest > -R)
+        kind = Face, feat = deep_face, bp = dp, best = 0;
+      else
+        continue;
+    } else {
+      for (std::size_t e = 0; e < tq.edges.size(); ++e) {
+        const Vec3 &a = Q.v[tq.edges[e][0]], &b = Q.v[tq.edges[e][1]];
+        const Real t = along(p, a, b);
+        if (!(t > -kBand && along(p, b, a) > -kBand)) continue;
+        const Real dist = (p - (a + t * (b - a))).norm();
+        if (dist < best) kind = Edge, feat = static_cast<int>(e), best = dist, edge_t = t;
+      }
+      for (int j = 0; j < tq.nv; ++j) {
+        const Real dist = (p - Q.v[j]).norm();
+        if (dist < best && in_vertex_cone(Q, j, p)) kind = Vertex, feat = j, best = dist;
+      }
+    }
+    if (kind == Face) {
+      if (bp.d < R) {
+        const auto& t = tq.tris[feat];
+        emit(Feature::VF, Feature::FV, i, feat, p, Vec3(p - bp.d * bp.n), bp.n, bp.d, i, {t[0], t[1], t[2]},
              {bp.l0, bp.l1, bp.l2});
       }
-      continue;
-    }
-    // Vertex-edge: inside the edge's span and no edge of the vertex points towards the
-    // contact (that is an edge-edge pair).
-    int best_e = -1;
-    Real best_d2 = 0, best_t = 0;
-    Vec3 best_q;
-    for (std::size_t e = 0; e < tq.edges.size(); ++e) {
-      const Vec3 &a = Q.v[tq.edges[e][0]], &b = Q.v[tq.edges[e][1]];
-      const Real t = along(p, a, b);
-      if (!(t > -kBand && along(p, b, a) > -kBand)) continue;
-      const Vec3 q = a + t * (b - a);
-      if (!in_vertex_cone(P, i, q, b - a)) continue;
-      const Real d2 = (p - q).squaredNorm();
-      if (best_e < 0 || d2 < best_d2) best_e = static_cast<int>(e), best_d2 = d2, best_q = q, best_t = t;
-    }
-    if (best_e >= 0) {
-      if (best_d2 < R * R) {
+    } else if (kind == Edge) {
+      // Unless an edge of the vertex points towards the contact: that is an edge-edge pair.
+      const Vec3 &a = Q.v[tq.edges[feat][0]], &b = Q.v[tq.edges[feat][1]];
+      const Vec3 q = a + edge_t * (b - a);
+      if (best < R && in_vertex_cone(P, i, q, b - a)) {
         Real d;
-        const Vec3 n = separation(p, best_q, cp, cq, d);
-        emit(Feature::VE, Feature::EV, i, best_e, p, best_q, n, d, i, {tq.edges[best_e][0], tq.edges[best_e][1], 0},
-             {1 - best_t, best_t, 0});
+        const Vec3 n = separation(p, q, cp, cq, d);
+        emit(Feature::VE, Feature::EV, i, feat, p, q, n, d, i, {tq.edges[feat][0], tq.edges[feat][1], 0},
+             {1 - edge_t, edge_t, 0});
       }
-      continue;
-    }
-    // Vertex-vertex (once: only from A's side), each in the other's vertex region.
-    if (flip) continue;
-    for (int j = 0; j < tq.nv; ++j) {
-      const Vec3& q = Q.v[j];
-      if ((p - q).squaredNorm() >= R * R) continue;
-      if (!in_vertex_cone(Q, j, p) || !in_vertex_cone(P, i, q) || in_face_of_vertex(P, i, q)) continue;
-      Real d;
-      const Vec3 n = separation(p, q, cp, cq, d);
-      Touch t{Feature::VV, i, j, p, q, n, d};
-      t.ia = {i, 0, 0}, t.ib = {j, 0, 0}, t.wb = {1, 0, 0};
-      out.push_back(t);
-      break;
+    } else if (kind == Vertex && !flip) {
+      // Vertex-vertex (once: from A's side), each in the other's vertex region.
+      const Vec3& q = Q.v[feat];
+      if (best < R && in_vertex_cone(P, i, q) && !in_face_of_vertex(P, i, q)) {
+        Real d;
+        const Vec3 n = separation(p, q, cp, cq, d);
+        Touch t{Feature::VV, i, feat, p, q, n, d};
+        t.ia = {i, 0, 0}, t.ib = {feat, 0, 0}, t.wb = {1, 0, 0};
+        out.push_back(t);
+      }
     }
   }
 }
