@@ -199,6 +199,7 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
     m = elem_node_mass_[ea];
     p.kt = ma.kt_ratio * p.kn;
     p.cn = 2 * ma.damping_ratio * std::sqrt(p.kn * m);
+    p.ct = 2 * ma.damping_ratio * std::sqrt(p.kt * m);
     return p;
   }
   const ContactMaterial& mb = materials_[elem_material_[eb]];
@@ -207,6 +208,7 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
   p.mu = std::min(ma.friction, mb.friction);
   m = elem_node_mass_[ea] * elem_node_mass_[eb] / (elem_node_mass_[ea] + elem_node_mass_[eb]);
   p.cn = 2 * std::max(ma.damping_ratio, mb.damping_ratio) * std::sqrt(p.kn * m);
+  p.ct = 2 * std::max(ma.damping_ratio, mb.damping_ratio) * std::sqrt(p.kt * m);
   return p;
 }
 
@@ -219,18 +221,29 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
   // One contact point for both sides (the middle of the overlap), so the pair's forces
   // are equal, opposite and collinear: momentum and angular momentum are exact.
   const Vec3 c = 0.5 * (t.pa - ra * t.n + t.pb + rb * t.n);
-  auto spread = [&](Index e, Real* N) {
+  auto skeleton_weights = [&](Index e, const std::array<int, 3>& iv, const std::array<Real, 3>& wv, Real* Ws) {
+    const Elem& el = elems_[e];
+    const Real* W = &skel_w_[skel_off_[e]];
+    for (int j = 0; j < el.npe; ++j) Ws[j] = 0;
+    for (int m = 0; m < 3; ++m)
+      if (wv[m] != 0)
+        for (int j = 0; j < el.npe; ++j) Ws[j] += wv[m] * W[iv[m] * el.npe + j];
+  };
+  Real Wa[8], Wb[8];
+  skeleton_weights(ea, t.ia, t.wa, Wa);
+  if (!wall) skeleton_weights(eb, t.ib, t.wb, Wb);
+  auto spread = [&](Index e, Real* N, const Real* near) {
     const Elem& el = elems_[e];
     Vec3 xe[8];
     for (int i = 0; i < el.npe; ++i) xe[i] = node_pos_ptr(x, el.conn[i]);
-    shape_at(el.type, xe, c, N);
+    shape_at(el.type, xe, c, N, near);
     Vec3 vel = Vec3::Zero();
     for (int i = 0; i < el.npe; ++i) vel += N[i] * node_pos_ptr(v, el.conn[i]);
     return vel;
   };
   Real Na[8], Nb[8];
-  const Vec3 va = spread(ea, Na);
-  const Vec3 vb = wall ? wall->velocity_at(c) : spread(eb, Nb);
+  const Vec3 va = spread(ea, Na, Wa);
+  const Vec3 vb = wall ? wall->velocity_at(c) : spread(eb, Nb, Wb);
   const Key key{ea, wall ? -1 - wall_id : eb, static_cast<int>(t.kind), t.fa, t.fb};
   auto it = history_.find(key);
   Vec3 xi = it != history_.end() ? it->second : Vec3::Zero();
@@ -246,16 +259,6 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
   // the element's shape functions (eq. 16): equal, opposite and collinear, so angular
   // momentum is exact; friction dissipates anyway.
   const Vec3 fn = r.force.dot(t.n) * t.n, ft = r.force - fn;
-  auto skeleton_weights = [&](Index e, const std::array<int, 3>& iv, const std::array<Real, 3>& wv, Real* Ws) {
-    const Elem& el = elems_[e];
-    const Real* W = &skel_w_[skel_off_[e]];
-    for (int j = 0; j < el.npe; ++j) Ws[j] = 0;
-    for (int m = 0; m < 3; ++m)
-      if (wv[m] != 0)
-        for (int j = 0; j < el.npe; ++j) Ws[j] += wv[m] * W[iv[m] * el.npe + j];
-  };
-  Real Wa[8];
-  skeleton_weights(ea, t.ia, t.wa, Wa);
   const Elem& a = elems_[ea];
   for (int i = 0; i < a.npe; ++i)
     for (int d = 0; d < 3; ++d) f[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * fn(d) + Na[i] * ft(d);
@@ -265,8 +268,6 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
     w.torque -= (c - w.centre).cross(r.force);
     return;
   }
-  Real Wb[8];
-  skeleton_weights(eb, t.ib, t.wb, Wb);
   const Elem& b = elems_[eb];
   for (int i = 0; i < b.npe; ++i)
     for (int d = 0; d < 3; ++d) f[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * fn(d) + Nb[i] * ft(d);

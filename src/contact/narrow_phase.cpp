@@ -12,29 +12,64 @@ struct TriProj {
   Vec3 n;
 };
 
-TriProj project(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  TriProj r;
-  const Vec3 nn = (b - a).cross(c - a);
+// A triangle's frame, computed once per pair: projecting the skeleton vertices of the other
+// side on it then costs two dot products and a few multiplications.
+struct TriFrame {
+  Vec3 a, e1, e2, n;
+  Real d00, d01, d11, inv;
+  bool ok;
+};
+
+TriFrame frame(const Vec3& a, const Vec3& b, const Vec3& c) {
+  TriFrame f;
+  f.a = a, f.e1 = b - a, f.e2 = c - a;
+  const Vec3 nn = f.e1.cross(f.e2);
   const Real area2 = nn.norm();
-  if (area2 <= 0) return {-1, -1, -1, 0, Vec3::UnitZ()};
-  r.n = nn / area2;
-  r.d = (p - a).dot(r.n);
-  const Vec3 q = p - r.d * r.n;
-  r.l0 = (b - q).cross(c - q).dot(r.n) / area2;
-  r.l1 = (c - q).cross(a - q).dot(r.n) / area2;
-  r.l2 = 1.0 - r.l0 - r.l1;
+  f.ok = area2 > 0;
+  f.n = f.ok ? Vec3(nn / area2) : Vec3::UnitZ();
+  f.d00 = f.e1.dot(f.e1), f.d01 = f.e1.dot(f.e2), f.d11 = f.e2.dot(f.e2);
+  const Real den = f.d00 * f.d11 - f.d01 * f.d01;
+  f.inv = den > 0 ? 1.0 / den : 0.0;
+  return f;
+}
+
+TriProj project(const Vec3& p, const TriFrame& f) {
+  if (!f.ok) return {-1, -1, -1, 0, Vec3::UnitZ()};
+  const Vec3 v = p - f.a;
+  const Real d20 = v.dot(f.e1), d21 = v.dot(f.e2);
+  TriProj r;
+  r.l1 = (f.d11 * d20 - f.d01 * d21) * f.inv;
+  r.l2 = (f.d00 * d21 - f.d01 * d20) * f.inv;
+  r.l0 = 1.0 - r.l1 - r.l2;
+  r.d = v.dot(f.n);
+  r.n = f.n;
   return r;
 }
 
-// Region tests are generous by this band (a fraction of the feature's size), so that a
-// point on the boundary between two regions, where aligned stacks sit and where rounding
-// or a slightly warped face decides, is never in neither: it may be in both, and the
-// duplicates are blended into one contact (weigh below). The band must exceed the tilt of
-// element edges under strain times gap/length (~1e-3 x 0.1), and stay far below r/L.
+using Frames = std::array<TriFrame, 12>;
+
+Frames frames_of(const Poly& P) {
+  Frames fr;
+  const auto& tris = P.topo->tris;
+  for (std::size_t k = 0; k < tris.size(); ++k) fr[k] = frame(P.v[tris[k][0]], P.v[tris[k][1]], P.v[tris[k][2]]);
+  return fr;
+}
+
+// A vertex defers to an edge-edge pair when one of its own edges points towards the
+// contact, and edge-edge pairs need their closest points inside both edges; both tests are
+// generous by this band (a fraction of the edge length), so that where aligned stacks sit,
+// and rounding or a slightly warped face decides, a contact is never dropped by both: it
+// may be found by both, and the two are blended into one (weigh below). The band must
+// exceed the tilt of element edges under strain times gap/length (~1e-3 x 0.1).
 constexpr Real kBand = 1e-3;
 
-// Inside the triangle, up to the band.
-bool inside(const TriProj& t, int) { return t.l0 > -kBand && t.l1 > -kBand && t.l2 > -kBand; }
+// Membership of the other skeleton's regions (face prism, edge span, vertex cone) is
+// tested almost exactly: the nearest member wins, so regions may overlap by rounding but
+// a wider margin would let a face keep a vertex that has already passed its edge (with the
+// face's normal instead of the edge's: a kink in the force direction).
+constexpr Real kSelect = 1e-9;
+
+bool inside(const TriProj& t, int) { return t.l0 > -kSelect && t.l1 > -kSelect && t.l2 > -kSelect; }
 
 // Position of p along the edge from a to b, as a fraction of its length. Every vertex and
 // edge test below uses this one expression so that the regions meet without gaps.
@@ -63,11 +98,12 @@ bool nearly_parallel(const Vec3& u, const Vec3& v) {
   return u.cross(v).squaredNorm() <= kParallel2 * u.squaredNorm() * v.squaredNorm();
 }
 
-// Is q in the vertex region of vertex i of P: no edge of i points towards q? Edges nearly
-// parallel to `along_dir` (the other side's edge, for vertex-edge pairs) do not count.
-bool in_vertex_cone(const Poly& P, int i, const Vec3& q, const Vec3& along_dir = Vec3::Zero()) {
+// Is q in the vertex region of vertex i of P: no edge of i points towards q (up to `band`)?
+// Edges nearly parallel to `along_dir` (the other side's edge, for vertex-edge pairs) do
+// not count.
+bool in_vertex_cone(const Poly& P, int i, const Vec3& q, Real band, const Vec3& along_dir = Vec3::Zero()) {
   for (int k : P.topo->neighbours[i]) {
-    if (along(q, P.v[i], P.v[k]) <= kBand) continue;
+    if (along(q, P.v[i], P.v[k]) <= band) continue;
     if (along_dir.squaredNorm() > 0 && nearly_parallel(P.v[k] - P.v[i], along_dir)) continue;
     return false;
   }
@@ -75,7 +111,7 @@ bool in_vertex_cone(const Poly& P, int i, const Vec3& q, const Vec3& along_dir =
 }
 
 // Does q project inside a face of P that contains vertex i (then a face pair owns it)?
-bool in_face_of_vertex(const Poly& P, int i, const Vec3& q) {
+bool in_face_of_vertex(const Poly& P, const Frames& fp, int i, const Vec3& q) {
   const Topology& t = *P.topo;
   for (std::size_t k = 0; k < t.tris.size(); ++k) {
     const auto& tr = t.tris[k];
@@ -85,14 +121,15 @@ bool in_face_of_vertex(const Poly& P, int i, const Vec3& q) {
       for (int f : t.vertex_faces[i]) face_has_i |= f == t.tri_face[k];
       if (!face_has_i) continue;
     }
-    const TriProj pr = project(q, P.v[tr[0]], P.v[tr[1]], P.v[tr[2]]);
+    const TriProj pr = project(q, fp[k]);
     if (inside(pr, t.tri_diag[k])) return true;
   }
   return false;
 }
 
 // Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
-void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector<Touch>& out) {
+void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames& fq, Real R, bool flip,
+                    std::vector<Touch>& out) {
   const Topology& tq = *Q.topo;
   const Vec3 cp = P.centre(), cq = Q.centre();
   // Vertex ip of P against a point of Q combining Q's vertices iq with weights wq.
@@ -122,8 +159,7 @@ void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector
     TriProj dp{-1, -1, -1, 0, Vec3::UnitZ()};
     bool outside = false;
     for (std::size_t k = 0; k < tq.tris.size(); ++k) {
-      const auto& t = tq.tris[k];
-      const TriProj pr = project(p, Q.v[t[0]], Q.v[t[1]], Q.v[t[2]]);
+      const TriProj pr = project(p, fq[k]);
       outside |= pr.d > 0;
       if (!inside(pr, tq.tri_diag[k])) continue;
       if (pr.d > 0 && pr.d < best) kind = Face, feat = static_cast<int>(k), best = pr.d, bp = pr;
@@ -139,13 +175,13 @@ void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector
       for (std::size_t e = 0; e < tq.edges.size(); ++e) {
         const Vec3 &a = Q.v[tq.edges[e][0]], &b = Q.v[tq.edges[e][1]];
         const Real t = along(p, a, b);
-        if (!(t > -kBand && along(p, b, a) > -kBand)) continue;
+        if (!(t > -kSelect && along(p, b, a) > -kSelect)) continue;
         const Real dist = (p - (a + t * (b - a))).norm();
         if (dist < best) kind = Edge, feat = static_cast<int>(e), best = dist, edge_t = t;
       }
       for (int j = 0; j < tq.nv; ++j) {
         const Real dist = (p - Q.v[j]).norm();
-        if (dist < best && in_vertex_cone(Q, j, p)) kind = Vertex, feat = j, best = dist;
+        if (dist < best && in_vertex_cone(Q, j, p, kSelect)) kind = Vertex, feat = j, best = dist;
       }
     }
     if (kind == Face) {
@@ -158,7 +194,7 @@ void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector
       // Unless an edge of the vertex points towards the contact: that is an edge-edge pair.
       const Vec3 &a = Q.v[tq.edges[feat][0]], &b = Q.v[tq.edges[feat][1]];
       const Vec3 q = a + edge_t * (b - a);
-      if (best < R && in_vertex_cone(P, i, q, b - a)) {
+      if (best < R && in_vertex_cone(P, i, q, kBand, b - a)) {
         Real d;
         const Vec3 n = separation(p, q, cp, cq, d);
         emit(Feature::VE, Feature::EV, i, feat, p, q, n, d, i, {tq.edges[feat][0], tq.edges[feat][1], 0},
@@ -167,7 +203,7 @@ void vertex_against(const Poly& P, const Poly& Q, Real R, bool flip, std::vector
     } else if (kind == Vertex && !flip) {
       // Vertex-vertex (once: from A's side), each in the other's vertex region.
       const Vec3& q = Q.v[feat];
-      if (best < R && in_vertex_cone(P, i, q) && !in_face_of_vertex(P, i, q)) {
+      if (best < R && in_vertex_cone(P, i, q, kBand) && !in_face_of_vertex(P, fp, i, q)) {
         Real d;
         const Vec3 n = separation(p, q, cp, cq, d);
         Touch t{Feature::VV, i, feat, p, q, n, d};
@@ -214,12 +250,23 @@ void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
 void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out) {
   const Real R = rA + rB;
   const std::size_t first = out.size();
-  vertex_against(A, B, R, false, out);
-  vertex_against(B, A, R, true, out);
+  // Most candidate pairs of the broad phase do not touch: their skeletons' boxes, grown by
+  // R, are apart. Checking that first skips the feature enumeration for them.
+  Vec3 alo = A.v[0], ahi = A.v[0], blo = B.v[0], bhi = B.v[0];
+  for (int k = 1; k < A.topo->nv; ++k) alo = alo.cwiseMin(A.v[k]), ahi = ahi.cwiseMax(A.v[k]);
+  for (int k = 1; k < B.topo->nv; ++k) blo = blo.cwiseMin(B.v[k]), bhi = bhi.cwiseMax(B.v[k]);
+  if (((alo.array() - R) > bhi.array()).any() || ((blo.array() - R) > ahi.array()).any()) return;
+  const Frames fa = frames_of(A), fb = frames_of(B);
+  vertex_against(A, fa, B, fb, R, false, out);
+  vertex_against(B, fb, A, fa, R, true, out);
   const Topology &ta = *A.topo, &tb = *B.topo;
   const Vec3 ca = A.centre(), cb = B.centre();
-  for (std::size_t i = 0; i < ta.edges.size(); ++i)
+  for (std::size_t i = 0; i < ta.edges.size(); ++i) {
+    const Vec3 &a0 = A.v[ta.edges[i][0]], &a1 = A.v[ta.edges[i][1]];
+    const Vec3 elo = a0.cwiseMin(a1).array() - R, ehi = a0.cwiseMax(a1).array() + R;
     for (std::size_t j = 0; j < tb.edges.size(); ++j) {
+      const Vec3 &b0 = B.v[tb.edges[j][0]], &b1 = B.v[tb.edges[j][1]];
+      if ((b0.cwiseMax(b1).array() < elo.array()).any() || (b0.cwiseMin(b1).array() > ehi.array()).any()) continue;
       Vec3 pa, pb;
       Real s, t;
       if (!edge_edge(A.v[ta.edges[i][0]], A.v[ta.edges[i][1]], B.v[tb.edges[j][0]], B.v[tb.edges[j][1]], pa, pb, s, t))
@@ -237,6 +284,7 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
       tc.ib = {tb.edges[j][0], tb.edges[j][1], 0}, tc.wb = {1 - t, t, 0};
       out.push_back(tc);
     }
+  }
   weigh(out, first, R);
 }
 

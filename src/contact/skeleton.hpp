@@ -30,11 +30,13 @@ std::string make_skeleton(CellType t, const Vec3* x, Real r, Skeleton& out);
 
 /// Natural coordinates (hex8, in [-1, 1]^3) of a point p in the element with corners x, by
 /// Newton iteration on the trilinear map; and the 8 shape functions there.
-Vec3 hex_natural(const Vec3* x, const Vec3& p);
+Vec3 hex_natural(const Vec3* x, const Vec3& p, const Vec3& start = Vec3::Zero(), int max_iter = 20);
 void hex_shape(const Vec3& xi, Real* N);
 
 /// Shape functions N_j of the element at point p (which may lie slightly outside it:
 /// extrapolated, still summing to one and reproducing p). Used to spread a contact force.
-void shape_at(CellType t, const Vec3* x, const Vec3& p, Real* N);
+/// `near` (optional, hex8): node weights of a point close to p, whose natural coordinates
+/// start the Newton iteration (one or two steps then suffice).
+void shape_at(CellType t, const Vec3* x, const Vec3& p, Real* N, const Real* near = nullptr);
 
 }  // namespace dspdem::contact
