@@ -113,7 +113,7 @@ ForceStatus internal_forces(FemModel& m, const Real* x, const Real* v, Real* f, 
   const Index* ptr = m.node_ptr.data();
   const Index* sl = m.node_slot.data();
   const Real* s = m.slots.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 2048)
   for (Index i = 0; i < n; ++i) {
     Real fx = 0, fy = 0, fz = 0;
     for (Index k = ptr[i]; k < ptr[i + 1]; ++k) {
@@ -130,7 +130,7 @@ Real deterministic_sum(const std::vector<Real>& a) {
   const std::size_t nc = (a.size() + chunk - 1) / chunk;
   std::vector<Real> part(nc, 0.0);
   const long nl = static_cast<long>(nc);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nl > 1)
   for (long c = 0; c < nl; ++c) {
     Real s = 0;
     const std::size_t end = std::min(a.size(), (c + 1) * chunk);

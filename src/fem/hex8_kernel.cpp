@@ -22,7 +22,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
   Real* energy = m.elem_energy.data();
   Real* dpower = m.elem_dpower.data();
   Real min_det = 1.0;
-#pragma omp parallel for schedule(static) reduction(min : min_det)
+#pragma omp parallel for schedule(static) reduction(min : min_det) if (n > 1024)  // tiny models: no fork-join cost
   for (Index e = 0; e < n; ++e) {
     const std::size_t es = static_cast<std::size_t>(e);
     const Index* c = &b.conn[8 * es];

@@ -21,7 +21,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
   Real* dpower = m.elem_dpower.data();
   Index bad = -1;
   Real min_det = 1.0;
-#pragma omp parallel for schedule(static) reduction(min : min_det)
+#pragma omp parallel for schedule(static) reduction(min : min_det) if (n > 1024)  // tiny models: no fork-join cost
   for (Index e = 0; e < n; ++e) {
     const Index* c = &b.conn[4 * static_cast<std::size_t>(e)];
     const Eigen::Map<const Eigen::Matrix<Real, 3, 4>> grad(&b.grad[12 * static_cast<std::size_t>(e)]);

@@ -29,7 +29,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
   const Index nj = js.size();
   slots.resize(24 * static_cast<std::size_t>(nj));
   js.newly_failed.resize(nj);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
     const int npf = js.npf[j];

@@ -1,6 +1,7 @@
 // Contact between bodies and with walls (METHOD.md section 3): conservation in impacts,
-// smooth hand-over between feature pairs, friction on an incline, resting stacks, and
-// the Hertz contact time of a meshed sphere. Tolerances are stated per test.
+// smooth hand-over between feature pairs, friction on an incline, resting stacks (the
+// Hertz contact time of a meshed sphere is in test_hertz.cpp). Tolerances are stated per
+// test.
 #include <gtest/gtest.h>
 
 #include <cmath>
