@@ -50,8 +50,10 @@ const std::vector<Generator>& registry() {
   static const std::vector<Generator> r = {
       {"brazilian_disc",
        "Disc (axis z, diameter D, thickness L, centred at the origin) between two flat loading plates above and "
-       "below (load along y), each plate a separate body touching the disc. Volumes: disc, plate_top, plate_bottom. "
-       "Surfaces: plate_top_load (top face of the top plate), plate_bottom_load (bottom face of the bottom plate).",
+       "below (load along y), each plate a separate body touching the disc (plates = 0: the disc alone, for rigid "
+       "[[walls]] as plates). Volumes: disc, plate_top, plate_bottom. Surfaces: plate_top_load (top face of the top "
+       "plate), plate_bottom_load (bottom face of the bottom plate). Curves: disc_top_line, disc_bottom_line (the "
+       "loaded generator lines, meshed with nodes).",
        build_brazilian_disc, "disc"},
       {"galvez_beam",
        "Galvez et al. (1998) notched beam for mixed-mode fracture (four-point shear): beam along x (bottom at y = 0, "

@@ -117,6 +117,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: unexpected failure: {}\n", e.what());
     return 4;
+  } catch (const std::string& e) {  // the gmsh API throws its messages as strings
+    fmt::print(stderr, "error: gmsh: {}\n", e);
+    return 4;
   }
   return 0;
 }

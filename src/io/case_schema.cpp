@@ -46,6 +46,7 @@ const std::vector<Key>& keys() {
     {"mesh.brazilian_disc", "thickness", T::Real, "0.0713", 0, inf, true, false, "m", nullptr, "Disc thickness L (along z). See diameter."},
     {"mesh.brazilian_disc", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the disc: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
     {"mesh.brazilian_disc", "size", T::Real, "0.0076", 0, inf, true, false, "m", nullptr, "Target element size in the disc; the default gives about the paper's 12335 tetrahedra."},
+    {"mesh.brazilian_disc", "plates", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the two steel plates as bodies; 0: the disc alone (load it with rigid [[walls]])."},
     {"mesh.brazilian_disc", "plate_width", T::Real, "0.06", 0, inf, true, false, "m", nullptr, "Plate extent along x (the plates span the disc thickness along z)."},
     {"mesh.brazilian_disc", "plate_thickness", T::Real, "0.02", 0, inf, true, false, "m", nullptr, "Plate thickness along y."},
     {"mesh.brazilian_disc", "plate_size", T::Real, "0.01", 0, inf, true, false, "m", nullptr, "Element size in the plates."},
