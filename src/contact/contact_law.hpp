@@ -23,10 +23,11 @@ struct LawParams {
 };
 
 struct LawResult {
-  Vec3 force = Vec3::Zero();  ///< on A (B gets the opposite)
-  Real elastic = 0;           ///< stored energy after the update [J]
-  Real slip_work = 0;         ///< energy dissipated by sliding in this update [J]
-  Real damping_power = 0;     ///< rate of viscous dissipation [W]
+  Vec3 force = Vec3::Zero();                                ///< on A (B gets the opposite)
+  Real elastic = 0;                                         ///< stored energy after the update [J]
+  Real slip_work = 0;                                       ///< energy dissipated by sliding in this update [J]
+  Real damping_power = 0;                                   ///< rate of viscous dissipation [W]
+  Vec3 damping_n = Vec3::Zero(), damping_t = Vec3::Zero();  ///< viscous parts of the force (on A)
 };
 
 /// overlap > 0; n unit from B to A; vrel = velocity of A minus velocity of B at the
@@ -37,6 +38,7 @@ inline LawResult contact_law(const LawParams& p, Real overlap, const Vec3& n, co
   const Real fe = p.kn * overlap;
   const Real fn = std::max<Real>(0.0, fe - p.cn * vn);
   r.damping_power = (fn - fe) * -vn;  // the viscous part times the approach speed
+  r.damping_n = (fn - fe) * n;
   // Rotate the history into the current tangent plane keeping its length.
   const Real len = xi.norm();
   xi -= xi.dot(n) * n;
@@ -53,6 +55,7 @@ inline LawResult contact_law(const LawParams& p, Real overlap, const Vec3& n, co
     xi = p.kt > 0 ? Vec3(-ft / p.kt) : Vec3::Zero();
   } else {
     r.damping_power += p.ct * vt.squaredNorm();
+    r.damping_t = -p.ct * vt;
   }
   // Dissipated = work put in by the relative motion (trapezoidal, force from the spring
   // before and after) minus the change of stored energy: zero while sticking, cap x slip

@@ -57,8 +57,10 @@ class ContactSystem {
              const std::vector<Real>& node_mass, std::vector<Wall> walls, const ContactSettings& s);
 
   /// Adds contact forces to f (3 x nodes) at positions x and velocities v; dt for the
-  /// tangential increment. Updates the tangential history (call once per step).
-  void add_forces(const Mesh& mesh, const joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f);
+  /// tangential increment. Updates the tangential history (call once per step). Broken
+  /// joints whose elements have come to lie in different fragments are released (they
+  /// stop acting: contact carries the pieces from then on).
+  void add_forces(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f);
 
   /// Kick and drift of the walls (free: from their contact force and gravity; prescribed:
   /// to the velocity of time t).
@@ -103,7 +105,7 @@ class ContactSystem {
     std::size_t tag;
   };
 
-  void rebuild(const Mesh& mesh, const joint::JointSet& js, const Real* x);
+  void rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x);
   bool needs_rebuild(const joint::JointSet& js, const Real* x) const;
   LawParams pair_params(Index ea, Index eb, const Wall* w) const;
   void apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x, const Real* v, Real dt,
@@ -134,6 +136,9 @@ class ContactSystem {
   std::vector<Touch> touches_;
   ContactTotals totals_;
   Real elastic_ = 0, wall_power_ = 0;
+  /// Viscous contact forces on the nodes, this and the last evaluation: the dissipation is
+  /// booked as their trapezoidal work over the drift, as the integrator books external work.
+  std::vector<Real> fdamp_, fdamp_prev_;
   std::string setup_error_;
 };
 

@@ -195,6 +195,7 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
   mesh.node_tag = std::move(tags);
   js.state.assign(4 * static_cast<std::size_t>(js.size()), CohesiveState{});
   js.status.assign(js.size(), JointStatus::Intact);
+  js.released.assign(js.size(), 0);
   return js;
 }
 

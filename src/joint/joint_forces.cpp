@@ -35,6 +35,8 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     const int npf = js.npf[j];
     Real* out = &slots[24 * static_cast<std::size_t>(j)];
     for (int k = 0; k < 24; ++k) out[k] = 0;
+    js.newly_failed[j] = 0;
+    if (js.released[j]) continue;
     Vec3 xa[4], xb[4], xm[4];
     for (int k = 0; k < npf; ++k) {
       xa[k] = node_pos_ptr(x, js.a[js4 + k]);
@@ -89,6 +91,16 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
   }
 }
 
+Real joint_elastic_energy(const JointSet& js, Index j) {
+  double N[4][4], w[4];
+  const int ng = face_quadrature(js.npf[j], N, w);
+  const CohesiveParams& p = js.params[js.param[j]];
+  Real e = 0;
+  for (int g = 0; g < ng; ++g)
+    e += w[g] * js.area0[j] * js.state[4 * static_cast<std::size_t>(j) + g].elastic_energy(p);
+  return e;
+}
+
 JointTotals joint_totals(const JointSet& js) {
   JointTotals t;
   double N[4][4], w[4];
@@ -98,12 +110,13 @@ JointTotals joint_totals(const JointSet& js) {
     for (int g = 0; g < ng; ++g) {
       const CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];
       const Real wa = w[g] * js.area0[j];
-      t.elastic += wa * s.elastic_energy(p);
+      if (!js.released[j]) t.elastic += wa * s.elastic_energy(p);
       t.fracture_I += wa * s.dissipated_I(p);
       t.fracture_II += wa * s.dissipated_II(p);
     }
     if (js.status[j] == JointStatus::Broken) ++t.broken, t.broken_area += js.area0[j];
   }
+  t.fracture_II += js.released_energy;
   return t;
 }
 

@@ -23,6 +23,9 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
 
 JointTotals joint_totals(const JointSet& js);
 
+/// Energy stored in joint j now [J].
+Real joint_elastic_energy(const JointSet& js, Index j);
+
 /// Quadrature of a face: shape values N (per point, per node) and weights (fractions of the
 /// face area). Triangles: 3 points at (2/3, 1/6, 1/6) and permutations; quads: 2x2 Gauss.
 int face_quadrature(int npf, double N[4][4], double w[4]);

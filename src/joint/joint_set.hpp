@@ -27,6 +27,10 @@ struct JointSet {
   /// the list the contact stage consumes. Appended in joint order within a step.
   std::vector<Index> failed;
   std::vector<char> newly_failed;  ///< scratch: per joint, failed during the current update
+  /// Per joint: released (no longer acts) because contact took over: its two elements are
+  /// in different fragments. Energy still stored in it then is booked in released_energy.
+  std::vector<char> released;
+  Real released_energy = 0;
   Index size() const { return static_cast<Index>(npf.size()); }
 };
 
