@@ -7,6 +7,7 @@
 
 #include "app/mesh_command.hpp"
 #include "app/render_command.hpp"
+#include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -55,6 +56,15 @@ int main(int argc, char** argv) {
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
 
+  auto* rep = app.add_subcommand(
+      "report", "Run the Brazilian disc scene and write DIR/report.md with its figures (--study: speed against error)");
+  ReportArgs rpa;
+  rep->add_option("case", rpa.case_file, "Case file (TOML)")->required();
+  rep->add_option("-o,--out", rpa.out_dir, "Output directory (default: results/<case name>_report)");
+  rep->add_option("--set", rpa.sets, "Override a case key: section.key=value (repeatable)");
+  rep->add_flag("--study", rpa.study, "Also run the sweep over mesh sizes and accuracy knobs");
+  rep->add_flag("--no-render", rpa.no_render, "Skip the frame images and animations");
+
   auto* imgdiff =
       app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
   std::string img_a, img_b, img_diff;
@@ -84,6 +94,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*rend) return render_command(ra);
+    if (*rep) return report_command(rpa);
     if (*imgdiff) {
       const std::string diff = img_diff.empty() ? img_a.substr(0, img_a.rfind('.')) + ".diff.png" : img_diff;
       const render::ImageDiff d = render::compare_png(img_a, img_b, diff, img_tol);

@@ -193,6 +193,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     kv("crack_area", json_number(e.crack_area));
     kv("fragments", std::to_string(frag.count));
     {
+      Real total = 0;
+      for (Real mm : frag.mass) total += mm;
+      kv("total_mass", json_number(total));
+    }
+    {
       std::string masses;
       for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)
         masses += (i ? ", " : "") + json_number(frag.mass[i]);
