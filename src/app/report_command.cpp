@@ -293,8 +293,9 @@ int report_command(const ReportArgs& a) {
     }
     render::PlotSpec s{"wall_s", {"split_error_pct", "l2_xx_pct"}, "", "error [%] against wall time [s]"};
     render::plot_csv(csv, s, (img / "plots" / "study.png").string());
-    study_md += "| variant | knob | elements | wall time [s] | steps | dt [s] | 2P/(pi D L) [MPa] | vs f_t | L2 sigma_xx | "
-                "L2 sigma_yy |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    study_md +=
+        "| variant | knob | elements | wall time [s] | steps | dt [s] | 2P/(pi D L) [MPa] | vs f_t | L2 sigma_xx | "
+        "L2 sigma_yy |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& [v, s] : rows)
       study_md += fmt::format("| {} | {} | {:.0f} | {:.1f} | {} | {:.3g} | {:.3f} | {} | {:.1f} % | {:.1f} % |\n",
                               v.name, v.knob, summary_number(s.run_dir, "elements"), s.wall_s, s.steps, s.dt,
@@ -303,20 +304,24 @@ int report_command(const ReportArgs& a) {
 
   // report.md
   std::string md;
-  md += fmt::format("# Brazilian disc: report\n\nCase `{}` ({}), run in `run/`. Paper: section 2.2 of the seed "
-                    "(METHOD.md section 5); analytic reference: refdata/brazilian_analytic.md.\n\n",
-                    c.path, c.name);
-  md += fmt::format("Disc D = {:.1f} mm, L = {:.1f} mm, {:.0f} elements, {:.0f} joints; plates closing at {:.3g} m/s "
-                    "in all; input f_t = {:.2f} MPa. Run: {} steps of {:.3g} s, {:.1f} s wall time.\n\n",
-                    1e3 * r.D, 1e3 * r.L, summary_number(run_dir, "elements"), summary_number(run_dir, "joints"),
-                    c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm(), 1e-6 * r.ft,
-                    r.steps, r.dt, r.wall_s);
+  md += fmt::format(
+      "# Brazilian disc: report\n\nCase `{}` ({}), run in `run/`. Paper: section 2.2 of the seed "
+      "(METHOD.md section 5); analytic reference: refdata/brazilian_analytic.md.\n\n",
+      c.path, c.name);
+  md += fmt::format(
+      "Disc D = {:.1f} mm, L = {:.1f} mm, {:.0f} elements, {:.0f} joints; plates closing at {:.3g} m/s "
+      "in all; input f_t = {:.2f} MPa. Run: {} steps of {:.3g} s, {:.1f} s wall time.\n\n",
+      1e3 * r.D, 1e3 * r.L, summary_number(run_dir, "elements"), summary_number(run_dir, "joints"),
+      c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm(), 1e-6 * r.ft, r.steps, r.dt,
+      r.wall_s);
   md += "## Load and splitting strength\n\n";
-  md += fmt::format("Peak plate load P = {:.2f} kN at t = {:.3f} ms. Splitting strength 2P/(pi D L) = {:.3f} MPa, {} "
-                    "against the input f_t = {:.2f} MPa (the paper: 40.6 kN, 2.54 MPa for 2.3 MPa, +10 %).\n\n",
-                    1e-3 * r.P_peak, 1e3 * r.t_peak, 1e-6 * r.split, pct(r.split_err), 1e-6 * r.ft);
-  md += "![load against time](run/images/plots/load_time.png)\n![load against closure](run/images/plots/"
-        "load_closure.png)\n\n";
+  md += fmt::format(
+      "Peak plate load P = {:.2f} kN at t = {:.3f} ms. Splitting strength 2P/(pi D L) = {:.3f} MPa, {} "
+      "against the input f_t = {:.2f} MPa (the paper: 40.6 kN, 2.54 MPa for 2.3 MPa, +10 %).\n\n",
+      1e-3 * r.P_peak, 1e3 * r.t_peak, 1e-6 * r.split, pct(r.split_err), 1e-6 * r.ft);
+  md +=
+      "![load against time](run/images/plots/load_time.png)\n![load against closure](run/images/plots/"
+      "load_closure.png)\n\n";
   md += "## Stresses along the loaded diameter\n\n";
   md += fmt::format(
       "At P = {:.2f} kN ({:.0f} % of the peak; the paper uses 33.0 of 40.6 kN = 81 %), frame {} (t = {:.3f} ms). "
@@ -339,12 +344,12 @@ int report_command(const ReportArgs& a) {
           view, view, view, std::max<Index>(0, r.init_frame), view, r.last_frame, view);
   }
   md += "## Energy ledger\n\n";
-  md += fmt::format("Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).\n\n"
-                    "![energy](run/images/plots/energy.png)\n![balance](run/images/plots/balance_error.png)\n\n",
-                    r.balance_max, r.largest_energy);
+  md += fmt::format(
+      "Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).\n\n"
+      "![energy](run/images/plots/energy.png)\n![balance](run/images/plots/balance_error.png)\n\n",
+      r.balance_max, r.largest_energy);
   if (a.study) {
-    md += "## Speed against error\n\n" + study_md +
-          "\n![error against wall time](run/images/plots/study.png)\n\n";
+    md += "## Speed against error\n\n" + study_md + "\n![error against wall time](run/images/plots/study.png)\n\n";
   }
   write_file_atomic((fs::path(dir) / "report.md").string(), md);
   log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
