@@ -273,3 +273,25 @@ TEST(Docs, CasesReadmeHoldsTheSchemaTable) {
   const std::string doc = slurp(fs::path(DSPDEM_SOURCE_DIR) / "cases/README.md");
   EXPECT_NE(doc.find(r.out), std::string::npos) << "regenerate the table with: build/dspdem keys";
 }
+
+TEST_F(Cli, ReportRefusesAnotherSceneWithAMessage) {
+  // dspdem report is the Brazilian-disc report: any other case is bad input (exit 2).
+  const fs::path c = write("cantilever.toml", good_);
+  const Result r = run("report " + c.string() + " --out " + (dir_ / "rep").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("Brazilian disc"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / "report.md"));
+}
+
+TEST_F(Cli, WallsNeedContactAndNameTheirKey) {
+  // A wall without [contact] enabled is refused; a box without extents names half_size.
+  const fs::path a = write("a.toml", good_ + "\n[[walls]]\nname = \"floor\"\ntype = \"plane\"\n");
+  Result r = run("run " + a.string() + " --out " + (dir_ / "a").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("[contact] enabled = false"), std::string::npos) << r.out;
+  const fs::path b =
+      write("b.toml", good_ + "\n[contact]\nenabled = true\n\n[[walls]]\nname = \"b\"\ntype = \"box\"\n");
+  r = run("run " + b.string() + " --out " + (dir_ / "b").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("half_size"), std::string::npos) << r.out;
+}
