@@ -90,6 +90,8 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   built_ = false;
   failed_seen_ = 0;
   history_.clear();
+  born_offset_.clear();
+  fragment_prev_.clear();
   totals_ = {};
 }
 
@@ -164,6 +166,25 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   grid_.find(boxes, local, &group);
   pairs_.clear();
   for (auto [i, j] : local) pairs_.emplace_back(surface_list_[i], surface_list_[j]);
+  // Offsets of pairs born overlapping at a split: new ones measured now, old ones kept
+  // while the pair stays a candidate.
+  std::unordered_map<std::uint64_t, Real> offsets;
+  for (auto [ea, eb] : pairs_) {
+    const std::uint64_t key = (static_cast<std::uint64_t>(ea) << 32) | static_cast<std::uint32_t>(eb);
+    auto it = born_offset_.find(key);
+    if (it != born_offset_.end()) {
+      offsets.emplace(key, it->second);
+      continue;
+    }
+    if (fragment_prev_.empty() || fragment_prev_[ea] != fragment_prev_[eb]) continue;
+    touches_.clear();
+    find_touches(skeleton_poly(ea, x), radius_[ea], skeleton_poly(eb, x), radius_[eb], touches_);
+    Real worst = 0;
+    for (const Touch& t : touches_) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
+    if (worst > 0) offsets.emplace(key, worst);
+  }
+  born_offset_ = std::move(offsets);
+  fragment_prev_ = fragment_;
   // Walls: linear in the number of surface elements per wall.
   wall_pairs_.clear();
   for (std::size_t w = 0; w < walls_.size(); ++w) {
@@ -222,9 +243,9 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
 }
 
 void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x,
-                          const Real* v, Real dt, Real* f) {
+                          const Real* v, Real dt, Real* f, Real offset) {
   const Real ra = radius_[ea], rb = wall ? 0.0 : radius_[eb];
-  const Real overlap = ra + rb - t.d;
+  const Real overlap = ra + rb - t.d - offset;
   if (overlap <= 0) return;
   totals_.max_overlap = std::max(totals_.max_overlap, overlap / (ra + rb));
   // One contact point for both sides (the middle of the overlap), so the pair's forces
@@ -316,7 +337,18 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
     const Poly A = skeleton_poly(ea, x), B = skeleton_poly(eb, x);
     touches_.clear();
     find_touches(A, radius_[ea], B, radius_[eb], touches_);
-    for (const Touch& t : touches_) apply(ea, eb, nullptr, -1, t, x, v, dt, f);
+    Real offset = 0;
+    if (!born_offset_.empty()) {
+      auto it = born_offset_.find((static_cast<std::uint64_t>(ea) << 32) | static_cast<std::uint32_t>(eb));
+      if (it != born_offset_.end()) {
+        // The offset only shrinks: once the pair has opened, closing again is a real contact.
+        Real worst = 0;
+        for (const Touch& t : touches_) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
+        it->second = std::min(it->second, worst);
+        offset = it->second;
+      }
+    }
+    for (const Touch& t : touches_) apply(ea, eb, nullptr, -1, t, x, v, dt, f, offset);
   }
   for (auto [w, e] : wall_pairs_) {
     const Wall& wl = walls_[w];

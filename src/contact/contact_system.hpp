@@ -8,6 +8,7 @@
 // touch each other). The candidate list is rebuilt when a node has moved more than half the
 // skin since the last build, when a wall has, or when joints have failed.
 #pragma once
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -109,7 +110,7 @@ class ContactSystem {
   bool needs_rebuild(const joint::JointSet& js, const Real* x) const;
   LawParams pair_params(Index ea, Index eb, const Wall* w) const;
   void apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x, const Real* v, Real dt,
-             Real* f);
+             Real* f, Real offset = 0);
 
   bool enabled_ = false;
   ContactSettings settings_;
@@ -121,7 +122,12 @@ class ContactSystem {
   std::vector<Real> skel_w_;
   std::vector<Index> outer_faces_;  ///< per element
   std::vector<char> surface_;       ///< per element: candidate
-  std::vector<Index> surface_list_, fragment_;
+  std::vector<Index> surface_list_, fragment_, fragment_prev_;
+  /// Pairs that became candidates because their piece split, with the overlap their
+  /// skeletons already had then (elements that met at an edge or a vertex of the crack):
+  /// that overlap is not an impact and must not push (it would create energy); it shrinks
+  /// as the pair opens and is dropped when the pair leaves the candidate list.
+  std::unordered_map<std::uint64_t, Real> born_offset_;
   std::vector<Wall> walls_;
   std::vector<Real> x_build_;
   std::vector<Vec3> wall_build_;  ///< centres at the last build
