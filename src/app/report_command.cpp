@@ -248,11 +248,16 @@ int report_command(const ReportArgs& a) {
                "{}: dspdem report knows the Brazilian disc scene (mesh generator brazilian_disc); this case uses '{}'",
                c.path, c.mesh_generator.empty() ? c.mesh_file : c.mesh_generator);
   const std::string dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
-  const std::string run_dir = (fs::path(dir) / "run").string();
+  const std::string run_dir = a.from_run.empty() ? (fs::path(dir) / "run").string() : a.from_run;
   fs::create_directories(dir);
-  RunOptions ro;
-  ro.out_dir = run_dir;
-  run_case(c, ro);
+  if (a.from_run.empty()) {
+    RunOptions ro;
+    ro.out_dir = run_dir;
+    run_case(c, ro);
+  } else {
+    DSPDEM_CHECK(fs::exists(fs::path(run_dir) / "summary.json"),
+                 "--from-run {}: no summary.json there (not the output folder of a finished run)", run_dir);
+  }
   const DiscResult r = analyse(c, run_dir, true);
   const fs::path img = fs::path(run_dir) / "images";
   if (!a.no_render) {
@@ -305,6 +310,7 @@ int report_command(const ReportArgs& a) {
   }
 
   // report.md
+  const std::string rel = fs::relative(run_dir, dir).string();
   std::string md;
   md += fmt::format(
       "# Brazilian disc: report\n\nCase `{}` ({}), run in `run/`. Paper: section 2.2 of the seed "
@@ -353,6 +359,12 @@ int report_command(const ReportArgs& a) {
       r.balance_max, r.largest_energy);
   if (a.study) {
     md += "## Speed against error\n\n" + study_md + "\n![error against wall time](run/images/plots/study.png)\n\n";
+  }
+  // Links point at the run folder, wherever it is (--from-run).
+  for (const std::string from : {"](run/", "`run/"}) {
+    const std::string to = from.substr(0, from.size() - 4) + rel + "/";
+    for (std::size_t p = md.find(from); p != std::string::npos; p = md.find(from, p + to.size()))
+      md.replace(p, from.size(), to);
   }
   write_file_atomic((fs::path(dir) / "report.md").string(), md);
   log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());

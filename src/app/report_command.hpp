@@ -13,6 +13,7 @@ struct ReportArgs {
   std::vector<std::string> sets;
   bool study = false;      ///< also run the speed-against-error sweep
   bool no_render = false;  ///< skip images (numbers and plots only)
+  std::string from_run;    ///< analyse this finished run of the same case instead of running it
 };
 
 int report_command(const ReportArgs& a);

@@ -295,3 +295,12 @@ TEST_F(Cli, WallsNeedContactAndNameTheirKey) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("half_size"), std::string::npos) << r.out;
 }
+
+TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
+  // --from-run analyses an existing run; a folder without summary.json is bad input.
+  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
+  const Result r =
+      run("report " + disc + " --from-run " + (dir_ / "nothing").string() + " --out " + (dir_ / "rep").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("summary.json"), std::string::npos) << r.out;
+}
