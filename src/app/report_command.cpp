@@ -41,25 +41,26 @@ struct Column {
   }
 };
 
-// A number from summary.json (flat keys only).
-double summary_number(const std::string& run_dir, const std::string& key) {
+std::string read_summary(const std::string& run_dir) {
   std::ifstream f(fs::path(run_dir) / "summary.json");
   std::stringstream ss;
   ss << f.rdbuf();
+  return ss.str();
+}
+
+// A number from summary.json (flat keys only).
+double summary_number(const std::string& run_dir, const std::string& key) {
   const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
   std::smatch m;
-  const std::string s = ss.str();
+  const std::string s = read_summary(run_dir);
   if (!std::regex_search(s, m, re)) fail("'{}/summary.json' has no number '{}'", run_dir, key);
   return std::stod(m[1]);
 }
 
 std::vector<double> summary_list(const std::string& run_dir, const std::string& key) {
-  std::ifstream f(fs::path(run_dir) / "summary.json");
-  std::stringstream ss;
-  ss << f.rdbuf();
   const std::regex re("\"" + key + "\": \\[([^\\]]*)\\]");
   std::smatch m;
-  const std::string s = ss.str();
+  const std::string s = read_summary(run_dir);
   std::vector<double> out;
   if (!std::regex_search(s, m, re)) return out;
   std::stringstream items(m[1].str());

@@ -23,6 +23,8 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   enabled_ = true;
   settings_ = s;
   materials_ = materials;
+  any_damping_ = false;
+  for (const ContactMaterial& cm : materials_) any_damping_ |= cm.damping_ratio > 0;
   walls_ = std::move(walls);
   elem_material_ = elem_material;
   const Index ne = mesh.n_elements();
@@ -305,7 +307,8 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
   for (int i = 0; i < a.npe; ++i)
     for (int d = 0; d < 3; ++d) {
       f[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * fn(d) + Na[i] * ft(d);
-      fdamp_[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * r.damping_n(d) + Na[i] * r.damping_t(d);
+      if (any_damping_)
+        fdamp_[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * r.damping_n(d) + Na[i] * r.damping_t(d);
     }
   if (wall) {
     Wall& w = walls_[wall_id];
@@ -317,7 +320,8 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
   for (int i = 0; i < b.npe; ++i)
     for (int d = 0; d < 3; ++d) {
       f[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * fn(d) + Nb[i] * ft(d);
-      fdamp_[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * r.damping_n(d) + Nb[i] * r.damping_t(d);
+      if (any_damping_)
+        fdamp_[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * r.damping_n(d) + Nb[i] * r.damping_t(d);
     }
 }
 
@@ -327,9 +331,11 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
   history_next_.clear();
   elastic_ = 0;
   const std::size_t nd = 3 * static_cast<std::size_t>(mesh.n_nodes());
-  std::swap(fdamp_, fdamp_prev_);
-  fdamp_.assign(nd, 0.0);
-  fdamp_prev_.resize(nd, 0.0);
+  if (any_damping_) {
+    std::swap(fdamp_, fdamp_prev_);
+    fdamp_.assign(nd, 0.0);
+    fdamp_prev_.resize(nd, 0.0);
+  }
   totals_.contacts = 0;
   totals_.max_overlap = 0;
   for (Wall& w : walls_) w.force.setZero(), w.torque.setZero();
@@ -363,7 +369,7 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
   std::swap(history_, history_next_);
   // Viscous dissipation over the drift just made (x moved by dt v): trapezoidal work of the
   // viscous forces of the last and this evaluation. Walls: their side is in wall_power.
-  if (dt > 0) {
+  if (any_damping_ && dt > 0) {
     Real w = 0;
     for (std::size_t k = 0; k < nd; ++k) w += (fdamp_prev_[k] + fdamp_[k]) * v[k];
     totals_.damping -= 0.5 * dt * w;

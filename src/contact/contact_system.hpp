@@ -145,6 +145,7 @@ class ContactSystem {
   /// Viscous contact forces on the nodes, this and the last evaluation: the dissipation is
   /// booked as their trapezoidal work over the drift, as the integrator books external work.
   std::vector<Real> fdamp_, fdamp_prev_;
+  bool any_damping_ = false;  ///< some material has contact damping (else the arrays stay empty)
   std::string setup_error_;
 };
 

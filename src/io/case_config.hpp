@@ -89,7 +89,7 @@ struct CaseConfig {
   bool mesh_cache = true;
   Vec3 gravity = Vec3::Zero();
   std::vector<Material> materials;
-  std::vector<JointMaterial> joint_materials;  ///< parallel to materials
+  std::vector<JointMaterial> joint_materials;               ///< parallel to materials
   std::vector<contact::ContactMaterial> contact_materials;  ///< parallel to materials
   ContactConfig contact;
   std::vector<WallConfig> walls;
