@@ -1,8 +1,12 @@
 // Brazilian disc between two flat loading plates (paper section 2.2).
+#include <fmt/format.h>
 #include <gmsh.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
+#include "core/error.hpp"
 #include "meshing/generator.hpp"
 
 namespace dspdem::meshing {
@@ -14,21 +18,61 @@ void build_brazilian_disc(const Params& p) {
   if (h > 0.5 * L) param_error(p, "size", "larger than half the disc thickness: the disc would be one element thick");
   if (pw > D) param_error(p, "plate_width", "wider than the disc diameter");
   if (ph > pt * 2 && ph > pw) param_error(p, "plate_size", "larger than the plate");
-  const bool plates = p["plates"] != 0;
+  const bool plates = p["plates"] != 0, split = p["split_plane"] != 0;
+  const double band = p["band_width"];
+  if (band >= D) param_error(p, "band_width", "not narrower than the disc diameter");
   int disc = occ::addCylinder(0, 0, -L / 2, 0, 0, L, D / 2);
-  // The loaded generator lines (x = 0, y = +-D/2) are imprinted on the curved face (which
-  // they split in two) so the faceted disc has nodes exactly where flat plates first touch
-  // it: the load starts at zero approach and acts on a line, as in the analytic solution.
-  const int p0 = occ::addPoint(0, D / 2, -L / 2), p1 = occ::addPoint(0, D / 2, L / 2);
-  const int p2 = occ::addPoint(0, -D / 2, -L / 2), p3 = occ::addPoint(0, -D / 2, L / 2);
-  int l_top = occ::addLine(p0, p1), l_bot = occ::addLine(p2, p3);
+  // The loaded generator lines (x = 0, y = +-D/2) are mesh curves, so the faceted disc has
+  // nodes exactly where flat plates first touch it: the load starts at zero approach and
+  // acts on a line, as in the analytic solution. With split_plane the whole plane x = 0 is
+  // cut in (it holds both lines); band planes x = +-band/2 cut the disc into slabs. Cutting
+  // planes are rectangles larger than the disc; their parts outside it are removed.
+  gmsh::vectorpair tools;
+  auto add_plane = [&](double x) {
+    const int r = occ::addRectangle(-0.6 * L, -0.6 * D, 0, 1.2 * L, 1.2 * D);
+    occ::rotate({{2, r}}, 0, 0, 0, 0, 1, 0, M_PI / 2);  // (x, y, 0) -> (0, y, -x): the plane x = 0
+    occ::translate({{2, r}}, x, 0, 0);
+    tools.emplace_back(2, r);
+  };
+  if (split) {
+    add_plane(0);
+  } else {
+    const int p0 = occ::addPoint(0, D / 2, -L / 2), p1 = occ::addPoint(0, D / 2, L / 2);
+    const int p2 = occ::addPoint(0, -D / 2, -L / 2), p3 = occ::addPoint(0, -D / 2, L / 2);
+    tools.emplace_back(1, occ::addLine(p0, p1)), tools.emplace_back(1, occ::addLine(p2, p3));
+  }
+  if (band > 0) add_plane(-band / 2), add_plane(band / 2);
   {
     gmsh::vectorpair out;
     std::vector<gmsh::vectorpair> map;
-    occ::fragment({{3, disc}}, {{1, l_top}, {1, l_bot}}, out, map);
-    disc = map[0].at(0).second;
-    l_top = map[1].at(0).second, l_bot = map[2].at(0).second;
+    occ::fragment({{3, disc}}, tools, out, map);
   }
+  occ::synchronize();
+  gmsh::vectorpair surfaces, outside;
+  gmsh::model::getEntities(surfaces, 2);
+  for (auto [dim, s] : surfaces) {
+    std::vector<int> up, down;
+    gmsh::model::getAdjacencies(2, s, up, down);
+    if (up.empty()) outside.emplace_back(2, s);
+  }
+  occ::remove(outside, true);
+  occ::synchronize();
+  std::vector<int> vols, band_vols, side_vols;
+  {
+    gmsh::vectorpair v;
+    gmsh::model::getEntities(v, 3);
+    for (auto [dim, t] : v) {
+      double cx, cy, cz;
+      occ::getCenterOfMass(3, t, cx, cy, cz);
+      vols.push_back(t);
+      (std::abs(cx) < band / 2 ? band_vols : side_vols).push_back(t);
+    }
+  }
+  const std::vector<int> l_top = entities_in_box(1, 0, D / 2, -L / 2, 0, D / 2, L / 2, 1e-3 * D);
+  const std::vector<int> l_bot = entities_in_box(1, 0, -D / 2, -L / 2, 0, -D / 2, L / 2, 1e-3 * D);
+  if (l_top.size() != 1 || l_bot.size() != 1)
+    throw Error(fmt::format("brazilian_disc: the loaded generator lines were not imprinted ({} and {} curves found)",
+                            l_top.size(), l_bot.size()));
   int top = -1, bot = -1;
   // Plates span the disc thickness and touch it along the top and bottom generator lines.
   if (plates) {
@@ -36,12 +80,13 @@ void build_brazilian_disc(const Params& p) {
     bot = occ::addBox(-pw / 2, -D / 2 - pt, -L / 2, pw, pt, L);
   }
   occ::synchronize();
-  set_volume_size({disc}, h);
+  set_volume_size(vols, h);
   if (plates) set_volume_size({top, bot}, ph);
   gmsh::model::mesh::generate(3);
-  add_group(3, {disc}, "disc");
-  add_group(1, {l_top}, "disc_top_line");
-  add_group(1, {l_bot}, "disc_bottom_line");
+  add_group(3, vols, "disc");
+  if (band > 0) add_group(3, band_vols, "disc_band"), add_group(3, side_vols, "disc_side");
+  add_group(1, l_top, "disc_top_line");
+  add_group(1, l_bot, "disc_bottom_line");
   if (!plates) return;
   add_group(3, {top}, "plate_top");
   add_group(3, {bot}, "plate_bottom");

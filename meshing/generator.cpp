@@ -53,7 +53,8 @@ const std::vector<Generator>& registry() {
        "below (load along y), each plate a separate body touching the disc (plates = 0: the disc alone, for rigid "
        "[[walls]] as plates). Volumes: disc, plate_top, plate_bottom. Surfaces: plate_top_load (top face of the top "
        "plate), plate_bottom_load (bottom face of the bottom plate). Curves: disc_top_line, disc_bottom_line (the "
-       "loaded generator lines, meshed with nodes).",
+       "loaded generator lines, meshed with nodes). Options: split_plane (the loaded diametral plane x = 0 as a mesh "
+       "surface), band_width (volumes disc_band, the slab |x| < band_width/2, and disc_side).",
        build_brazilian_disc, "disc"},
       {"galvez_beam",
        "Galvez et al. (1998) notched beam for mixed-mode fracture (four-point shear): beam along x (bottom at y = 0, "

@@ -47,6 +47,8 @@ const std::vector<Key>& keys() {
     {"mesh.brazilian_disc", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the disc: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
     {"mesh.brazilian_disc", "size", T::Real, "0.0076", 0, inf, true, false, "m", nullptr, "Target element size in the disc; the default gives about the paper's 12335 tetrahedra."},
     {"mesh.brazilian_disc", "plates", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the two steel plates as bodies; 0: the disc alone (load it with rigid [[walls]])."},
+    {"mesh.brazilian_disc", "split_plane", T::Int, "0", 0, 1, false, false, "", nullptr, "1: the loaded diametral plane (x = 0) is a surface of the mesh, so element faces lie on the crack path that the analytic solution predicts; 0: the mesh is unstructured across it and a facet crack must zigzag."},
+    {"mesh.brazilian_disc", "band_width", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: planes x = +-band_width/2 split the disc into the volume group disc_band (the central slab) and disc_side; the group disc holds both. With fracture = \"groups\" and fracture_groups = [\"disc_band\"] joints are made only in the band."},
     {"mesh.brazilian_disc", "plate_width", T::Real, "0.06", 0, inf, true, false, "m", nullptr, "Plate extent along x (the plates span the disc thickness along z)."},
     {"mesh.brazilian_disc", "plate_thickness", T::Real, "0.02", 0, inf, true, false, "m", nullptr, "Plate thickness along y."},
     {"mesh.brazilian_disc", "plate_size", T::Real, "0.01", 0, inf, true, false, "m", nullptr, "Element size in the plates."},

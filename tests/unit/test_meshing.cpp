@@ -91,6 +91,46 @@ TEST(Generators, BrazilianDisc) {
   EXPECT_NEAR(group_volume(m, "plate_top"), 0.06 * 0.02 * L, 1e-9);
 }
 
+// Area of the element faces lying on the plane x = 0 (every tet face counted once per
+// element, so an interior face counts twice).
+static double area_on_mid_plane(const Mesh& m) {
+  double a = 0;
+  for (const auto& blk : m.blocks) {
+    if (blk.type != CellType::Tet4) continue;
+    for (Index e = 0; e < blk.size(); ++e) {
+      const Index* c = &blk.conn[static_cast<std::size_t>(e) * 4];
+      for (int skip = 0; skip < 4; ++skip) {
+        std::vector<Vec3> f;
+        for (int i = 0; i < 4; ++i)
+          if (i != skip) f.push_back(node_pos(m.x, c[i]));
+        if (std::abs(f[0](0)) < 1e-12 && std::abs(f[1](0)) < 1e-12 && std::abs(f[2](0)) < 1e-12)
+          a += 0.5 * (f[1] - f[0]).cross(f[2] - f[0]).norm();
+      }
+    }
+  }
+  return a;
+}
+
+TEST(Generators, BrazilianDiscSplitPlaneAndBand) {
+  const double D = 0.1427, L = 0.0713, R = D / 2, w = 0.03;
+  // split_plane: the loaded diametral plane is made of element faces, each met from both
+  // sides, so they cover exactly 2 D L (its edges are the straight generator lines).
+  const Mesh split = meshing::generate(params("brazilian_disc", {"split_plane=1", "plates=0"}));
+  EXPECT_NEAR(area_on_mid_plane(split) / (2 * D * L), 1.0, 1e-9);
+  const Mesh plain = meshing::generate(params("brazilian_disc", {"plates=0"}));
+  EXPECT_LT(area_on_mid_plane(plain), 0.2 * D * L);
+  expect_groups(plain, {"disc", "disc_top_line", "disc_bottom_line"});
+  // band_width: the slab |x| < w/2 is its own volume group; its volume is the circular
+  // slab's (the faceted boundary loses ~1 %, as for the whole disc).
+  const Mesh band = meshing::generate(params("brazilian_disc", {"band_width=0.03", "plates=0"}));
+  expect_groups(band, {"disc", "disc_band", "disc_side", "disc_top_line", "disc_bottom_line"});
+  const double slab = 2 * ((w / 2) * std::sqrt(R * R - w * w / 4) + R * R * std::asin(w / (2 * R))) * L;
+  EXPECT_NEAR(group_volume(band, "disc_band") / slab, 1.0, 0.01);
+  EXPECT_NEAR((group_volume(band, "disc_band") + group_volume(band, "disc_side")) / group_volume(band, "disc"), 1.0,
+              1e-12);
+  EXPECT_EQ(count(band, "disc_band") + count(band, "disc_side"), count(band, "disc"));
+}
+
 TEST(Generators, SpherePlate) {
   const Mesh m = meshing::generate(params("sphere_plate"));
   expect_groups(m, {"sphere", "plate", "plate_top", "plate_bottom"});
@@ -209,6 +249,7 @@ TEST(Generators, ParameterErrorsNameTheKey) {
   expect_error(params("packing", {"count=100000"}), "mesh.packing.count");
   expect_error(params("sphere_plate", {"size=0.1"}), "mesh.sphere_plate.size");
   expect_error(params("brazilian_disc", {"size=0.05"}), "mesh.brazilian_disc.size");
+  expect_error(params("brazilian_disc", {"band_width=0.2"}), "mesh.brazilian_disc.band_width");
   expect_error(params("murray_beam", {"span=2.0"}), "mesh.murray_beam.span");
   // Range errors are caught by the schema, with the key and the file line.
   EXPECT_THROW(params("sphere_plate", {"size=-0.01"}), Error);
