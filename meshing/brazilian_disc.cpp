@@ -81,6 +81,18 @@ void build_brazilian_disc(const Params& p) {
   }
   occ::synchronize();
   set_volume_size(vols, h);
+  if (const double hl = p["load_size"]; hl > 0) {
+    if (hl > h) param_error(p, "load_size", "larger than size: it refines the mesh at the loaded lines");
+    namespace field = gmsh::model::mesh::field;
+    field::add("Distance", 1);
+    field::setNumbers(1, "CurvesList", {static_cast<double>(l_top[0]), static_cast<double>(l_bot[0])});
+    field::setNumber(1, "NumPointsPerCurve", std::ceil(L / hl) * 4 + 1);
+    field::add("Threshold", 2);
+    field::setNumber(2, "InField", 1);
+    field::setNumber(2, "SizeMin", hl), field::setNumber(2, "SizeMax", h);
+    field::setNumber(2, "DistMin", 0), field::setNumber(2, "DistMax", D / 4);
+    field::setAsBackgroundMesh(2);
+  }
   if (plates) set_volume_size({top, bot}, ph);
   gmsh::model::mesh::generate(3);
   add_group(3, vols, "disc");

@@ -129,6 +129,24 @@ TEST(Generators, BrazilianDiscSplitPlaneAndBand) {
   EXPECT_NEAR((group_volume(band, "disc_band") + group_volume(band, "disc_side")) / group_volume(band, "disc"), 1.0,
               1e-12);
   EXPECT_EQ(count(band, "disc_band") + count(band, "disc_side"), count(band, "disc"));
+  // load_size: elements at the loaded lines are about load_size, those at the centre about
+  // size (the cube root of a regular tet's volume is 0.49 x its edge).
+  const Mesh graded = meshing::generate(params("brazilian_disc", {"load_size=0.0025", "plates=0"}));
+  double near = 0, centre = 0, n_near = 0, n_centre = 0;
+  const auto& blk = graded.blocks.at(0);
+  for (Index e = 0; e < blk.size(); ++e) {
+    const Index* c = &blk.conn[static_cast<std::size_t>(e) * 4];
+    const Vec3 a = node_pos(graded.x, c[0]), b = node_pos(graded.x, c[1]), d = node_pos(graded.x, c[2]),
+               f = node_pos(graded.x, c[3]);
+    const Vec3 g = 0.25 * (a + b + d + f);
+    const double edge = std::cbrt(tet4_volume(a, b, d, f)) / 0.49;
+    if (std::hypot(g(0), g(1) - R) < 0.005) near += edge, ++n_near;
+    if (std::hypot(g(0), g(1)) < 0.015) centre += edge, ++n_centre;
+  }
+  ASSERT_GT(n_near, 0);
+  ASSERT_GT(n_centre, 0);
+  EXPECT_LT(near / n_near, 1.6 * 0.0025);
+  EXPECT_GT(centre / n_centre, 0.7 * 0.0076);
 }
 
 TEST(Generators, SpherePlate) {
