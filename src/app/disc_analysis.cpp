@@ -1,0 +1,196 @@
+#include "app/disc_analysis.hpp"
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkIdList.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "post/brazilian.hpp"
+#include "render/plot.hpp"
+#include "render/series.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct Column {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> cols;
+  const std::vector<double>& operator[](const std::string& n) const {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return cols[i];
+    fail("series.csv has no column '{}'", n);
+  }
+};
+
+std::string read_summary(const std::string& run_dir) {
+  std::ifstream f(fs::path(run_dir) / "summary.json");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+double summary_number(const std::string& run_dir, const std::string& key) {
+  const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
+  std::smatch m;
+  const std::string s = read_summary(run_dir);
+  if (!std::regex_search(s, m, re)) fail("'{}/summary.json' has no number '{}'", run_dir, key);
+  return std::stod(m[1]);
+}
+
+namespace {
+
+std::vector<double> summary_list(const std::string& run_dir, const std::string& key) {
+  const std::regex re("\"" + key + "\": \\[([^\\]]*)\\]");
+  std::smatch m;
+  const std::string s = read_summary(run_dir);
+  std::vector<double> out;
+  if (!std::regex_search(s, m, re)) return out;
+  std::stringstream items(m[1].str());
+  for (std::string v; std::getline(items, v, ',');) out.push_back(std::stod(v));
+  return out;
+}
+
+// Loads, splitting strength, stress profile and ledger of one finished run.
+}  // namespace
+
+DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
+  DiscResult r;
+  r.run_dir = run_dir;
+  r.D = c.mesh_num.at("diameter"), r.L = c.mesh_num.at("thickness");
+  for (std::size_t b = 0; b < c.bodies.size(); ++b)
+    if (c.bodies[b].fracture != BodyConfig::Fracture::None)
+      for (std::size_t m = 0; m < c.materials.size(); ++m)
+        if (c.materials[m].name == c.bodies[b].material) r.ft = c.joint_materials[m].ft;
+  DSPDEM_CHECK(c.walls.size() == 2, "{}: dspdem report expects the two plates as [[walls]] (found {})", c.path,
+               c.walls.size());
+  Column s;
+  render::read_csv((fs::path(run_dir) / "series.csv").string(), s.names, s.cols);
+  const auto& t = s["time"];
+  const auto& f_top = s[c.walls[0].wall.name + "_fy"];
+  const auto& f_bot = s[c.walls[1].wall.name + "_fy"];
+  const Real closing_speed = c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm();
+  std::vector<double> P(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) P[i] = 0.5 * (std::abs(f_top[i]) + std::abs(f_bot[i]));
+  const std::size_t ip = static_cast<std::size_t>(std::max_element(P.begin(), P.end()) - P.begin());
+  r.P_peak = P[ip], r.t_peak = t[ip];
+  r.split = post::splitting_stress(r.P_peak, r.D, r.L);
+  r.split_err = r.ft > 0 ? r.split / r.ft - 1 : 0;
+  const auto& broken = s["broken_joints"];
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (broken[i] > 0) {
+      r.t_init = t[i];
+      break;
+    }
+  const auto& bal = s["balance_error"];
+  r.balance_max = *std::max_element(bal.begin(), bal.end());
+  for (const char* k : {"kinetic", "internal", "external_work", "joint_elastic", "fracture_I", "fracture_II"}) {
+    const auto& col = s[k];
+    for (double v : col) r.largest_energy = std::max(r.largest_energy, std::abs(v));
+  }
+  if (write_files) {
+    std::ofstream f(fs::path(run_dir) / "load.csv");
+    f << "time_ms,closure_mm,load_kN\n";
+    for (std::size_t i = 0; i < t.size(); ++i)
+      f << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * t[i], 1e3 * closing_speed * t[i], 1e-3 * P[i]);
+  }
+
+  // Frame for the stress profile: the paper's 33/40.6 of the peak, taken before the first
+  // broken joint (the analytic solution is elastic): when the peak comes late, the last
+  // frame before cracking.
+  const auto frames = render::read_series(run_dir);
+  auto load_at = [&](double time) {
+    std::size_t k = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), time - 1e-15) - t.begin());
+    return P[std::min(k, P.size() - 1)];
+  };
+  Real best = INFINITY;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (frames[i].time > r.t_peak || (r.t_init >= 0 && frames[i].time >= r.t_init)) break;
+    const Real d = std::abs(load_at(frames[i].time) - kProfileFraction * r.P_peak);
+    if (d < best) best = d, r.profile_frame = static_cast<Index>(i);
+  }
+  r.last_frame = static_cast<Index>(frames.size()) - 1;
+  for (std::size_t i = 0; i < frames.size() && r.t_init >= 0; ++i)
+    if (frames[i].time >= r.t_init) {
+      r.init_frame = static_cast<Index>(i);
+      break;
+    }
+  DSPDEM_CHECK(r.profile_frame >= 0, "{}: no frame before the peak load; lower [output] frame_interval", run_dir);
+  r.t_profile = frames[r.profile_frame].time;
+  r.P_profile = load_at(r.t_profile);
+  auto g = render::read_frame(frames[r.profile_frame].file);
+  vtkDataArray* stress = g->GetCellData()->GetArray("stress");
+  DSPDEM_CHECK(stress && stress->GetNumberOfComponents() == 6, "'{}' has no 6-component cell array 'stress'",
+               frames[r.profile_frame].file);
+  // Elements whose centroid lies within half an element size of the loaded diameter
+  // (x = 0, every z), in 16 bins over the central 80 % of it. Each is compared with the
+  // analytic field at its own centroid (an element at x = h/4 near a load point is in the
+  // radial compression of that load, not on the axis), averaged over the same elements.
+  const Real h = c.mesh_num.count("size") ? c.mesh_num.at("size") : 0.05 * r.D;
+  const int nbins = 16;
+  const Real y0 = -0.4 * r.D, dy = 0.8 * r.D / nbins;
+  std::vector<double> sxx(nbins, 0), syy(nbins, 0), axx(nbins, 0), ayy(nbins, 0), ysum(nbins, 0), cnt(nbins, 0);
+  double cxx = 0, cyy = 0, caxx = 0, cayy = 0, ccnt = 0;
+  double fxx = 0, faxx = 0, mxx = 0, maxx = 0;  // end-face and mid-plane layers, |y| < h
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
+    g->GetCellPoints(e, ids);
+    Vec3 cen = Vec3::Zero();
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
+      double p[3];
+      g->GetPoint(ids->GetId(k), p);
+      cen += Vec3(p[0], p[1], p[2]);
+    }
+    cen /= static_cast<Real>(ids->GetNumberOfIds());
+    if (std::abs(cen(0)) > 0.5 * h) continue;
+    const double xx = stress->GetComponent(e, 0), yy = stress->GetComponent(e, 1);
+    const auto a = post::point_load_stress(r.P_profile, r.D, r.L, cen(0), cen(1));
+    if (std::abs(cen(1)) < 0.5 * h) cxx += xx, cyy += yy, caxx += a.xx, cayy += a.yy, ++ccnt;
+    if (std::abs(cen(1)) < h && std::abs(cen(2)) > 0.5 * r.L - 0.5 * h) fxx += xx, faxx += a.xx;
+    if (std::abs(cen(1)) < h && std::abs(cen(2)) < 0.5 * h) mxx += xx, maxx += a.xx;
+    const int b = static_cast<int>(std::floor((cen(1) - y0) / dy));
+    if (b < 0 || b >= nbins) continue;
+    sxx[b] += xx, syy[b] += yy, axx[b] += a.xx, ayy[b] += a.yy, ysum[b] += cen(1), ++cnt[b];
+  }
+  std::vector<double> num_xx, num_yy, ref_xx, ref_yy, ys;
+  for (int b = 0; b < nbins; ++b) {
+    if (cnt[b] == 0) continue;
+    ys.push_back(ysum[b] / cnt[b]);
+    num_xx.push_back(sxx[b] / cnt[b]), num_yy.push_back(syy[b] / cnt[b]);
+    ref_xx.push_back(axx[b] / cnt[b]), ref_yy.push_back(ayy[b] / cnt[b]);
+  }
+  r.l2_xx = post::relative_l2(num_xx, ref_xx), r.l2_yy = post::relative_l2(num_yy, ref_yy);
+  if (ccnt > 0) r.centre_xx = cxx / caxx - 1, r.centre_yy = cyy / cayy - 1;
+  if (faxx > 0) r.face_xx = fxx / faxx - 1;
+  if (maxx > 0) r.mid_xx = mxx / maxx - 1;
+  if (write_files) {
+    std::ofstream fn(fs::path(run_dir) / "profile.csv"), fr(fs::path(run_dir) / "profile_analytic.csv");
+    fn << "y_mm,sigma_xx_MPa,sigma_yy_MPa\n", fr << "y_mm,sigma_xx_MPa,sigma_yy_MPa\n";
+    for (std::size_t i = 0; i < ys.size(); ++i) {
+      fn << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * ys[i], 1e-6 * num_xx[i], 1e-6 * num_yy[i]);
+      fr << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * ys[i], 1e-6 * ref_xx[i], 1e-6 * ref_yy[i]);
+    }
+  }
+  r.fragments = static_cast<int>(summary_number(run_dir, "fragments"));
+  const double total = summary_number(run_dir, "total_mass");
+  for (double m : summary_list(run_dir, "largest_fragment_masses")) r.mass_fractions.push_back(m / total);
+  r.wall_s = summary_number(run_dir, "wall_s");
+  r.steps = static_cast<long>(summary_number(run_dir, "steps"));
+  r.dt = summary_number(run_dir, "dt");
+  return r;
+}
+
+std::string pct(Real x) { return fmt::format("{:+.1f} %", 100 * x); }
+
+}  // namespace dspdem

@@ -1,0 +1,42 @@
+// The Brazilian disc's numbers from one finished run: plate load and splitting strength,
+// sigma_xx and sigma_yy along the loaded diameter against the analytic solution (before
+// the first broken joint), fragments, energy ledger, cost. Used by `dspdem report`.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "io/case_config.hpp"
+
+namespace dspdem {
+
+// The paper plots the stresses along the diameter at 33.0 kN of its 40.6 kN peak.
+constexpr Real kProfileFraction = 33.0 / 40.6;
+
+struct DiscResult {
+  std::string run_dir;
+  Real D = 0, L = 0, ft = 0;
+  Real P_peak = 0, t_peak = 0, split = 0, split_err = 0;
+  Real P_profile = 0, t_profile = 0;
+  Real l2_xx = 0, l2_yy = 0, centre_xx = 0, centre_yy = 0;
+  Real face_xx = 0, mid_xx = 0;  ///< sigma_xx near the centre on the end faces / mid-plane, vs 2D
+  Index profile_frame = -1, init_frame = -1, last_frame = -1;
+  Real t_init = -1;
+  Real balance_max = 0, largest_energy = 0;
+  int fragments = 0;
+  std::vector<double> mass_fractions;
+  double wall_s = 0, dt = 0;
+  long steps = 0;
+};
+
+/// Analyses the run in `run_dir` of case `c`; with `write_files`, also writes load.csv,
+/// profile.csv and profile_analytic.csv there.
+DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files);
+
+/// A number from the run's summary.json (flat keys only); throws naming the key.
+double summary_number(const std::string& run_dir, const std::string& key);
+
+/// "+1.2 %"
+std::string pct(Real x);
+
+}  // namespace dspdem

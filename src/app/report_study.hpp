@@ -1,0 +1,15 @@
+// The speed-against-error sweep of `dspdem report --study`: three mesh sizes at the
+// reference settings, then each knob that trades speed for accuracy moved alone (joint
+// penalty, loading rate, kinematics, joints only in a band, mesh alignment).
+#pragma once
+#include <string>
+
+#include "io/case_config.hpp"
+
+namespace dspdem {
+
+/// Runs every variant of `base` under `dir`/study/<variant>, writes study.csv there and
+/// plots/study.png under `image_dir`; returns the markdown table and the recommendation.
+std::string run_study(const CaseConfig& base, const std::string& dir, const std::string& image_dir);
+
+}  // namespace dspdem
