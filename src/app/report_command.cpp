@@ -57,7 +57,7 @@ int report_command(const ReportArgs& a) {
   plot("series.csv", "time", {"balance_error"}, "", "energy balance error (fraction of the largest term)",
        "balance_error.png");
 
-  const std::string study_md = a.study ? run_study(c, dir, img.string()) : std::string();
+  const std::string study_md = a.study ? run_study(c, r, dir, img.string()) : std::string();
 
   // report.md
   const std::string rel = fs::relative(run_dir, dir).string();

@@ -19,6 +19,7 @@ namespace fs = std::filesystem;
 struct Variant {
   std::string name, knob;
   CaseConfig c;
+  bool reference = false;  ///< the base case itself: its run is reused
 };
 
 // The sweep: three mesh sizes at the reference settings, then each knob moved alone.
@@ -29,6 +30,8 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     Variant x{fmt::format("size_{:.1f}mm", 1e3 * h * f), "mesh size", base};
     x.c.mesh_num["size"] = h * f;
     if (base.mesh_num.count("load_size")) x.c.mesh_num["load_size"] = base.mesh_num.at("load_size") * f;
+    x.reference = f == 1.0;
+    if (x.reference) x.knob = "reference";
     v.push_back(x);
   }
   {
@@ -76,10 +79,15 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
 }
 }  // namespace
 
-std::string run_study(const CaseConfig& base, const std::string& dir, const std::string& image_dir) {
+std::string run_study(const CaseConfig& base, const DiscResult& reference, const std::string& dir,
+                      const std::string& image_dir) {
   std::string study_md;
   std::vector<std::pair<Variant, DiscResult>> rows;
   for (auto& v : study_variants(base)) {
+    if (v.reference) {
+      rows.emplace_back(v, reference);
+      continue;
+    }
     log::info("study: {} ({})", v.name, v.knob);
     RunOptions vo;
     vo.out_dir = (fs::path(dir) / "study" / v.name).string();

@@ -4,12 +4,15 @@
 #pragma once
 #include <string>
 
+#include "app/disc_analysis.hpp"
 #include "io/case_config.hpp"
 
 namespace dspdem {
 
-/// Runs every variant of `base` under `dir`/study/<variant>, writes study.csv there and
-/// plots/study.png under `image_dir`; returns the markdown table and the recommendation.
-std::string run_study(const CaseConfig& base, const std::string& dir, const std::string& image_dir);
+/// Runs every variant of `base` under `dir`/study/<variant> (the reference row reuses
+/// `reference`, the analysed run of `base`), writes study.csv there and plots/study.png
+/// under `image_dir`; returns the markdown table and the recommendation.
+std::string run_study(const CaseConfig& base, const DiscResult& reference, const std::string& dir,
+                      const std::string& image_dir);
 
 }  // namespace dspdem
