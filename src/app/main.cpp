@@ -2,6 +2,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include <cstdlib>
 #include <filesystem>
 
@@ -22,6 +25,11 @@ int main(int argc, char** argv) {
   bool quiet = false, verbose = false;
   app.add_flag("-q,--quiet", quiet, "Only warnings and errors");
   app.add_flag("-v,--verbose", verbose, "Debug output (includes gmsh's log)");
+  int threads = 0;
+  app.add_option("-t,--threads", threads,
+                 "Solver threads (default: OMP_NUM_THREADS, else all cores). Results do not depend on it; "
+                 "use 1 per job when several jobs share a machine")
+      ->check(CLI::Range(0, 4096));
 
   auto* run = app.add_subcommand("run", "Run a case: writes run.pvd, frames/, series.csv, summary.json into --out");
   std::string case_file, out_dir;
@@ -85,9 +93,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const int code = app.exit(e);  // prints help or the message
+    return code == 0 ? 0 : 1;      // README: 1 is a command-line error, whatever CLI11 calls it
   }
   log::set_level(quiet ? log::Level::Quiet : verbose ? log::Level::Debug : log::Level::Info);
+#ifdef _OPENMP
+  if (threads > 0) omp_set_num_threads(threads);
+#endif
 
   try {
     if (*keys) {

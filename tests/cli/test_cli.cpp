@@ -1,5 +1,6 @@
 // End-to-end tests of the dspdem executable: outputs of a good run, bad inputs rejected
 // with a clear message and non-zero exit, earlier results never destroyed.
+#include <fmt/format.h>
 #include <gmsh.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -325,4 +326,31 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   for (std::string l; std::getline(csv, l);) ++lines;
   EXPECT_EQ(lines, 1 + 8);
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
+}
+
+TEST_F(Cli, ThreadCountDoesNotChangeTheResult) {
+  // --threads picks the solver threads; the sums are gathered in a fixed order, so a disc
+  // with joints and plate contact gives a bitwise equal series on 1 and 2 threads.
+  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
+  const std::string opts =
+      " --set mesh.brazilian_disc.size=0.02 --set time.end=2.5e-4 --set output.series_interval=2e-6"
+      " --set walls.0.velocity=[0,-0.2,0] --set walls.1.velocity=[0,0.2,0]";
+  for (int t : {1, 2})
+    ASSERT_EQ(
+        run(fmt::format("-q -t {} run {} --out {}{}", t, disc, (dir_ / fmt::format("t{}", t)).string(), opts)).code, 0);
+  const std::string a = slurp(dir_ / "t1" / "series.csv"), b = slurp(dir_ / "t2" / "series.csv");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(slurp(dir_ / "t2" / "summary.json").find("\"threads\": 2"), std::string::npos);
+  // The plates have reached the disc: the last row has contacts.
+  const std::string last = a.substr(a.rfind('\n', a.size() - 2) + 1);
+  const std::string head = a.substr(0, a.find('\n'));
+  int col = 0;
+  for (std::size_t p = 0; p < head.find("contacts"); ++p) col += head[p] == ',';
+  std::stringstream row(last);
+  std::string cell;
+  for (int k = 0; k <= col; ++k) std::getline(row, cell, ',');
+  EXPECT_GT(std::stod(cell), 0) << head << "\n" << last;
+  const Result bad = run("-t -1 run " + disc);
+  EXPECT_EQ(bad.code, 1) << bad.out;
 }
