@@ -91,7 +91,20 @@ void build_brazilian_disc(const Params& p) {
     field::setNumber(2, "InField", 1);
     field::setNumber(2, "SizeMin", hl), field::setNumber(2, "SizeMax", h);
     field::setNumber(2, "DistMin", 0), field::setNumber(2, "DistMax", D / 4);
-    field::setAsBackgroundMesh(2);
+    field::add("Restrict", 3);  // the disc only: meshed plates keep plate_size
+    field::setNumber(3, "InField", 2);
+    // The disc's volumes, faces and curves (the lines themselves must be refined first).
+    gmsh::vectorpair vd, faces, curves;
+    for (int v : vols) vd.emplace_back(3, v);
+    gmsh::model::getBoundary(vd, faces, false, false, false);
+    gmsh::model::getBoundary(faces, curves, false, false, false);
+    std::vector<double> fl, cl;
+    for (auto [dim, t] : faces) fl.push_back(t);
+    for (auto [dim, t] : curves) cl.push_back(t);
+    field::setNumbers(3, "VolumesList", std::vector<double>(vols.begin(), vols.end()));
+    field::setNumbers(3, "SurfacesList", fl);
+    field::setNumbers(3, "CurvesList", cl);
+    field::setAsBackgroundMesh(3);
   }
   if (plates) set_volume_size({top, bot}, ph);
   gmsh::model::mesh::generate(3);

@@ -171,7 +171,7 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
     ref_xx.push_back(axx[b] / cnt[b]), ref_yy.push_back(ayy[b] / cnt[b]);
   }
   r.l2_xx = post::relative_l2(num_xx, ref_xx), r.l2_yy = post::relative_l2(num_yy, ref_yy);
-  if (ccnt > 0) r.centre_xx = cxx / caxx - 1, r.centre_yy = cyy / cayy - 1;
+  if (ccnt > 0 && caxx != 0 && cayy != 0) r.centre_xx = cxx / caxx - 1, r.centre_yy = cyy / cayy - 1;
   if (faxx > 0) r.face_xx = fxx / faxx - 1;
   if (maxx > 0) r.mid_xx = mxx / maxx - 1;
   if (write_files) {

@@ -94,7 +94,7 @@ int report_command(const ReportArgs& a) {
       "\n\n![profile](run/images/plots/profile.png)\n\n",
       1e-3 * r.P_profile, 100 * r.P_profile / r.P_peak, r.profile_frame, 1e3 * r.t_profile, 100 * r.l2_xx,
       100 * r.l2_yy, pct(r.centre_xx), pct(r.centre_yy), pct(r.face_xx), pct(r.mid_xx),
-      r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t" : "");
+      r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t" : "");
   md += "## Fracture\n\n";
   std::string fr;
   for (std::size_t i = 0; i < std::min<std::size_t>(4, r.mass_fractions.size()); ++i)

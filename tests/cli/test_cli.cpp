@@ -341,6 +341,7 @@ TEST_F(Cli, ThreadCountDoesNotChangeTheResult) {
   const std::string a = slurp(dir_ / "t1" / "series.csv"), b = slurp(dir_ / "t2" / "series.csv");
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, b);
+  EXPECT_NE(slurp(dir_ / "t1" / "summary.json").find("\"threads\": 1"), std::string::npos);
   EXPECT_NE(slurp(dir_ / "t2" / "summary.json").find("\"threads\": 2"), std::string::npos);
   // The plates have reached the disc: the last row has contacts.
   const std::string last = a.substr(a.rfind('\n', a.size() - 2) + 1);
@@ -351,6 +352,6 @@ TEST_F(Cli, ThreadCountDoesNotChangeTheResult) {
   std::string cell;
   for (int k = 0; k <= col; ++k) std::getline(row, cell, ',');
   EXPECT_GT(std::stod(cell), 0) << head << "\n" << last;
-  const Result bad = run("-t -1 run " + disc);
+  const Result bad = run("-t -1 keys");
   EXPECT_EQ(bad.code, 1) << bad.out;
 }
