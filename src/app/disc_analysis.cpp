@@ -39,30 +39,24 @@ std::string read_summary(const std::string& run_dir) {
   return ss.str();
 }
 
-}  // namespace
-
-double summary_number(const std::string& run_dir, const std::string& key) {
+// A number from summary.json's text (flat keys only); throws naming the key.
+double number_in(const std::string& text, const std::string& key, const std::string& run_dir) {
   const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
   std::smatch m;
-  const std::string s = read_summary(run_dir);
-  if (!std::regex_search(s, m, re)) fail("'{}/summary.json' has no number '{}'", run_dir, key);
+  if (!std::regex_search(text, m, re)) fail("'{}/summary.json' has no number '{}'", run_dir, key);
   return std::stod(m[1]);
 }
 
-namespace {
-
-std::vector<double> summary_list(const std::string& run_dir, const std::string& key) {
+std::vector<double> list_in(const std::string& text, const std::string& key) {
   const std::regex re("\"" + key + "\": \\[([^\\]]*)\\]");
   std::smatch m;
-  const std::string s = read_summary(run_dir);
   std::vector<double> out;
-  if (!std::regex_search(s, m, re)) return out;
+  if (!std::regex_search(text, m, re)) return out;
   std::stringstream items(m[1].str());
   for (std::string v; std::getline(items, v, ',');) out.push_back(std::stod(v));
   return out;
 }
 
-// Loads, splitting strength, stress profile and ledger of one finished run.
 }  // namespace
 
 DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
@@ -182,12 +176,16 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       fr << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * ys[i], 1e-6 * ref_xx[i], 1e-6 * ref_yy[i]);
     }
   }
-  r.fragments = static_cast<int>(summary_number(run_dir, "fragments"));
-  const double total = summary_number(run_dir, "total_mass");
-  for (double m : summary_list(run_dir, "largest_fragment_masses")) r.mass_fractions.push_back(m / total);
-  r.wall_s = summary_number(run_dir, "wall_s");
-  r.steps = static_cast<long>(summary_number(run_dir, "steps"));
-  r.dt = summary_number(run_dir, "dt");
+  const std::string summary = read_summary(run_dir);
+  auto number = [&](const char* key) { return number_in(summary, key, run_dir); };
+  r.fragments = static_cast<int>(number("fragments"));
+  const double total = number("total_mass");
+  for (double m : list_in(summary, "largest_fragment_masses")) r.mass_fractions.push_back(m / total);
+  r.wall_s = number("wall_s");
+  r.steps = static_cast<long>(number("steps"));
+  r.dt = number("dt");
+  r.elements = static_cast<long>(number("elements"));
+  r.joints = static_cast<long>(number("joints"));
   return r;
 }
 

@@ -26,15 +26,12 @@ struct DiscResult {
   int fragments = 0;
   std::vector<double> mass_fractions;
   double wall_s = 0, dt = 0;
-  long steps = 0;
+  long steps = 0, elements = 0, joints = 0;
 };
 
 /// Analyses the run in `run_dir` of case `c`; with `write_files`, also writes load.csv,
 /// profile.csv and profile_analytic.csv there.
 DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files);
-
-/// A number from the run's summary.json (flat keys only); throws naming the key.
-double summary_number(const std::string& run_dir, const std::string& key);
 
 /// "+1.2 %"
 std::string pct(Real x);

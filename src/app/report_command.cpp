@@ -67,9 +67,9 @@ int report_command(const ReportArgs& a) {
       "(METHOD.md section 5); analytic reference: refdata/brazilian_analytic.md.\n\n",
       c.path, c.name);
   md += fmt::format(
-      "Disc D = {:.1f} mm, L = {:.1f} mm, {:.0f} elements, {:.0f} joints; plates closing at {:.3g} m/s "
+      "Disc D = {:.1f} mm, L = {:.1f} mm, {} elements, {} joints; plates closing at {:.3g} m/s "
       "in all; input f_t = {:.2f} MPa. Run: {} steps of {:.3g} s, {:.1f} s wall time.\n\n",
-      1e3 * r.D, 1e3 * r.L, summary_number(run_dir, "elements"), summary_number(run_dir, "joints"),
+      1e3 * r.D, 1e3 * r.L, r.elements, r.joints,
       c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm(), 1e-6 * r.ft, r.steps, r.dt,
       r.wall_s);
   md += "## Load and splitting strength\n\n";
