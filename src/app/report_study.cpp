@@ -42,6 +42,13 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     v.push_back(x);
   }
   {
+    const bool nodal = !base.joint_materials.empty() && base.joint_materials.front().nodal_quadrature;
+    Variant x{nodal ? "gauss_joints" : "nodal_joints",
+              nodal ? "Gauss joint quadrature (reference nodal)" : "nodal joint quadrature (reference Gauss)", base};
+    for (auto& jm : x.c.joint_materials) jm.nodal_quadrature = !nodal;
+    v.push_back(x);
+  }
+  {
     Variant x{"rate_x4", "plates 4x faster", base};
     for (auto& w : x.c.walls) w.wall.velocity_target *= 4;
     x.c.t_end /= 4, x.c.frame_interval /= 4, x.c.series_interval /= 4;

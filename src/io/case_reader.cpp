@@ -362,6 +362,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
               s.where("cohesion"), mname, jm.c, cut);
       }
       jm.penalty = s.real("joint_penalty");
+      jm.nodal_quadrature = s.str("joint_quadrature") == "nodal";
       if (s.has("joint_kn")) jm.kn = s.real("joint_kn");
       if (s.has("joint_ks")) jm.ks = s.real("joint_ks");
       contact::ContactMaterial cm;

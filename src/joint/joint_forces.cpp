@@ -4,7 +4,14 @@
 
 namespace dspdem::joint {
 
-int face_quadrature(int npf, double N[4][4], double w[4]) {
+int face_quadrature(int npf, Quadrature rule, double N[4][4], double w[4]) {
+  if (rule == Quadrature::Nodal) {
+    for (int g = 0; g < npf; ++g) {
+      for (int k = 0; k < 4; ++k) N[g][k] = g == k ? 1.0 : 0.0;
+      w[g] = 1.0 / npf;
+    }
+    return npf;
+  }
   if (npf == 3) {
     const double a = 2.0 / 3.0, b = 1.0 / 6.0;
     const double P[3][3] = {{a, b, b}, {b, a, b}, {b, b, a}};
@@ -48,7 +55,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     if (!(nl > 0)) continue;  // collapsed face: nothing sensible to apply (the element check reports it)
     n /= nl;
     double N[4][4], w[4];
-    const int ng = face_quadrature(npf, N, w);
+    const int ng = face_quadrature(npf, js.rule(j), N, w);
     const CohesiveParams& p = js.params[js.param[j]];
     int broken = 0, touched = 0;
     for (int g = 0; g < ng; ++g) {
@@ -93,7 +100,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
 
 Real joint_elastic_energy(const JointSet& js, Index j) {
   double N[4][4], w[4];
-  const int ng = face_quadrature(js.npf[j], N, w);
+  const int ng = face_quadrature(js.npf[j], js.rule(j), N, w);
   const CohesiveParams& p = js.params[js.param[j]];
   Real e = 0;
   for (int g = 0; g < ng; ++g)
@@ -105,7 +112,7 @@ JointTotals joint_totals(const JointSet& js) {
   JointTotals t;
   double N[4][4], w[4];
   for (Index j = 0; j < js.size(); ++j) {
-    const int ng = face_quadrature(js.npf[j], N, w);
+    const int ng = face_quadrature(js.npf[j], js.rule(j), N, w);
     const CohesiveParams& p = js.params[js.param[j]];
     for (int g = 0; g < ng; ++g) {
       const CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];

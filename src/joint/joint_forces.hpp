@@ -1,7 +1,7 @@
 // Joint forces (paper eq. 7): f = integral of N^T t over the joint, by Gauss quadrature on
-// the mid-surface (triangles 3 points, quadrilaterals 2x2), weights from the reference
-// area. The local frame (normal from side A to side B) is taken from the current
-// mid-surface, so rigid rotations neither open nor shear a joint.
+// the mid-surface (triangles 3 points, quadrilaterals 2x2) or at the nodes (the material's
+// joint_quadrature), weights from the reference area. The local frame (normal from side A to side B) is taken from the
+// current mid-surface, so rigid rotations neither open nor shear a joint.
 #pragma once
 #include <vector>
 
@@ -27,7 +27,9 @@ JointTotals joint_totals(const JointSet& js);
 Real joint_elastic_energy(const JointSet& js, Index j);
 
 /// Quadrature of a face: shape values N (per point, per node) and weights (fractions of the
-/// face area). Triangles: 3 points at (2/3, 1/6, 1/6) and permutations; quads: 2x2 Gauss.
-int face_quadrature(int npf, double N[4][4], double w[4]);
+/// face area). Gauss: triangles 3 points at (2/3, 1/6, 1/6) and permutations, quads 2x2.
+/// Nodal: one point at each node, equal weights. Either way npf points, point g stored in
+/// state slot g.
+int face_quadrature(int npf, Quadrature rule, double N[4][4], double w[4]);
 
 }  // namespace dspdem::joint

@@ -13,6 +13,12 @@ namespace dspdem::joint {
 /// All joints of a model. A joint ties face A of element ea (outward normal from A to B) to
 /// the coincident face B of element eb; node k of side A and node k of side B were the
 /// same node before insertion. Triangles (between tet4) and quadrilaterals (between hex8).
+/// Integration of the tractions over a face (eq. 7). Gauss: the paper's (3 interior points
+/// on triangles, 2x2 on quadrilaterals). Nodal (Newton-Cotes): the points are the face's
+/// nodes, which uncouples the node pairs and removes the traction oscillations Gauss
+/// integration shows with a stiff penalty (Schellekens & de Borst 1993, IJNME 36:43).
+enum class Quadrature : char { Gauss = 0, Nodal = 1 };
+
 struct JointSet {
   std::vector<int> npf;       ///< nodes per face: 3 or 4
   std::vector<Index> a, b;    ///< 4 slots per joint (the 4th unused for triangles)
@@ -20,6 +26,7 @@ struct JointSet {
   std::vector<Real> area0;    ///< reference area [m^2]
   std::vector<Index> param;   ///< index into params
   std::vector<CohesiveParams> params;
+  std::vector<Quadrature> quadrature;  ///< parallel to params (empty: Gauss everywhere)
   // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint).
   std::vector<CohesiveState> state;
   std::vector<JointStatus> status;  ///< per joint: Broken once any of its points fails
@@ -32,6 +39,7 @@ struct JointSet {
   std::vector<char> released;
   Real released_energy = 0;
   Index size() const { return static_cast<Index>(npf.size()); }
+  Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };
 
 /// Which faces get joints: interior faces whose two elements are both marked fracturable

@@ -229,6 +229,7 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
         p.tan_phi = std::tan(jm.phi_deg * M_PI / 180.0);
         js.param[j] = static_cast<Index>(js.params.size());
         js.params.push_back(p);
+        js.quadrature.push_back(jm.nodal_quadrature ? joint::Quadrature::Nodal : joint::Quadrature::Gauss);
       }
     }
   }
