@@ -18,7 +18,8 @@ struct DiscResult {
   Real D = 0, L = 0, ft = 0;
   Real P_peak = 0, t_peak = 0, split = 0, split_err = 0;
   Real P_profile = 0, t_profile = 0;
-  Real l2_xx = 0, l2_yy = 0, centre_xx = 0, centre_yy = 0;
+  Real l2_xx = 0, l2_yy = 0, centre_xx = 0, centre_yy = 0;  ///< against the field's element means
+  Real l2_xx_centroid = 0;       ///< sigma_xx against the field at the element centroids instead
   Real face_xx = 0, mid_xx = 0;  ///< sigma_xx near the centre on the end faces / mid-plane, vs 2D
   Index profile_frame = -1, init_frame = -1, last_frame = -1;
   Real t_init = -1;
