@@ -309,22 +309,24 @@ TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
 TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   // The sweep's machinery on a 1083-tet disc for 0.2 ms (too short to load it: this checks
   // the variants run and are tabulated, not their numbers): the reference row reuses the
-  // main run, the eight others run under study/, and study.csv has one row each.
+  // main run, the ten others run under study/, and study.csv has one row for each
+  // fracture run (not the elastic one).
   const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
   const Result r = run("-q report " + disc + " --study --no-render --out " + (dir_ / "rep").string() +
                        " --set mesh.brazilian_disc.size=0.02 --set materials.rock.joint_penalty=30"
                        " --set time.end=2e-4 --set output.frame_interval=5e-5");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
-  for (const char* row : {"| size_32.0mm |", "| size_25.0mm |", "| size_20.0mm | reference |", "| penalty_100 |",
-                          "| gauss_joints |", "| rate_x4 |", "| corotational |", "| band_0.2D |", "| unaligned |"})
+  for (const char* row :
+       {"| size_32.0mm |", "| size_25.0mm |", "| size_20.0mm | reference |", "| penalty_100 |", "| graded_loads |",
+        "| elastic_fine |", "| gauss_joints |", "| rate_x4 |", "| corotational |", "| band_0.2D |", "| unaligned |"})
     EXPECT_NE(md.find(row), std::string::npos) << row;
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "study" / "size_20.0mm"));  // reused, not run again
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "study" / "band_0.2D" / "summary.json"));
   std::ifstream csv(dir_ / "rep" / "study" / "study.csv");
   int lines = 0;
   for (std::string l; std::getline(csv, l);) ++lines;
-  EXPECT_EQ(lines, 1 + 9);
+  EXPECT_EQ(lines, 1 + 10);
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
 }
 
