@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "fem/linear_elastic.hpp"
 #include "io/staging.hpp"
+#include "joint/joint_forces.hpp"
 #include "joint/joint_set.hpp"
 
 namespace dspdem {
@@ -140,7 +141,8 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
     }
     grid->InsertNextCell(npf == 3 ? 5 /*VTK_TRIANGLE*/ : 9 /*VTK_QUAD*/, npf, ids);
     const joint::CohesiveParams& p = js.params[js.param[j]];
-    const int ng = npf;  // 3 points on triangles, 4 on quads
+    double N[4][4], w[4];
+    const int ng = joint::face_quadrature(npf, js.rule(j), N, w);
     Real d = 0, dn = 0, ds = 0;
     for (int g = 0; g < ng; ++g) {
       const joint::CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];

@@ -10,14 +10,16 @@
 
 namespace dspdem::joint {
 
-/// All joints of a model. A joint ties face A of element ea (outward normal from A to B) to
-/// the coincident face B of element eb; node k of side A and node k of side B were the
-/// same node before insertion. Triangles (between tet4) and quadrilaterals (between hex8).
 /// Integration of the tractions over a face (eq. 7). Gauss: the paper's (3 interior points
 /// on triangles, 2x2 on quadrilaterals). Nodal (Newton-Cotes): the points are the face's
 /// nodes, which uncouples the node pairs and removes the traction oscillations Gauss
 /// integration shows with a stiff penalty (Schellekens & de Borst 1993, IJNME 36:43).
+/// Quadrilateral weights are 1/4 either way (exact for parallelogram faces).
 enum class Quadrature : char { Gauss = 0, Nodal = 1 };
+
+/// All joints of a model. A joint ties face A of element ea (outward normal from A to B) to
+/// the coincident face B of element eb; node k of side A and node k of side B were the
+/// same node before insertion. Triangles (between tet4) and quadrilaterals (between hex8).
 
 struct JointSet {
   std::vector<int> npf;       ///< nodes per face: 3 or 4

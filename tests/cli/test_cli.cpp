@@ -321,6 +321,11 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
        {"| size_32.0mm |", "| size_25.0mm |", "| size_20.0mm | reference |", "| penalty_100 |", "| graded_loads |",
         "| elastic_fine |", "| gauss_joints |", "| rate_x4 |", "| corotational |", "| band_0.2D |", "| unaligned |"})
     EXPECT_NE(md.find(row), std::string::npos) << row;
+  const auto row = md.find("| elastic_fine |");
+  ASSERT_NE(row, std::string::npos);
+  EXPECT_NE(md.substr(row, md.find('\n', row) - row).find("| no joints |"), std::string::npos);
+  EXPECT_EQ(md.find("Closest to f_t: elastic_fine"), std::string::npos);
+  EXPECT_EQ(md.find("splits in two: elastic_fine"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "study" / "size_20.0mm"));  // reused, not run again
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "study" / "band_0.2D" / "summary.json"));
   std::ifstream csv(dir_ / "rep" / "study" / "study.csv");

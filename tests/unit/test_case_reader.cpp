@@ -102,6 +102,7 @@ TEST(CaseReader, JointParametersComeTogetherAndStayConsistent) {
   // c = 1 MPa < f_t tan(45 deg) = 3 MPa: no shear strength left at the tension cut-off.
   expect_error(replace(kGood, "nu = 0.2", joint), {":11:", "cohesion", "eq. 5"});
 }
+
 TEST(CaseReader, JointQuadratureIsAChoice) {
   EXPECT_FALSE(read_case(write_case(kGood)).joint_materials[0].nodal_quadrature);  // the paper's Gauss
   EXPECT_TRUE(

@@ -161,7 +161,7 @@ std::pair<Real, Real> traction_scatter(const RelaxedBlock& b) {
     const Vec3 p0 = node_pos(b.m.fem.x0, a[0]);
     const Vec3 n = (node_pos(b.m.fem.x0, a[1]) - p0).cross(node_pos(b.m.fem.x0, a[2]) - p0).normalized();
     const Vec3 mid = (p0 + node_pos(b.m.fem.x0, a[1]) + node_pos(b.m.fem.x0, a[2])) / 3;
-    if ((mid.array() < 0.025).any() || (mid.array() > 0.075).any()) continue;  // away from the loaded faces
+    if ((mid.array() < 0.025 - 1e-9).any() || (mid.array() > 0.075 + 1e-9).any()) continue;  // away from the faces
     const Real exact = 1e6 * n(0) * n(0);
     for (int g = 0; g < js.npf[j]; ++g) {
       const Real d = (js.state[4 * static_cast<std::size_t>(j) + g].sn - exact) / 1e6;
