@@ -59,10 +59,12 @@ std::vector<double> list_in(const std::string& text, const std::string& key) {
 
 }  // namespace
 
-DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
+DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files, Real profile_load) {
   DiscResult r;
   r.run_dir = run_dir;
   r.D = c.mesh_num.at("diameter"), r.L = c.mesh_num.at("thickness");
+  r.mesh_size = c.mesh_num.count("size") ? c.mesh_num.at("size") : 0;
+  r.load_size = c.mesh_num.count("load_size") ? c.mesh_num.at("load_size") : 0;
   for (std::size_t b = 0; b < c.bodies.size(); ++b)
     if (c.bodies[b].fracture != BodyConfig::Fracture::None)
       for (std::size_t m = 0; m < c.materials.size(); ++m)
@@ -108,10 +110,11 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
     std::size_t k = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), time - 1e-15) - t.begin());
     return P[std::min(k, P.size() - 1)];
   };
+  const Real target = profile_load > 0 ? profile_load : kProfileFraction * r.P_peak;
   Real best = INFINITY;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     if (frames[i].time > r.t_peak || (r.t_init >= 0 && frames[i].time >= r.t_init)) break;
-    const Real d = std::abs(load_at(frames[i].time) - kProfileFraction * r.P_peak);
+    const Real d = std::abs(load_at(frames[i].time) - target);
     if (d < best) best = d, r.profile_frame = static_cast<Index>(i);
   }
   r.last_frame = static_cast<Index>(frames.size()) - 1;

@@ -16,6 +16,7 @@ constexpr Real kProfileFraction = 33.0 / 40.6;
 struct DiscResult {
   std::string run_dir;
   Real D = 0, L = 0, ft = 0;
+  Real mesh_size = 0, load_size = 0;  ///< the disc generator's size and load_size (0: uniform)
   Real P_peak = 0, t_peak = 0, split = 0, split_err = 0;
   Real P_profile = 0, t_profile = 0;
   Real l2_xx = 0, l2_yy = 0, centre_xx = 0, centre_yy = 0;  ///< against the field's element means
@@ -31,8 +32,10 @@ struct DiscResult {
 };
 
 /// Analyses the run in `run_dir` of case `c`; with `write_files`, also writes load.csv,
-/// profile.csv and profile_analytic.csv there.
-DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files);
+/// profile.csv and profile_analytic.csv there. The stress profile is taken at the frame whose
+/// load is closest to `profile_load` [N] when it is > 0 (another run's profile load), else
+/// at kProfileFraction of this run's peak.
+DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files, Real profile_load = 0);
 
 /// "+1.2 %"
 std::string pct(Real x);

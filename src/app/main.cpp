@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
   rep->add_flag("--study", rpa.study, "Also run the sweep over mesh sizes and accuracy knobs");
   rep->add_flag("--no-render", rpa.no_render, "Skip the frame images and animations");
   rep->add_option("--from-run", rpa.from_run, "Analyse this finished run of the case instead of running it again");
+  rep->add_flag("--no-stress-check", rpa.no_stress_check,
+                "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
 
   auto* imgdiff =
       app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");

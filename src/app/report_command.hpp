@@ -11,9 +11,10 @@ namespace dspdem {
 struct ReportArgs {
   std::string case_file, out_dir;
   std::vector<std::string> sets;
-  bool study = false;      ///< also run the speed-against-error sweep
-  bool no_render = false;  ///< skip images (numbers and plots only)
-  std::string from_run;    ///< analyse this finished run of the same case instead of running it
+  bool study = false;            ///< also run the speed-against-error sweep
+  bool no_render = false;        ///< skip images (numbers and plots only)
+  std::string from_run;          ///< analyse this finished run of the same case instead of running it
+  bool no_stress_check = false;  ///< skip the elastic run on a load-resolving mesh
 };
 
 int report_command(const ReportArgs& a);

@@ -8,6 +8,7 @@
 
 #include "app/disc_analysis.hpp"
 #include "app/run_command.hpp"
+#include "app/stress_check.hpp"
 #include "core/log.hpp"
 #include "render/plot.hpp"
 
@@ -23,100 +24,116 @@ struct Variant {
   bool elastic = false;    ///< no joints: a stress-field check, no strength
 };
 
-// The sweep: three mesh sizes at the reference settings, then each knob moved alone.
-std::vector<Variant> study_variants(const CaseConfig& base) {
+// "key=value" overrides, numbers written to round-trip.
+std::string set(const std::string& key, Real v) { return fmt::format("{}={:.17g}", key, v); }
+std::string set(const std::string& key, const Vec3& v) {
+  return fmt::format("{}=[{:.17g},{:.17g},{:.17g}]", key, v(0), v(1), v(2));
+}
+std::string set(const std::string& key, const std::string& v) { return fmt::format("{}=\"{}\"", key, v); }
+
+// The sweep: three mesh sizes at the reference settings, then each knob moved alone. Each
+// variant is the case file read again with overrides, so its case.resolved.toml is what ran.
+std::vector<Variant> study_variants(const CaseConfig& base, const DiscResult& reference) {
   std::vector<Variant> v;
+  const std::string mesh = "mesh.brazilian_disc.";
   const Real h = base.mesh_num.at("size");
+  auto add = [&](std::string name, std::string knob, const std::vector<std::string>& sets) {
+    Variant x{std::move(name), std::move(knob), reread_with(base, sets)};
+    v.push_back(std::move(x));
+    return &v.back();
+  };
   for (Real f : {1.6, 1.25, 1.0}) {
-    Variant x{fmt::format("size_{:.1f}mm", 1e3 * h * f), "mesh size", base};
-    x.c.mesh_num["size"] = h * f;
-    if (base.mesh_num.count("load_size")) x.c.mesh_num["load_size"] = base.mesh_num.at("load_size") * f;
-    x.reference = f == 1.0;
-    if (x.reference) x.knob = "reference";
-    v.push_back(x);
+    if (f == 1.0) {
+      v.push_back(Variant{fmt::format("size_{:.1f}mm", 1e3 * h), "reference", base, true});
+      continue;
+    }
+    std::vector<std::string> sets{set(mesh + "size", h * f)};
+    if (base.mesh_num.count("load_size") && base.mesh_num.at("load_size") > 0)
+      sets.push_back(set(mesh + "load_size", base.mesh_num.at("load_size") * f));
+    add(fmt::format("size_{:.1f}mm", 1e3 * h * f), "mesh size", sets);
   }
   if (!base.mesh_num.count("load_size") || base.mesh_num.at("load_size") == 0) {
     // Grading toward the loaded lines: resolves the concentrated load's field (the sigma_xx
     // error sits within 0.2 D of a plate) at the price of a smaller stable step there.
-    Variant x{"graded_loads", fmt::format("mesh graded to {:.1f} mm at the loads (reference: uniform)", 1e3 * 0.46 * h),
-              base};
-    x.c.mesh_num["load_size"] = 0.46 * h;
-    v.push_back(x);
+    add("graded_loads", fmt::format("mesh graded to {:.1f} mm at the loads (reference: uniform)", 1e3 * 0.46 * h),
+        {set(mesh + "load_size", 0.46 * h)});
   }
   {
-    // The elastic field alone on a finer mesh: how fine linear tets must be for sigma_xx to
-    // reach the point-load solution (the bulk mesh matters as well as the loaded lines).
-    // Not a fracture run: no joints, so no strength.
-    Variant x{"elastic_fine",
-              fmt::format("no joints; mesh {:.1f} mm, {:.1f} mm at the loads", 1e3 * 0.66 * h, 1e3 * h / 7.6), base};
-    x.c.mesh_num["size"] = 0.66 * h;
-    x.c.mesh_num["load_size"] = h / 7.6;
-    for (auto& b : x.c.bodies) b.fracture = BodyConfig::Fracture::None;
-    x.elastic = true;
-    v.push_back(x);
+    // The report's stress check (elastic, load-resolving mesh, plates 4x faster): how fine
+    // linear tets must be for sigma_xx to reach the point-load solution. No joints, so no
+    // strength.
+    const CaseConfig cc = stress_check_case(base, reference.t_profile);
+    v.push_back(Variant{"elastic_fine",
+                        fmt::format("no joints; mesh {:.1f} mm, {:.1f} mm at the loads; plates 4x faster (the "
+                                    "stress check)",
+                                    1e3 * cc.mesh_num.at("size"), 1e3 * cc.mesh_num.at("load_size")),
+                        cc, false, true});
   }
   {
     const Real p0 = base.joint_materials.empty() ? 100 : base.joint_materials.front().penalty;
     const Real p1 = p0 >= 100 ? 30 : 100;
-    Variant x{fmt::format("penalty_{:.0f}", p1), fmt::format("joint penalty {:.0f} (reference {:.0f})", p1, p0), base};
-    for (auto& jm : x.c.joint_materials) jm.penalty = p1;
-    v.push_back(x);
+    std::vector<std::string> sets;
+    for (const auto& m : base.materials) sets.push_back(set("materials." + m.name + ".joint_penalty", p1));
+    add(fmt::format("penalty_{:.0f}", p1), fmt::format("joint penalty {:.0f} (reference {:.0f})", p1, p0), sets);
   }
   {
     const bool nodal = !base.joint_materials.empty() && base.joint_materials.front().nodal_quadrature;
-    Variant x{nodal ? "gauss_joints" : "nodal_joints",
-              nodal ? "Gauss joint quadrature (reference nodal)" : "nodal joint quadrature (reference Gauss)", base};
-    for (auto& jm : x.c.joint_materials) jm.nodal_quadrature = !nodal;
-    v.push_back(x);
+    std::vector<std::string> sets;
+    for (const auto& m : base.materials)
+      sets.push_back(set("materials." + m.name + ".joint_quadrature", std::string(nodal ? "gauss" : "nodal")));
+    add(nodal ? "gauss_joints" : "nodal_joints",
+        nodal ? "Gauss joint quadrature (reference nodal)" : "nodal joint quadrature (reference Gauss)", sets);
   }
   {
-    Variant x{"rate_x4", "plates 4x faster", base};
-    for (auto& w : x.c.walls) w.wall.velocity_target *= 4;
-    x.c.t_end /= 4, x.c.frame_interval /= 4, x.c.series_interval /= 4;
-    v.push_back(x);
+    std::vector<std::string> sets{set("time.end", base.t_end / 4),
+                                  set("output.frame_interval", base.frame_interval / 4),
+                                  set("output.series_interval", base.series_interval / 4)};
+    for (std::size_t i = 0; i < base.walls.size(); ++i)
+      sets.push_back(set(fmt::format("walls.{}.velocity", i), Vec3(4 * base.walls[i].wall.velocity_target)));
+    add("rate_x4", "plates 4x faster", sets);
   }
   {
     const bool coro = !base.bodies.empty() && base.bodies.front().kinematics == Kinematics::Corotational;
-    Variant x{coro ? "small_strain" : "corotational",
-              coro ? "small-strain update (reference corotational)" : "corotational update (reference small strain)",
-              base};
-    for (auto& b : x.c.bodies) b.kinematics = coro ? Kinematics::SmallStrain : Kinematics::Corotational;
-    v.push_back(x);
+    std::vector<std::string> sets;
+    for (std::size_t i = 0; i < base.bodies.size(); ++i)
+      sets.push_back(set(fmt::format("bodies.{}.kinematics", i), std::string(coro ? "small_strain" : "corotational")));
+    add(coro ? "small_strain" : "corotational",
+        coro ? "small-strain update (reference corotational)" : "corotational update (reference small strain)", sets);
   }
   {
     // Joints only in a central band of 0.2 D: the rest of the disc is one continuum (fewer
     // joints and nodes, a larger stable step where the joints limited it).
-    Variant x{"band_0.2D", "joints only in the band |x| < 0.1 D (reference: everywhere)", base};
-    x.c.mesh_num["band_width"] = 0.2 * base.mesh_num.at("diameter");
-    for (auto& b : x.c.bodies)
-      if (b.fracture != BodyConfig::Fracture::None)
-        b.fracture = BodyConfig::Fracture::Groups, b.fracture_groups = {"disc_band"};
-    v.push_back(x);
+    std::vector<std::string> sets{set(mesh + "band_width", 0.2 * base.mesh_num.at("diameter"))};
+    for (std::size_t i = 0; i < base.bodies.size(); ++i)
+      if (base.bodies[i].fracture != BodyConfig::Fracture::None) {
+        sets.push_back(set(fmt::format("bodies.{}.fracture", i), std::string("groups")));
+        sets.push_back(fmt::format("bodies.{}.fracture_groups=[\"disc_band\"]", i));
+      }
+    add("band_0.2D", "joints only in the band |x| < 0.1 D (reference: everywhere)", sets);
   }
   {
     const bool split = base.mesh_num.count("split_plane") && base.mesh_num.at("split_plane") != 0;
-    Variant x{split ? "unaligned" : "split_plane",
-              split ? "mesh not aligned with the loaded diameter (reference: split_plane)"
-                    : "loaded diametral plane in the mesh (reference: unaligned)",
-              base};
-    x.c.mesh_num["split_plane"] = split ? 0 : 1;
-    if (split) x.c.t_end *= 2;  // the unaligned disc is about twice as strong: it peaks later
-    v.push_back(x);
+    std::vector<std::string> sets{set(mesh + "split_plane", split ? 0.0 : 1.0)};
+    if (split) sets.push_back(set("time.end", 2 * base.t_end));  // about twice as strong: it peaks later
+    add(split ? "unaligned" : "split_plane",
+        split ? "mesh not aligned with the loaded diameter (reference: split_plane)"
+              : "loaded diametral plane in the mesh (reference: unaligned)",
+        sets);
   }
   return v;
 }
 }  // namespace
 
-std::string run_study(const CaseConfig& base, const DiscResult& reference, const std::string& dir,
-                      const std::string& image_dir) {
+std::string run_study(const CaseConfig& base, const DiscResult& reference, const DiscResult* check,
+                      const std::string& dir, const std::string& image_dir) {
   std::string study_md;
   std::vector<std::pair<Variant, DiscResult>> rows;
   // A variant that fails (bad derived parameter, no frame before its peak, numerical
   // trouble) gets a row saying why; the others and the main report are kept.
   std::vector<std::string> failed;
-  for (auto& v : study_variants(base)) {
-    if (v.reference) {
-      rows.emplace_back(v, reference), failed.emplace_back();
+  for (auto& v : study_variants(base, reference)) {
+    if (v.reference || (v.elastic && check)) {
+      rows.emplace_back(v, v.reference ? reference : *check), failed.emplace_back();
       continue;
     }
     log::info("study: {} ({})", v.name, v.knob);
@@ -124,7 +141,9 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
     vo.out_dir = (fs::path(dir) / "study" / v.name).string();
     try {
       run_case(v.c, vo);
-      rows.emplace_back(v, analyse_disc_run(v.c, vo.out_dir, false)), failed.emplace_back();
+      // The elastic row's profile at the reference's profile load, as in the stress check.
+      rows.emplace_back(v, analyse_disc_run(v.c, vo.out_dir, false, v.elastic ? reference.P_profile : 0));
+      failed.emplace_back();
     } catch (const std::exception& e) {
       log::warn("study: {} failed: {}", v.name, e.what());
       rows.emplace_back(v, DiscResult{}), failed.emplace_back(e.what());

@@ -109,12 +109,17 @@ struct CaseConfig {
   RenderConfig render;
   // checks
   Real energy_blowup_factor = 10;
-  std::string resolved_toml;  ///< the case with every default filled in
+  std::string resolved_toml;           ///< the case with every default filled in
+  std::vector<std::string> overrides;  ///< the "section.key=value" strings it was read with
 };
 
 /// Reads and validates a case. `overrides` are "section.key=value" strings (values in TOML
 /// syntax; bare words are taken as strings). Throws Error with file, line and key.
 CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// `base` read again from its file with its own overrides and then `extra`: a variant whose
+/// case.resolved.toml says what it ran (a copy edited in memory would carry base's text).
+CaseConfig reread_with(const CaseConfig& base, const std::vector<std::string>& extra);
 
 /// The schema as a Markdown table (for `dspdem keys` and cases/README.md).
 std::string case_schema_markdown();

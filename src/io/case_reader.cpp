@@ -269,6 +269,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
 
   CaseConfig c;
   c.path = path;
+  c.overrides = overrides;
   c.dir = fs::absolute(path).parent_path().string();
   {
     Section s(ctx, sub_table(ctx, root, "case"), "case", "[case]");
@@ -601,6 +602,12 @@ std::string case_schema_markdown() {
                        k.def ? fmt::format("`{}`", k.def) : "required", range, k.unit, k.doc);
   }
   return out;
+}
+
+CaseConfig reread_with(const CaseConfig& base, const std::vector<std::string>& extra) {
+  std::vector<std::string> all = base.overrides;
+  all.insert(all.end(), extra.begin(), extra.end());
+  return read_case(base.path, all);
 }
 
 }  // namespace dspdem

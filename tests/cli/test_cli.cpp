@@ -307,14 +307,15 @@ TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
 }
 
 TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
-  // The sweep's machinery on a 1083-tet disc for 0.2 ms (too short to load it: this checks
+  // The sweep's machinery on a 1083-tet disc for 0.2 ms with plates 10x faster (this checks
   // the variants run and are tabulated, not their numbers): the reference row reuses the
-  // main run, the ten others run under study/, and study.csv has one row for each
-  // fracture run (not the elastic one).
+  // main run, the elastic row the stress check (run under stress_check/ on a finer mesh),
+  // the nine others run under study/, and study.csv has one row for each fracture run.
   const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
   const Result r = run("-q report " + disc + " --study --no-render --out " + (dir_ / "rep").string() +
                        " --set mesh.brazilian_disc.size=0.02 --set materials.rock.joint_penalty=30"
-                       " --set time.end=2e-4 --set output.frame_interval=5e-5");
+                       " --set time.end=2e-4 --set output.frame_interval=2e-5"
+                       " --set walls.0.velocity=[0,-0.2,0] --set walls.1.velocity=[0,0.2,0]");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
   for (const char* row :
@@ -327,12 +328,29 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   EXPECT_EQ(md.find("Closest to f_t: elastic_fine"), std::string::npos);
   EXPECT_EQ(md.find("splits in two: elastic_fine"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "study" / "size_20.0mm"));  // reused, not run again
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / "study" / "elastic_fine"));
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "stress_check" / "profile.csv"));
+  EXPECT_NE(md.find("### Stress check on a mesh that resolves the loads"), std::string::npos);
+  const std::string check = slurp(dir_ / "rep" / "stress_check" / "summary.json");
+  EXPECT_NE(check.find("\"joints\": 0"), std::string::npos) << check;
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "study" / "band_0.2D" / "summary.json"));
   std::ifstream csv(dir_ / "rep" / "study" / "study.csv");
   int lines = 0;
   for (std::string l; std::getline(csv, l);) ++lines;
   EXPECT_EQ(lines, 1 + 10);
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
+}
+
+TEST_F(Cli, ReportWithoutStressCheckRunsTheSceneOnly) {
+  // --no-stress-check: the report has the scene's profile and no check section or folder.
+  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
+  const Result r = run("-q report " + disc + " --no-stress-check --no-render --out " + (dir_ / "rep").string() +
+                       " --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string md = slurp(dir_ / "rep" / "report.md");
+  EXPECT_NE(md.find("## Stresses along the loaded diameter"), std::string::npos);
+  EXPECT_EQ(md.find("Stress check"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / "stress_check"));
 }
 
 TEST_F(Cli, ThreadCountDoesNotChangeTheResult) {

@@ -111,4 +111,18 @@ TEST(CaseReader, JointQuadratureIsAChoice) {
                {":9:", "'joint_quadrature'", "gauss|nodal"});
 }
 
+TEST(CaseReader, RereadKeepsItsOverridesAndAddsMore) {
+  // A study variant is its base read again with the base's overrides and then its own; its
+  // resolved text (written as case.resolved.toml) must carry both, later ones winning.
+  const CaseConfig base = read_case(write_case(kGood), {"materials.rock.joint_penalty=30", "time.end=2e-3"});
+  const CaseConfig v = reread_with(base, {"materials.rock.joint_quadrature=\"nodal\"", "time.end=5e-4"});
+  EXPECT_EQ(v.joint_materials[0].penalty, 30.0);
+  EXPECT_TRUE(v.joint_materials[0].nodal_quadrature);
+  EXPECT_EQ(v.t_end, 5e-4);
+  EXPECT_EQ(base.t_end, 2e-3);
+  EXPECT_EQ(v.overrides.size(), 4u);
+  EXPECT_NE(v.resolved_toml.find("nodal"), std::string::npos);
+  EXPECT_EQ(base.resolved_toml.find("nodal"), std::string::npos);
+}
+
 TEST(CaseReader, MissingFile) { EXPECT_THROW(read_case("/nonexistent/case.toml"), Error); }

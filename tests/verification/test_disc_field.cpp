@@ -1,0 +1,64 @@
+// The elastic field of the Brazilian disc scene against the point-load solution (paper
+// eqs. 24-25, refdata/brazilian_analytic.md), on the report's stress-check mesh: the check
+// that `dspdem report` runs beside the scene. The scene's own mesh (7.6 mm linear tets) is
+// too coarse near the plates for this; the check's case is built from the scene's file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "app/disc_analysis.hpp"
+#include "app/run_command.hpp"
+#include "app/stress_check.hpp"
+#include "io/case_config.hpp"
+
+using namespace dspdem;
+namespace fs = std::filesystem;
+
+namespace {
+CaseConfig scene() { return read_case(std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml", {}); }
+}  // namespace
+
+TEST(DiscField, StressCheckCaseChangesOnlyMeshJointsAndRate) {
+  const CaseConfig s = scene();
+  const Real t = 2.1e-3;
+  const CaseConfig c = stress_check_case(s, t);
+  EXPECT_NEAR(c.mesh_num.at("size"), 0.66 * s.mesh_num.at("size"), 1e-12);
+  EXPECT_NEAR(c.mesh_num.at("load_size"), s.mesh_num.at("size") / 7.6, 1e-12);
+  EXPECT_EQ(c.mesh_num.at("diameter"), s.mesh_num.at("diameter"));
+  EXPECT_EQ(c.mesh_num.at("split_plane"), s.mesh_num.at("split_plane"));
+  for (const auto& b : c.bodies) EXPECT_EQ(b.fracture, BodyConfig::Fracture::None);
+  ASSERT_EQ(c.walls.size(), s.walls.size());
+  for (std::size_t i = 0; i < c.walls.size(); ++i)
+    EXPECT_TRUE(c.walls[i].wall.velocity_target.isApprox(4 * s.walls[i].wall.velocity_target));
+  EXPECT_NEAR(c.t_end, 1.25 * t / 4, 1e-15);
+  EXPECT_NEAR(c.frame_interval, s.frame_interval / 4, 1e-15);
+  EXPECT_EQ(c.materials.size(), s.materials.size());
+  EXPECT_EQ(c.contact.enabled, s.contact.enabled);
+  EXPECT_NE(c.resolved_toml.find("fracture = 'none'"), std::string::npos);
+}
+
+TEST(DiscField, SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh) {
+  // The acceptance: sigma_xx along the loaded diameter within 5 % L2 of the
+  // analytic solution before cracking (over the central 80 %, 16 bins, each element against
+  // the field's mean over it). Measured 2.7 % (sigma_yy 1.5 %) at 27.3 kN, in 141 s on
+  // 2 cores; the scene's 7.6 mm mesh gives about 24 %. Over meshes of this kind it was
+  // 2.7-4.6 %: the tolerance is the 5 %, not a fit to this run. The check loads to the scene's closure at 2.1
+  // ms and is read at 81 % of its last load, as the paper reads 33.0 of 40.6 kN.
+  const CaseConfig c = stress_check_case(scene(), 2.1e-3);
+  const fs::path dir = fs::temp_directory_path() / "dspdem_test_disc_field";
+  fs::remove_all(dir);
+  RunOptions o;
+  o.out_dir = dir.string();
+  ASSERT_EQ(run_case(c, o), 0);
+  const DiscResult r = analyse_disc_run(c, o.out_dir, false);
+  RecordProperty("l2_xx_pct", std::to_string(100 * r.l2_xx));
+  RecordProperty("l2_yy_pct", std::to_string(100 * r.l2_yy));
+  RecordProperty("P_profile_kN", std::to_string(1e-3 * r.P_profile));
+  EXPECT_GT(r.P_profile, 20e3);  // loaded well into the range the paper plots (33 kN)
+  EXPECT_EQ(r.joints, 0);
+  EXPECT_LT(r.l2_xx, 0.05);
+  EXPECT_LT(r.l2_yy, 0.05);
+  EXPECT_LT(std::abs(r.centre_xx), 0.05);
+  EXPECT_LT(std::abs(r.centre_yy), 0.05);
+  fs::remove_all(dir);
+}
