@@ -26,6 +26,7 @@ CaseConfig stress_check_case(const CaseConfig& scene, Real t_target) {
   for (std::size_t i = 0; i < scene.walls.size(); ++i) {
     const Vec3 u = rate * scene.walls[i].wall.velocity_target;
     sets.push_back(fmt::format("walls.{}.velocity=[{:.17g},{:.17g},{:.17g}]", i, u(0), u(1), u(2)));
+    sets.push_back(num(fmt::format("walls.{}.ramp", i), scene.walls[i].wall.ramp / rate));
   }
   return reread_with(scene, sets);
 }

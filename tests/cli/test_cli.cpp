@@ -341,6 +341,22 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
 }
 
+TEST_F(Cli, ReportStudyOfARunThatNeverLoadsStillWritesTheReport) {
+  // Plates too slow to reach the disc in 0.2 ms: no profile load, so the stress check is
+  // skipped (and said so) and the study's elastic row fails with a reason; the other rows
+  // and report.md are still written.
+  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
+  const Result r = run("-q report " + disc + " --study --no-render --out " + (dir_ / "rep").string() +
+                       " --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string md = slurp(dir_ / "rep" / "report.md");
+  EXPECT_NE(md.find("Stress check skipped"), std::string::npos);
+  EXPECT_NE(md.find("| elastic_fine | "), std::string::npos);
+  const auto row = md.find("| elastic_fine | ");
+  EXPECT_NE(md.substr(row, md.find('\n', row) - row).find("failed:"), std::string::npos);
+  EXPECT_NE(md.find("| band_0.2D | "), std::string::npos);
+}
+
 TEST_F(Cli, ReportWithoutStressCheckRunsTheSceneOnly) {
   // --no-stress-check: the report has the scene's profile and no check section or folder.
   const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";

@@ -149,6 +149,25 @@ TEST(Generators, BrazilianDiscSplitPlaneAndBand) {
   EXPECT_GT(centre / n_centre, 0.7 * 0.0076);
 }
 
+TEST(Generators, FirstAndCachedRunsGetTheSameMesh) {
+  // A cold cache generates and writes the mesh, a warm one reads it: both runs must see the
+  // same coordinates, bit for bit (the file has fewer digits than gmsh's memory), or the
+  // same case gives a different result the second time.
+  const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_cache_test";
+  fs::remove_all(dir);
+  const auto p = params("brazilian_disc", {"size=0.03", "plate_size=0.03"});
+  bool cached = true;
+  const Mesh first = meshing::load_or_generate(p, dir.string(), &cached);
+  EXPECT_FALSE(cached);
+  const Mesh second = meshing::load_or_generate(p, dir.string(), &cached);
+  EXPECT_TRUE(cached);
+  ASSERT_EQ(first.x.size(), second.x.size());
+  EXPECT_TRUE(first.x == second.x);
+  ASSERT_EQ(first.blocks.size(), second.blocks.size());
+  for (std::size_t b = 0; b < first.blocks.size(); ++b) EXPECT_TRUE(first.blocks[b].conn == second.blocks[b].conn);
+  fs::remove_all(dir);
+}
+
 TEST(Generators, SpherePlate) {
   const Mesh m = meshing::generate(params("sphere_plate"));
   expect_groups(m, {"sphere", "plate", "plate_top", "plate_bottom"});

@@ -15,12 +15,15 @@ using namespace dspdem;
 namespace fs = std::filesystem;
 
 namespace {
+// The scene's profile frame, from its run (`dspdem report cases/brazilian_disc.toml`: frame
+// 21, t = 2.1 ms, 29.03 kN, 82 % of its 35.60 kN peak): the report gives the check these.
+constexpr Real kSceneProfileTime = 2.1e-3, kSceneProfileLoad = 29.03e3;
 CaseConfig scene() { return read_case(std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml", {}); }
 }  // namespace
 
 TEST(DiscField, StressCheckCaseChangesOnlyMeshJointsAndRate) {
   const CaseConfig s = scene();
-  const Real t = 2.1e-3;
+  const Real t = kSceneProfileTime;
   const CaseConfig c = stress_check_case(s, t);
   EXPECT_NEAR(c.mesh_num.at("size"), 0.66 * s.mesh_num.at("size"), 1e-12);
   EXPECT_NEAR(c.mesh_num.at("load_size"), s.mesh_num.at("size") / 7.6, 1e-12);
@@ -40,22 +43,21 @@ TEST(DiscField, StressCheckCaseChangesOnlyMeshJointsAndRate) {
 TEST(DiscField, SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh) {
   // The acceptance: sigma_xx along the loaded diameter within 5 % L2 of the
   // analytic solution before cracking (over the central 80 %, 16 bins, each element against
-  // the field's mean over it). Measured 2.7 % (sigma_yy 1.5 %) at 27.3 kN, in 141 s on
-  // 2 cores; the scene's 7.6 mm mesh gives about 24 %. Over meshes of this kind it was
-  // 2.7-4.6 %: the tolerance is the 5 %, not a fit to this run. The check loads
-  // to 1.25x the scene's closure at 2.1 ms and is read at 81 % of its last load, as the
-  // paper reads 33.0 of 40.6 kN.
-  const CaseConfig c = stress_check_case(scene(), 2.1e-3);
+  // the field's mean over it), read as the report reads it: at the scene's profile load.
+  // Measured 3.6 % (sigma_yy 1.8 %) in the report's run; the scene's 7.6 mm mesh gives
+  // about 24 %. Over meshes of this kind it was 2.7-4.6 %: the tolerance is the issue's
+  // 5 %, not a fit to this run.
+  const CaseConfig c = stress_check_case(scene(), kSceneProfileTime);
   const fs::path dir = fs::temp_directory_path() / "dspdem_test_disc_field";
   fs::remove_all(dir);
   RunOptions o;
   o.out_dir = dir.string();
   ASSERT_EQ(run_case(c, o), 0);
-  const DiscResult r = analyse_disc_run(c, o.out_dir, false);
+  const DiscResult r = analyse_disc_run(c, o.out_dir, false, kSceneProfileLoad);
   RecordProperty("l2_xx_pct", std::to_string(100 * r.l2_xx));
   RecordProperty("l2_yy_pct", std::to_string(100 * r.l2_yy));
   RecordProperty("P_profile_kN", std::to_string(1e-3 * r.P_profile));
-  EXPECT_GT(r.P_profile, 20e3);  // loaded well into the range the paper plots (33 kN)
+  EXPECT_NEAR(r.P_profile / kSceneProfileLoad, 1.0, 0.05);  // a frame near the target load
   EXPECT_EQ(r.joints, 0);
   EXPECT_LT(r.l2_xx, 0.05);
   EXPECT_LT(r.l2_yy, 0.05);
