@@ -33,7 +33,7 @@ std::string set(const std::string& key, const std::string& v) { return fmt::form
 
 // The sweep: three mesh sizes at the reference settings, then each knob moved alone. Each
 // variant is the case file read again with overrides, so its case.resolved.toml is what ran.
-std::vector<Variant> study_variants(const CaseConfig& base, const DiscResult& reference) {
+std::vector<Variant> study_variants(const CaseConfig& base) {
   std::vector<Variant> v;
   const std::string mesh = "mesh.brazilian_disc.";
   const Real h = base.mesh_num.at("size");
@@ -134,7 +134,7 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
   // A variant that fails (bad derived parameter, no frame before its peak, numerical
   // trouble) gets a row saying why; the others and the main report are kept.
   std::vector<std::string> failed;
-  for (auto& v : study_variants(base, reference)) {
+  for (auto& v : study_variants(base)) {
     if (v.reference || (v.elastic && check)) {
       rows.emplace_back(v, v.reference ? reference : *check), failed.emplace_back();
       continue;
