@@ -297,3 +297,39 @@ TEST(Joints, NodesSplitWithoutAJointAreCounted) {
   EXPECT_EQ(rep.split_without_joint, 2);
   EXPECT_EQ(m.n_nodes(), 8);
 }
+
+TEST(Joints, FaceQuadratureWeightsAndShapeValues) {
+  // Both rules, both faces: weights are fractions of the face area (sum 1), the shape values
+  // at every point sum to 1, and a field linear over the face integrates exactly (its mean
+  // is the mean of its nodal values). Nodal puts each point on its node (N = identity).
+  // The price of nodal: it is exact only to degree 1 on triangles, where the 3-point Gauss
+  // rule is exact to degree 2 (mean of lambda_1^2 over a triangle: 1/6; nodal gives 1/3).
+  for (int npf : {3, 4}) {
+    for (joint::Quadrature rule : {joint::Quadrature::Gauss, joint::Quadrature::Nodal}) {
+      double N[4][4], w[4];
+      const int ng = joint::face_quadrature(npf, rule, N, w);
+      ASSERT_EQ(ng, npf);
+      double wsum = 0, mean = 0;
+      const double f[4] = {1.0, -2.0, 3.5, 0.5};  // nodal values of a field (linear on the face)
+      for (int g = 0; g < ng; ++g) {
+        wsum += w[g];
+        double nsum = 0, fg = 0;
+        for (int k = 0; k < npf; ++k) nsum += N[g][k], fg += N[g][k] * f[k];
+        EXPECT_NEAR(nsum, 1.0, 1e-14) << npf << " " << g;
+        mean += w[g] * fg;
+        if (rule == joint::Quadrature::Nodal) {
+          for (int k = 0; k < npf; ++k) EXPECT_EQ(N[g][k], g == k ? 1.0 : 0.0);
+        }
+      }
+      EXPECT_NEAR(wsum, 1.0, 1e-14);
+      double exact = 0;
+      for (int k = 0; k < npf; ++k) exact += f[k] / npf;  // exact mean of the interpolated field
+      EXPECT_NEAR(mean, exact, 1e-14) << npf;
+      if (npf == 3) {
+        double q = 0;
+        for (int g = 0; g < ng; ++g) q += w[g] * N[g][0] * N[g][0];
+        EXPECT_NEAR(q, rule == joint::Quadrature::Gauss ? 1.0 / 6.0 : 1.0 / 3.0, 1e-14);
+      }
+    }
+  }
+}
