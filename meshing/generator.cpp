@@ -196,9 +196,7 @@ Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cache
   // will: the in-memory mesh carries more digits than the file, and the same input must give
   // the same result whether the cache was warm or not.
   generate(p, file.string());
-  Mesh m = read_gmsh(file.string());
-  if (cached) *cached = false;
-  return m;
+  return read_gmsh(file.string());
 }
 
 void add_group(int dim, const std::vector<int>& tags, const std::string& name) {

@@ -63,8 +63,6 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
   DiscResult r;
   r.run_dir = run_dir;
   r.D = c.mesh_num.at("diameter"), r.L = c.mesh_num.at("thickness");
-  r.mesh_size = c.mesh_num.count("size") ? c.mesh_num.at("size") : 0;
-  r.load_size = c.mesh_num.count("load_size") ? c.mesh_num.at("load_size") : 0;
   for (std::size_t b = 0; b < c.bodies.size(); ++b)
     if (c.bodies[b].fracture != BodyConfig::Fracture::None)
       for (std::size_t m = 0; m < c.materials.size(); ++m)

@@ -16,7 +16,6 @@ constexpr Real kProfileFraction = 33.0 / 40.6;
 struct DiscResult {
   std::string run_dir;
   Real D = 0, L = 0, ft = 0;
-  Real mesh_size = 0, load_size = 0;  ///< the disc generator's size and load_size (0: uniform)
   Real P_peak = 0, t_peak = 0, split = 0, split_err = 0;
   Real P_profile = 0, t_profile = 0;
   Real l2_xx = 0, l2_yy = 0, centre_xx = 0, centre_yy = 0;  ///< against the field's element means

@@ -61,6 +61,7 @@ int report_command(const ReportArgs& a) {
 
   // The field check on a load-resolving mesh, at the scene's profile load.
   DiscResult check;
+  CaseConfig check_case;
   // A run too short to load the disc (profile at t = 0) has nothing to check; a check that
   // fails is reported, and the scene's report is still written.
   std::string check_note;
@@ -70,7 +71,8 @@ int report_command(const ReportArgs& a) {
   const fs::path check_dir = fs::path(dir) / "stress_check";
   if (checked) {
     try {
-      check = run_stress_check(c, r.P_profile, r.t_profile, check_dir.string());
+      check_case = stress_check_case(c, r.t_profile);
+      check = run_stress_check(check_case, r.P_profile, check_dir.string());
     } catch (const std::exception& e) {
       checked = false;
       check_note = fmt::format("Stress check failed: {}", e.what());
@@ -150,9 +152,9 @@ int report_command(const ReportArgs& a) {
         "wall time. At P = {:.2f} kN (frame {}, t = {:.3f} ms), measured as above: L2 error sigma_xx {:.1f} %, "
         "sigma_yy {:.1f} % (sigma_xx against the centroid values: {:.1f} %); at the centre sigma_xx {}, sigma_yy "
         "{}.\n\n![profile, stress check](run/images/plots/profile_check.png)\n\n",
-        r.elements, 1e3 * check.mesh_size, 1e3 * check.load_size, check.elements, load_ratio, check.wall_s,
-        1e-3 * check.P_profile, check.profile_frame, 1e3 * check.t_profile, 100 * check.l2_xx, 100 * check.l2_yy,
-        100 * check.l2_xx_centroid, pct(check.centre_xx), pct(check.centre_yy));
+        r.elements, 1e3 * check_case.mesh_num.at("size"), 1e3 * check_case.mesh_num.at("load_size"), check.elements,
+        load_ratio, check.wall_s, 1e-3 * check.P_profile, check.profile_frame, 1e3 * check.t_profile, 100 * check.l2_xx,
+        100 * check.l2_yy, 100 * check.l2_xx_centroid, pct(check.centre_xx), pct(check.centre_yy));
   }
   if (!check_note.empty()) md += check_note + "\n\n";
   md += "## Fracture\n\n";

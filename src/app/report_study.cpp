@@ -24,13 +24,6 @@ struct Variant {
   bool elastic = false;           ///< the stress check's case: no joints, no strength
 };
 
-// "key=value" overrides, numbers written to round-trip.
-std::string set(const std::string& key, Real v) { return fmt::format("{}={:.17g}", key, v); }
-std::string set(const std::string& key, const Vec3& v) {
-  return fmt::format("{}=[{:.17g},{:.17g},{:.17g}]", key, v(0), v(1), v(2));
-}
-std::string set(const std::string& key, const std::string& v) { return fmt::format("{}=\"{}\"", key, v); }
-
 // The sweep: three mesh sizes at the reference settings, then each knob moved alone. Each
 // variant is the case file read again with overrides, so its case.resolved.toml is what ran.
 std::vector<Variant> study_variants(const CaseConfig& base) {
@@ -45,16 +38,16 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
       v.push_back(Variant{fmt::format("size_{:.1f}mm", 1e3 * h), "reference", {}, true});
       continue;
     }
-    std::vector<std::string> sets{set(mesh + "size", h * f)};
+    std::vector<std::string> sets{override_of(mesh + "size", h * f)};
     if (base.mesh_num.count("load_size") && base.mesh_num.at("load_size") > 0)
-      sets.push_back(set(mesh + "load_size", base.mesh_num.at("load_size") * f));
+      sets.push_back(override_of(mesh + "load_size", base.mesh_num.at("load_size") * f));
     add(fmt::format("size_{:.1f}mm", 1e3 * h * f), "mesh size", sets);
   }
   if (!base.mesh_num.count("load_size") || base.mesh_num.at("load_size") == 0) {
     // Grading toward the loaded lines: resolves the concentrated load's field (the sigma_xx
     // error sits within 0.2 D of a plate) at the price of a smaller stable step there.
     add("graded_loads", fmt::format("mesh graded to {:.1f} mm at the loads (reference: uniform)", 1e3 * 0.46 * h),
-        {set(mesh + "load_size", 0.46 * h)});
+        {override_of(mesh + "load_size", 0.46 * h)});
   }
   {
     // The report's stress check (elastic, load-resolving mesh, plates 4x faster): how fine
@@ -72,24 +65,24 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     const Real p0 = base.joint_materials.empty() ? 100 : base.joint_materials.front().penalty;
     const Real p1 = p0 >= 100 ? 30 : 100;
     std::vector<std::string> sets;
-    for (const auto& m : base.materials) sets.push_back(set("materials." + m.name + ".joint_penalty", p1));
+    for (const auto& m : base.materials) sets.push_back(override_of("materials." + m.name + ".joint_penalty", p1));
     add(fmt::format("penalty_{:.0f}", p1), fmt::format("joint penalty {:.0f} (reference {:.0f})", p1, p0), sets);
   }
   {
     const bool nodal = !base.joint_materials.empty() && base.joint_materials.front().nodal_quadrature;
     std::vector<std::string> sets;
     for (const auto& m : base.materials)
-      sets.push_back(set("materials." + m.name + ".joint_quadrature", std::string(nodal ? "gauss" : "nodal")));
+      sets.push_back(override_of("materials." + m.name + ".joint_quadrature", std::string(nodal ? "gauss" : "nodal")));
     add(nodal ? "gauss_joints" : "nodal_joints",
         nodal ? "Gauss joint quadrature (reference nodal)" : "nodal joint quadrature (reference Gauss)", sets);
   }
   {
-    std::vector<std::string> sets{set("time.end", base.t_end / 4),
-                                  set("output.frame_interval", base.frame_interval / 4),
-                                  set("output.series_interval", base.series_interval / 4)};
+    std::vector<std::string> sets{override_of("time.end", base.t_end / 4),
+                                  override_of("output.frame_interval", base.frame_interval / 4),
+                                  override_of("output.series_interval", base.series_interval / 4)};
     for (std::size_t i = 0; i < base.walls.size(); ++i) {
-      sets.push_back(set(fmt::format("walls.{}.velocity", i), Vec3(4 * base.walls[i].wall.velocity_target)));
-      sets.push_back(set(fmt::format("walls.{}.ramp", i), base.walls[i].wall.ramp / 4));
+      sets.push_back(override_of(fmt::format("walls.{}.velocity", i), Vec3(4 * base.walls[i].wall.velocity_target)));
+      sets.push_back(override_of(fmt::format("walls.{}.ramp", i), base.walls[i].wall.ramp / 4));
     }
     add("rate_x4", "plates 4x faster", sets);
   }
@@ -97,27 +90,29 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     const bool coro = !base.bodies.empty() && base.bodies.front().kinematics == Kinematics::Corotational;
     std::vector<std::string> sets;
     for (std::size_t i = 0; i < base.bodies.size(); ++i)
-      sets.push_back(set(fmt::format("bodies.{}.kinematics", i), std::string(coro ? "small_strain" : "corotational")));
+      sets.push_back(
+          override_of(fmt::format("bodies.{}.kinematics", i), std::string(coro ? "small_strain" : "corotational")));
     add(coro ? "small_strain" : "corotational",
         coro ? "small-strain update (reference corotational)" : "corotational update (reference small strain)", sets);
   }
   {
     // Joints only in a central band of 0.2 D: the rest of the disc is one continuum (fewer
     // joints and nodes, a larger stable step where the joints limited it).
-    std::vector<std::string> sets{set(mesh + "band_width", 0.2 * base.mesh_num.at("diameter"))};
+    std::vector<std::string> sets{override_of(mesh + "band_width", 0.2 * base.mesh_num.at("diameter"))};
     for (std::size_t i = 0; i < base.bodies.size(); ++i)
       if (base.bodies[i].fracture != BodyConfig::Fracture::None) {
-        sets.push_back(set(fmt::format("bodies.{}.fracture", i), std::string("groups")));
+        sets.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("groups")));
         sets.push_back(fmt::format("bodies.{}.fracture_groups=[\"disc_band\"]", i));
       }
     add("band_0.2D", "joints only in the band |x| < 0.1 D (reference: everywhere)", sets);
   }
   {
     const bool split = base.mesh_num.count("split_plane") && base.mesh_num.at("split_plane") != 0;
-    std::vector<std::string> sets{set(mesh + "split_plane", split ? 0.0 : 1.0)};
+    std::vector<std::string> sets{override_of(mesh + "split_plane", split ? 0.0 : 1.0)};
     if (split)  // about twice as strong: it peaks later (same frames and rows per second)
-      sets.insert(sets.end(), {set("time.end", 2 * base.t_end), set("output.frame_interval", base.frame_interval),
-                               set("output.series_interval", base.series_interval)});
+      sets.insert(sets.end(),
+                  {override_of("time.end", 2 * base.t_end), override_of("output.frame_interval", base.frame_interval),
+                   override_of("output.series_interval", base.series_interval)});
     add(split ? "unaligned" : "split_plane",
         split ? "mesh not aligned with the loaded diameter (reference: split_plane)"
               : "loaded diametral plane in the mesh (reference: unaligned)",
@@ -145,10 +140,14 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
     try {
       // Read here, so a variant the reader refuses gets a failed row like one that fails
       // to run (the stress check's case needs the reference's profile time).
-      const CaseConfig c = v.elastic ? stress_check_case(base, reference.t_profile) : reread_with(base, v.sets);
-      run_case(c, vo);
-      // The elastic row's profile at the reference's profile load, as in the stress check.
-      rows.emplace_back(v, analyse_disc_run(c, vo.out_dir, false, v.elastic ? reference.P_profile : 0));
+      if (v.elastic) {
+        rows.emplace_back(
+            v, run_stress_check(stress_check_case(base, reference.t_profile), reference.P_profile, vo.out_dir));
+      } else {
+        const CaseConfig c = reread_with(base, v.sets);
+        run_case(c, vo);
+        rows.emplace_back(v, analyse_disc_run(c, vo.out_dir, false));
+      }
       failed.emplace_back();
     } catch (const std::exception& e) {
       log::warn("study: {} failed: {}", v.name, e.what());

@@ -117,6 +117,11 @@ struct CaseConfig {
 /// syntax; bare words are taken as strings). Throws Error with file, line and key.
 CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides = {});
 
+/// One "section.key=value" override for read_case, numbers written to round-trip.
+std::string override_of(const std::string& key, Real v);
+std::string override_of(const std::string& key, const Vec3& v);
+std::string override_of(const std::string& key, const std::string& v);  ///< a TOML string
+
 /// `base` read again from its file with its own overrides and then `extra`: a variant whose
 /// case.resolved.toml says what it ran (a copy edited in memory would carry base's text).
 CaseConfig reread_with(const CaseConfig& base, const std::vector<std::string>& extra);

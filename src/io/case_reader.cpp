@@ -604,6 +604,12 @@ std::string case_schema_markdown() {
   return out;
 }
 
+std::string override_of(const std::string& key, Real v) { return fmt::format("{}={:.17g}", key, v); }
+std::string override_of(const std::string& key, const Vec3& v) {
+  return fmt::format("{}=[{:.17g},{:.17g},{:.17g}]", key, v(0), v(1), v(2));
+}
+std::string override_of(const std::string& key, const std::string& v) { return fmt::format("{}=\"{}\"", key, v); }
+
 CaseConfig reread_with(const CaseConfig& base, const std::vector<std::string>& extra) {
   std::vector<std::string> all = base.overrides;
   all.insert(all.end(), extra.begin(), extra.end());

@@ -20,7 +20,6 @@ enum class Quadrature : char { Gauss = 0, Nodal = 1 };
 /// All joints of a model. A joint ties face A of element ea (outward normal from A to B) to
 /// the coincident face B of element eb; node k of side A and node k of side B were the
 /// same node before insertion. Triangles (between tet4) and quadrilaterals (between hex8).
-
 struct JointSet {
   std::vector<int> npf;       ///< nodes per face: 3 or 4
   std::vector<Index> a, b;    ///< 4 slots per joint (the 4th unused for triangles)

@@ -7,7 +7,6 @@
 #include <filesystem>
 
 #include "app/disc_analysis.hpp"
-#include "app/run_command.hpp"
 #include "app/stress_check.hpp"
 #include "io/case_config.hpp"
 
@@ -50,10 +49,7 @@ TEST(DiscField, SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh) {
   const CaseConfig c = stress_check_case(scene(), kSceneProfileTime);
   const fs::path dir = fs::temp_directory_path() / "dspdem_test_disc_field";
   fs::remove_all(dir);
-  RunOptions o;
-  o.out_dir = dir.string();
-  ASSERT_EQ(run_case(c, o), 0);
-  const DiscResult r = analyse_disc_run(c, o.out_dir, false, kSceneProfileLoad);
+  const DiscResult r = run_stress_check(c, kSceneProfileLoad, dir.string());
   RecordProperty("l2_xx_pct", std::to_string(100 * r.l2_xx));
   RecordProperty("l2_yy_pct", std::to_string(100 * r.l2_yy));
   RecordProperty("P_profile_kN", std::to_string(1e-3 * r.P_profile));
