@@ -59,6 +59,40 @@ std::vector<double> list_in(const std::string& text, const std::string& key) {
 
 }  // namespace
 
+namespace {
+// Broken joints (state 2) of the joints frame at the split: area-weighted mean |x| of their
+// centroids, and the share of their area within D/4 of a plate (|y| > D/4).
+void crack_path(const std::string& run_dir, DiscResult& r) {
+  const fs::path jf = fs::path(run_dir) / "frames" / fmt::format("joints_{:04d}.vtu", r.split_frame);
+  if (r.split_frame < 0 || !fs::exists(jf)) return;
+  auto g = render::read_frame(jf.string());
+  vtkDataArray* state = g->GetCellData()->GetArray("state");
+  if (!state) return;
+  double area = 0, ax = 0, near = 0;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
+    if (state->GetComponent(e, 0) != 2) continue;
+    g->GetCellPoints(e, ids);
+    const vtkIdType nv = ids->GetNumberOfIds();
+    std::vector<Vec3> v(nv);
+    for (vtkIdType k = 0; k < nv; ++k) {
+      double q[3];
+      g->GetPoint(ids->GetId(k), q);
+      v[k] = Vec3(q[0], q[1], q[2]);
+    }
+    Vec3 cen = Vec3::Zero();
+    for (const auto& q : v) cen += q;
+    cen /= static_cast<Real>(nv);
+    double a = 0;
+    for (vtkIdType k = 1; k + 1 < nv; ++k) a += 0.5 * (v[k] - v[0]).cross(v[k + 1] - v[0]).norm();
+    area += a, ax += a * std::abs(cen(0));
+    if (std::abs(cen(1)) > 0.25 * r.D) near += a;
+  }
+  r.crack_area = area;
+  if (area > 0) r.crack_mean_x = ax / area, r.crack_near_plates = near / area;
+}
+}  // namespace
+
 DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files, Real profile_load) {
   DiscResult r;
   r.run_dir = run_dir;
@@ -188,6 +222,15 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       fr << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * ys[i], 1e-6 * ref_xx[i], 1e-6 * ref_yy[i]);
     }
   }
+  // The split: the first frame after the peak whose load is below half of it (after that
+  // the plates go on crushing the halves' edges, which is not the splitting crack).
+  r.split_frame = r.last_frame;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].time > r.t_peak && load_at(frames[i].time) < 0.5 * r.P_peak) {
+      r.split_frame = static_cast<Index>(i);
+      break;
+    }
+  crack_path(run_dir, r);
   const std::string summary = read_summary(run_dir);
   auto number = [&](const char* key) { return number_in(summary, key, run_dir); };
   r.fragments = static_cast<int>(number("fragments"));

@@ -21,9 +21,15 @@ struct DiscResult {
   Real l2_xx = 0, l2_yy = 0, centre_xx = 0, centre_yy = 0;  ///< against the field's element means
   Real l2_xx_centroid = 0;       ///< sigma_xx against the field at the element centroids instead
   Real face_xx = 0, mid_xx = 0;  ///< sigma_xx near the centre on the end faces / mid-plane, vs 2D
-  Index profile_frame = -1, init_frame = -1, last_frame = -1;
+  Index profile_frame = -1, init_frame = -1, last_frame = -1, split_frame = -1;
   Real t_init = -1;
   Real balance_max = 0, largest_energy = 0;
+  // Crack path, from the broken joints at the split (the first frame after the peak with
+  // less than half its load; else the last frame), area-weighted over their
+  // mid-surface polygons): mean distance of their centroids from the loaded plane x = 0, and
+  // the share of broken area within D/4 of a plate (crushing under the plates rather than
+  // splitting). Negative when the run has no joints frame.
+  Real crack_mean_x = -1, crack_near_plates = -1, crack_area = 0;
   int fragments = 0;
   std::vector<double> mass_fractions;
   double wall_s = 0, dt = 0;

@@ -163,6 +163,12 @@ int report_command(const ReportArgs& a) {
     fr += fmt::format("{}{:.3f}", i ? ", " : "", r.mass_fractions[i]);
   md += fmt::format("{} fragments; largest mass fractions {}. First broken joint at t = {:.3f} ms (frame {}).\n\n",
                     r.fragments, fr, 1e3 * r.t_init, r.init_frame);
+  if (r.crack_mean_x >= 0)
+    md += fmt::format(
+        "Crack path (broken joints at the split, frame {}, {:.0f} cm^2): their centroids lie {:.1f} mm from the loaded "
+        "plane x = 0 on average (area-weighted; an element is {:.1f} mm); {:.0f} % of the broken area is within D/4 "
+        "of a plate.\n\n",
+        r.split_frame, 1e4 * r.crack_area, 1e3 * r.crack_mean_x, 1e3 * c.mesh_num.at("size"), 100 * r.crack_near_plates);
   if (!a.no_render) {
     for (const char* view : {"fragments", "stress"})
       md += fmt::format(

@@ -18,6 +18,7 @@ struct JointMaterial {
   Real ft = 0, GfI = 0, c = 0, phi_deg = 0, GfII = 0;
   Real penalty = 100, kn = 0, ks = 0;  ///< kn, ks = 0: from the penalty factor
   bool nodal_quadrature = false;       ///< joint_quadrature = "nodal"
+  bool coupled = false;                ///< joint_law = "coupled"
 };
 
 /// [contact] and [[walls]].

@@ -348,6 +348,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
             "{}: [materials.{}] joint parameters come together: give all of tensile_strength, fracture_energy_I, "
             "cohesion, friction_angle, fracture_energy_II",
             s.where(), mname);
+      jm.coupled = s.str("joint_law") == "coupled";
       if (present == 5) {
         jm.given = true;
         jm.ft = s.real("tensile_strength");
@@ -355,7 +356,9 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
         jm.c = s.real("cohesion");
         jm.phi_deg = s.real("friction_angle");
         jm.GfII = s.real("fracture_energy_II");
-        const Real cut = jm.ft * std::tan(jm.phi_deg * M_PI / 180.0);
+        // The paper's eq. 5 lowers the shear strength by tension down to c - f_t tan(phi) at
+        // the cut-off; the coupled law does not (its onset criterion carries the interaction).
+        const Real cut = jm.coupled ? 0.0 : jm.ft * std::tan(jm.phi_deg * M_PI / 180.0);
         if (!(jm.c > cut))
           fail(
               "{}: [materials.{}] cohesion = {:g} Pa must exceed tensile_strength x tan(friction_angle) = {:g} Pa: "

@@ -31,12 +31,18 @@
 
 namespace dspdem::joint {
 
+/// Which law a joint follows: the paper's (eqs. 3-6: normal and shear soften independently,
+/// coupled only by the break test) or the coupled mixed-mode law of coupled_law.hpp (one
+/// damage variable softens both together).
+enum class JointLaw : char { Paper = 0, Coupled = 1 };
+
 struct CohesiveParams {
   Real kn = 0, ks = 0;     ///< penalty stiffness [Pa/m]
   Real ft = 0;             ///< tensile strength [Pa]
   Real GfI = 0, GfII = 0;  ///< fracture energies [J/m^2]
   Real c = 0;              ///< cohesion [Pa]
   Real tan_phi = 0;        ///< tan of the friction angle
+  JointLaw law = JointLaw::Paper;
 };
 
 enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
@@ -47,6 +53,7 @@ struct CohesiveState {
   Real ds_max = 0;              ///< largest slip reached [m]
   Real ds_plastic = 0;          ///< plastic slip of the residual friction (broken joints) [m]
   Real ks_secant = -1;          ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
+  Real damage = 0;              ///< coupled law: secant damage d in [0, 1], only ever increasing
   Real diss_II_at_break = 0;    ///< mode-II dissipation when the point failed [J/m^2]
   Real friction = 0;            ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
@@ -71,6 +78,26 @@ inline Real shear_strength(const CohesiveParams& p, Real sn) {
   return std::max<Real>(p.c - std::min(sn, p.ft) * p.tan_phi, 1e-12 * std::max<Real>(p.c, 1.0));
 }
 
+/// Shear traction of a broken point: residual Coulomb friction, elastic-plastic along the
+/// slip, |s_s| <= -s_n tan(phi), with the sign allowed to reverse so that sliding back is
+/// resisted too. Dissipation, exactly: first the cap changes at fixed slip (a drop releases
+/// (s^2 - cap^2) / 2 k_s), then the slip increment slides at the cap (cap x plastic slip).
+inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, CohesiveState& s) {
+  const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
+  Real e = s.ss;
+  if (std::abs(e) > cap) {
+    s.friction += (e * e - cap * cap) / (2.0 * p.ks);
+    e = e > 0 ? cap : -cap;
+  }
+  Real trial = e + p.ks * (ds - s.ds);
+  if (std::abs(trial) > cap) {
+    s.friction += cap * (std::abs(trial) - cap) / p.ks;
+    trial = trial > 0 ? cap : -cap;
+  }
+  s.ds_plastic = ds - trial / p.ks;
+  return trial;
+}
+
 /// Advances one integration point to opening dn and slip magnitude ds (>= 0); updates the
 /// tractions sn, ss (ss acts against the slip), the history and the work integrals.
 inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
@@ -90,23 +117,7 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   }
   Real ss;
   if (s.status == JointStatus::Broken) {
-    // Residual Coulomb friction, elastic-plastic along the slip: |s_s| <= cap, with the sign
-    // allowed to reverse so that sliding back is resisted too. Dissipation, exactly: first
-    // the cap changes at fixed slip (a drop releases (s^2 - cap^2) / 2 k_s), then the slip
-    // increment slides at the cap (cap x plastic slip).
-    const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
-    Real e = s.ss;
-    if (std::abs(e) > cap) {
-      s.friction += (e * e - cap * cap) / (2.0 * p.ks);
-      e = e > 0 ? cap : -cap;
-    }
-    Real trial = e + p.ks * (ds - s.ds);
-    if (std::abs(trial) > cap) {
-      s.friction += cap * (std::abs(trial) - cap) / p.ks;
-      trial = trial > 0 ? cap : -cap;
-    }
-    s.ds_plastic = ds - trial / p.ks;
-    ss = trial;
+    ss = residual_friction(p, sn, ds, s);
   } else {
     const Real fs = shear_strength(p, sn);
     const Real w_fs = fs / p.ks, w_GII = 2.0 * p.GfII / fs;

@@ -1,5 +1,7 @@
 #include "joint/joint_forces.hpp"
 
+#include "joint/coupled_law.hpp"
+
 #include <cmath>
 
 namespace dspdem::joint {
@@ -65,7 +67,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
       const Vec3 sv = jump - dn * n;
       const Real ds = sv.norm();
       CohesiveState& st = js.state[js4 + g];
-      cohesive_update(p, dn, ds, st);
+      joint_law_update(p, dn, ds, st);
       broken += st.status == JointStatus::Broken;
       touched += st.status != JointStatus::Intact;
       // Traction on side B (force per area): pulls B back towards A in tension, resists slip.

@@ -1,0 +1,114 @@
+// Coupled mixed-mode cohesive law (`joint_law = "coupled"`), per integration point, in the
+// joint's local frame: opening dn (> 0 in tension) and slip magnitude ds.
+//
+// Why: the paper's law (cohesive_law.hpp) softens the normal and the shear traction
+// independently and couples them only in its break test (eq. 6). A face inclined to a
+// tensile crack then keeps its full shear strength while it opens, and a crack that must
+// zigzag through such faces (any mesh not aligned with it) pays many times G_fI: the
+// Brazilian disc on an unstructured mesh came out +160 % strong (issue 8). Here one damage
+// variable softens both tractions together, as FDEM codes do (Munjiza's combined
+// single/smeared crack model, Y-Geo/Irazu) and as cohesive-zone codes for mixed mode do
+// (Camanho & Davila 2002):
+//
+//   free energy  psi = 1/2 k_n <-dn>^2 + (1 - d) (1/2 k_n <dn>^2 + 1/2 k_s ds^2)
+//   tractions    s_n = k_n dn (dn < 0: compression never damages), (1 - d) k_n dn (dn > 0)
+//                s_s = (1 - d) k_s ds
+//
+// with d only ever increasing, so no loading path can create energy (the dissipation rate
+// is psi's drop at fixed displacement, >= 0). Unloading goes along the secant to the origin.
+//
+// Evolution of d along the current direction of (<dn>, ds), lambda = |(<dn>, ds)|,
+// cos = <dn> / lambda, sin = ds / lambda:
+//   shear strength   f_s = c + <-s_n> tan(phi)  (compression raises it; opening does not
+//                    lower it below c: the interaction with tension is the onset criterion;
+//                    so a face that opens never gains strength, unlike eq. 5 with a softened
+//                    s_n)
+//   onset            (k_n <dn> / f_t)^2 + (k_s ds / f_s)^2 = 1, i.e. lambda_0 =
+//                    1 / sqrt((k_n cos / f_t)^2 + (k_s sin / f_s)^2)
+//   final            the eq. 6 ellipse on the displacements past onset:
+//                    ((lambda - lambda_0) cos / w_GI)^2 + ((lambda - lambda_0) sin / w_GII)^2 = 1,
+//                    w_GI = 2 G_fI / f_t, w_GII = 2 G_fII / f_s
+//   damage           D = (lambda - lambda_0) / (lambda_f - lambda_0)  (the ellipse's radius),
+//                    d = D lambda_f / lambda, so the traction falls linearly from the onset
+//                    to zero at lambda_f on a proportional path.
+// In pure mode I this is the paper's mode-I triangle exactly (dissipation G_fI + f_t^2/2k_n);
+// in pure mode II the paper's mode-II triangle at that f_s (G_fII + f_s^2/2k_s); mixed paths
+// dissipate 1/2 lambda_0 lambda_f (k_n cos^2 + k_s sin^2), in between. At d = 1 the point is
+// broken and keeps the paper's residual Coulomb friction in compression. Between onset and
+// break the shear traction is the degraded cohesion only (friction starts at the break:
+// a simplification; under compression the cohesive secant then briefly carries less than the
+// friction cap, which the break restores without a jump, since friction starts from zero).
+// Slip is a vector handled by the caller: s_s acts along it, and the law is isotropic in
+// the tangent plane, so a slip that turns without growing neither damages nor dissipates.
+#pragma once
+#include "joint/cohesive_law.hpp"
+
+namespace dspdem::joint {
+
+/// Where the coupled law's damage starts and ends along a direction (cos, sin) of
+/// (<dn>, ds) at shear strength fs: onset lambda_0 and final lambda_f [m].
+struct CoupledEnvelope {
+  Real lambda0 = 0, lambdaf = 0;
+};
+
+inline CoupledEnvelope coupled_envelope(const CohesiveParams& p, Real cos_t, Real sin_t, Real fs) {
+  const Real qn = p.kn * cos_t / p.ft, qs = p.ks * sin_t / fs;
+  const Real gn = cos_t * p.ft / (2.0 * p.GfI), gs = sin_t * fs / (2.0 * p.GfII);
+  CoupledEnvelope e;
+  e.lambda0 = 1.0 / std::sqrt(qn * qn + qs * qs);
+  e.lambdaf = e.lambda0 + 1.0 / std::sqrt(gn * gn + gs * gs);
+  return e;
+}
+
+/// Shear strength of the coupled law: c, raised by compression only.
+inline Real coupled_shear_strength(const CohesiveParams& p, Real dn) {
+  return p.c + std::max<Real>(0.0, -p.kn * dn) * p.tan_phi;
+}
+
+/// Advances one integration point to opening dn and slip magnitude ds (>= 0) under the
+/// coupled law; same state and energy bookkeeping as cohesive_update.
+inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+  Real sn, ss;
+  if (s.status == JointStatus::Broken) {
+    sn = dn < 0 ? p.kn * dn : 0.0;
+    ss = residual_friction(p, sn, ds, s);
+  } else {
+    const Real un = std::max<Real>(0.0, dn);
+    const Real lambda = std::hypot(un, ds);
+    if (lambda > 0) {
+      const Real fs = coupled_shear_strength(p, dn);
+      const CoupledEnvelope e = coupled_envelope(p, un / lambda, ds / lambda, fs);
+      if (lambda > e.lambda0) {
+        const Real d = lambda >= e.lambdaf ? 1.0 : e.lambdaf * (lambda - e.lambda0) / (lambda * (e.lambdaf - e.lambda0));
+        s.damage = std::max(s.damage, d);
+      }
+    }
+    s.dn_max = std::max(s.dn_max, dn);
+    s.ds_max = std::max(s.ds_max, ds);
+    if (s.damage >= 1.0) {
+      s.status = JointStatus::Broken;
+      s.ds_plastic = ds;
+      sn = dn < 0 ? p.kn * dn : 0.0;
+      ss = 0.0;
+      s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
+    } else {
+      const Real k = 1.0 - s.damage;
+      sn = dn < 0 ? p.kn * dn : k * p.kn * dn;
+      ss = k * p.ks * ds;
+      if (s.damage > 0) s.status = JointStatus::Softening;
+    }
+  }
+  s.work_n += 0.5 * (s.sn + sn) * (dn - s.dn);
+  s.work_s += 0.5 * (s.ss + ss) * (ds - s.ds);
+  s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
+}
+
+/// The law a point follows, by its material's choice.
+inline void joint_law_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+  if (p.law == JointLaw::Coupled)
+    coupled_update(p, dn, ds, s);
+  else
+    cohesive_update(p, dn, ds, s);
+}
+
+}  // namespace dspdem::joint
