@@ -21,6 +21,8 @@ void build_brazilian_disc(const Params& p) {
   const bool plates = p["plates"] != 0, split = p["split_plane"] != 0;
   const double band = p["band_width"];
   if (band >= D) param_error(p, "band_width", "not narrower than the disc diameter");
+  const double cap = p["cap_height"];
+  if (cap >= D / 2) param_error(p, "cap_height", "not smaller than the disc radius");
   int disc = occ::addCylinder(0, 0, -L / 2, 0, 0, L, D / 2);
   // The loaded generator lines (x = 0, y = +-D/2) are mesh curves, so the faceted disc has
   // nodes exactly where flat plates first touch it: the load starts at zero approach and
@@ -42,6 +44,14 @@ void build_brazilian_disc(const Params& p) {
     tools.emplace_back(1, occ::addLine(p0, p1)), tools.emplace_back(1, occ::addLine(p2, p3));
   }
   if (band > 0) add_plane(-band / 2), add_plane(band / 2);
+  // Cap planes y = +-(D/2 - cap): the bearing zones under the loads as volumes of their own.
+  auto add_cap_plane = [&](double y) {
+    const int r = occ::addRectangle(-0.6 * D, -0.6 * L, 0, 1.2 * D, 1.2 * L);
+    occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);  // (x, y, 0) -> (x, 0, y): the plane y = 0
+    occ::translate({{2, r}}, 0, y, 0);
+    tools.emplace_back(2, r);
+  };
+  if (cap > 0) add_cap_plane(D / 2 - cap), add_cap_plane(-(D / 2 - cap));
   {
     gmsh::vectorpair out;
     std::vector<gmsh::vectorpair> map;
@@ -57,7 +67,7 @@ void build_brazilian_disc(const Params& p) {
   }
   occ::remove(outside, true);
   occ::synchronize();
-  std::vector<int> vols, band_vols, side_vols;
+  std::vector<int> vols, band_vols, side_vols, core_vols, cap_vols;
   {
     gmsh::vectorpair v;
     gmsh::model::getEntities(v, 3);
@@ -66,6 +76,7 @@ void build_brazilian_disc(const Params& p) {
       occ::getCenterOfMass(3, t, cx, cy, cz);
       vols.push_back(t);
       (std::abs(cx) < band / 2 ? band_vols : side_vols).push_back(t);
+      (std::abs(cy) < D / 2 - cap ? core_vols : cap_vols).push_back(t);
     }
   }
   const std::vector<int> l_top = entities_in_box(1, 0, D / 2, -L / 2, 0, D / 2, L / 2, 1e-3 * D);
@@ -110,6 +121,7 @@ void build_brazilian_disc(const Params& p) {
   gmsh::model::mesh::generate(3);
   add_group(3, vols, "disc");
   if (band > 0) add_group(3, band_vols, "disc_band"), add_group(3, side_vols, "disc_side");
+  if (cap > 0) add_group(3, core_vols, "disc_core"), add_group(3, cap_vols, "disc_caps");
   add_group(1, l_top, "disc_top_line");
   add_group(1, l_bot, "disc_bottom_line");
   if (!plates) return;

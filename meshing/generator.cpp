@@ -1,6 +1,7 @@
 #include "meshing/generator.hpp"
 
 #include <gmsh.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -54,7 +55,8 @@ const std::vector<Generator>& registry() {
        "[[walls]] as plates). Volumes: disc, plate_top, plate_bottom. Surfaces: plate_top_load (top face of the top "
        "plate), plate_bottom_load (bottom face of the bottom plate). Curves: disc_top_line, disc_bottom_line (the "
        "loaded generator lines, meshed with nodes). Options: split_plane (the loaded diametral plane x = 0 as a mesh "
-       "surface), band_width (volumes disc_band, the slab |x| < band_width/2, and disc_side).",
+       "surface), band_width (volumes disc_band, the slab |x| < band_width/2, and disc_side), cap_height (volumes disc_caps, "
+       "the two segments within cap_height of the loaded lines, and disc_core).",
        build_brazilian_disc, "disc"},
       {"galvez_beam",
        "Galvez et al. (1998) notched beam for mixed-mode fracture (four-point shear): beam along x (bottom at y = 0, "
@@ -148,7 +150,9 @@ Mesh generate(const Params& p_in, const std::string& msh_path) {
   if (!msh_path.empty()) {
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 0);
-    const std::string tmp = msh_path + ".tmp.msh";
+    // A name of this process's own: runs started together (a study, parallel jobs) may
+    // generate the same mesh at once; each renames its complete file into place.
+    const std::string tmp = fmt::format("{}.{}.tmp.msh", msh_path, static_cast<long>(::getpid()));
     gmsh::write(tmp);
     fs::rename(tmp, msh_path);
   }

@@ -62,9 +62,9 @@ std::vector<double> list_in(const std::string& text, const std::string& key) {
 namespace {
 // Broken joints (state 2) of the joints frame at the split: area-weighted mean |x| of their
 // centroids, and the share of their area within D/4 of a plate (|y| > D/4).
-void crack_path(const std::string& run_dir, DiscResult& r) {
-  const fs::path jf = fs::path(run_dir) / "frames" / fmt::format("joints_{:04d}.vtu", r.split_frame);
-  if (r.split_frame < 0 || !fs::exists(jf)) return;
+void crack_path(const std::string& run_dir, DiscResult& r, Index frame) {
+  const fs::path jf = fs::path(run_dir) / "frames" / fmt::format("joints_{:04d}.vtu", frame);
+  if (frame < 0 || !fs::exists(jf)) return;
   auto g = render::read_frame(jf.string());
   vtkDataArray* state = g->GetCellData()->GetArray("state");
   if (!state) return;
@@ -230,7 +230,12 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       r.split_frame = static_cast<Index>(i);
       break;
     }
-  crack_path(run_dir, r);
+  crack_path(run_dir, r, r.split_frame);
+  if (getenv("DSPDEM_DEBUG_INIT")) {
+    DiscResult q = r;
+    crack_path(run_dir, q, r.init_frame);
+    fmt::print("first-break frame {}: area {:.2f} cm2, mean |x| {:.1f} mm, near plates {:.0f} %\n", r.init_frame, 1e4*q.crack_area, 1e3*q.crack_mean_x, 100*q.crack_near_plates);
+  }
   const std::string summary = read_summary(run_dir);
   auto number = [&](const char* key) { return number_in(summary, key, run_dir); };
   r.fragments = static_cast<int>(number("fragments"));

@@ -118,6 +118,48 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
               : "loaded diametral plane in the mesh (reference: unaligned)",
         sets);
   }
+  {
+    // The joint law and the inter-element shear parameters (issue 15): the other law with
+    // the case's parameters, and the coupled law with c = 2 f_t, G_fII = G_fI (the
+    // inter-element choice of cases/README.md). On an unstructured mesh the paper's law and
+    // shear parameters make the zigzag crack expensive.
+    const bool coupled = !base.joint_materials.empty() && base.joint_materials.front().coupled;
+    std::vector<std::string> law, inter;
+    for (std::size_t i = 0; i < base.materials.size(); ++i) {
+      const std::string m = "materials." + base.materials[i].name + ".";
+      law.push_back(override_of(m + "joint_law", std::string(coupled ? "paper" : "coupled")));
+      if (!base.joint_materials[i].given) continue;
+      inter.push_back(override_of(m + "joint_law", std::string("coupled")));
+      inter.push_back(override_of(m + "cohesion", 2 * base.joint_materials[i].ft));
+      inter.push_back(override_of(m + "fracture_energy_II", base.joint_materials[i].GfI));
+    }
+    add(coupled ? "paper_law" : "coupled_law",
+        coupled ? "the paper's joint law (reference: coupled)" : "the coupled joint law (reference: the paper's)", law);
+    add("coupled_2ft", "coupled law, c = 2 f_t, G_fII = G_fI (inter-element shear parameters)", inter);
+  }
+  {
+    // Bearing zones: joints there too (reference: none within cap_height of the loads).
+    std::vector<std::string> sets;
+    for (std::size_t i = 0; i < base.bodies.size(); ++i)
+      if (base.bodies[i].fracture == BodyConfig::Fracture::Groups)
+        sets.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("all")));
+    if (!sets.empty()) add("joints_at_loads", "joints in the bearing zones too (reference: none there)", sets);
+  }
+  {
+    // Curved jaws (ISRM: radius 1.5 R, arc +-30 deg) in place of the flat plates, moving as
+    // they do: the load spreads over an arc instead of one element.
+    const Real R = 0.5 * base.mesh_num.at("diameter"), Rj = 1.5 * R;
+    std::vector<std::string> sets;
+    for (std::size_t i = 0; i < base.walls.size(); ++i) {
+      const Real side = base.walls[i].wall.centre(1) > 0 ? 1.0 : -1.0;
+      const std::string w = fmt::format("walls.{}.", i);
+      sets.insert(sets.end(), {override_of(w + "type", std::string("jaw")),
+                               override_of(w + "point", Vec3(0, side * (R - Rj), 0)),
+                               override_of(w + "normal", Vec3(0, side, 0)), override_of(w + "radius", Rj),
+                               override_of(w + "half_size", Vec3(0, 0, 0))});
+    }
+    if (!sets.empty()) add("curved_jaws", "curved jaws, radius 1.5 R (reference: flat plates)", sets);
+  }
   return v;
 }
 }  // namespace

@@ -206,6 +206,16 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
       if (wl.type == Wall::Type::Plane) {
         const Vec3 c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
         hit = (c - wl.centre).dot(n) - h.dot(n.cwiseAbs()) < 0.5 * skin_;
+      } else if (wl.type == Wall::Type::Jaw) {
+        // The distance to the axis is convex: its largest value on the box is at a corner.
+        const Vec3 a = wl.jaw_axis();
+        Real far = 0;
+        for (int k = 0; k < 8; ++k) {
+          const Vec3 cnr((k & 1) ? hi(0) : lo(0), (k & 2) ? hi(1) : lo(1), (k & 4) ? hi(2) : lo(2));
+          const Vec3 r = cnr - wl.centre;
+          far = std::max(far, (r - r.dot(a) * a).norm());
+        }
+        hit = far > wl.radius - 0.5 * skin_ && (0.5 * (lo + hi) - wl.centre).dot(n) > 0;
       } else {
         hit = (lo.array() <= whi.array()).all() && (wlo.array() <= hi.array()).all();
       }
@@ -362,6 +372,9 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
     touches_.clear();
     if (wl.type == Wall::Type::Plane)
       find_plane_touches(A, radius_[e], wl.centre, wl.plane_normal(), touches_);
+    else if (wl.type == Wall::Type::Jaw)
+      find_jaw_touches(A, radius_[e], wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle,
+                       touches_);
     else
       find_touches(A, radius_[e], wl.box_poly(), 0.0, touches_);
     for (const Touch& t : touches_) apply(e, -1, &wl, static_cast<int>(w), t, x, v, dt, f);

@@ -301,4 +301,24 @@ void find_plane_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& n, st
   weigh(out, first, rA);
 }
 
+void find_jaw_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& a, const Vec3& side, Real R,
+                      Real cos_half, std::vector<Touch>& out) {
+  const std::size_t first = out.size();
+  for (int i = 0; i < A.topo->nv; ++i) {
+    const Vec3 r = A.v[i] - p;
+    const Vec3 along = r.dot(a) * a, radial = r - along;
+    const Real rho = radial.norm();
+    if (!(rho > 0)) continue;
+    const Vec3 u = radial / rho;
+    if (u.dot(side) < cos_half) continue;
+    const Real d = R - rho;
+    if (d < rA) {
+      Touch t{Feature::VF, i, 0, A.v[i], Vec3(p + along + R * u), Vec3(-u), d};
+      t.ia = {i, 0, 0};
+      out.push_back(t);
+    }
+  }
+  weigh(out, first, rA);
+}
+
 }  // namespace dspdem::contact

@@ -48,4 +48,12 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
 /// radius 0): one per vertex closer than rA (kind VF, fb = 0).
 void find_plane_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& n, std::vector<Touch>& out);
 
+/// Contacts of skeleton A with a jaw: the region outside the cylinder of radius R about the
+/// line through p along the unit vector a, within the arc whose half opening angle has
+/// cosine cos_half about the unit direction `side` (normal to a). The distance to the
+/// axis is convex, so its largest value on a skeleton is at a vertex: one touch per vertex
+/// closer than rA to the cylinder (kind VF, fb = 0), normal towards the axis.
+void find_jaw_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& a, const Vec3& side, Real R,
+                      Real cos_half, std::vector<Touch>& out);
+
 }  // namespace dspdem::contact

@@ -1,4 +1,4 @@
-// Rigid walls: analytic planes (half-spaces) and boxes that contact the deformable
+// Rigid walls: analytic planes (half-spaces), boxes and curved jaws that contact the deformable
 // elements with the same law. A wall either follows a prescribed velocity (with an optional
 // ramp) or moves freely as a rigid body (mass, inertia tensor, quaternion orientation),
 // integrated with the same kick-drift-kick scheme as the nodes.
@@ -11,7 +11,10 @@
 namespace dspdem::contact {
 
 struct Wall {
-  enum class Type { Plane, Box } type = Type::Plane;
+  // Jaw: the concave cylindrical face of a loading jaw (ISRM Brazilian test: radius 1.5 R),
+  // the solid being outside a cylinder of radius `radius` about the axis through `centre`
+  // along the body z axis, within `half_angle` of the body normal0 direction seen from it.
+  enum class Type { Plane, Box, Jaw } type = Type::Plane;
   std::string name;
   // Pose: centre (plane: a point on it) and orientation; the plane's outward normal is
   // the body z axis rotated, the box's half sizes are along the body axes.
@@ -19,6 +22,9 @@ struct Wall {
   Eigen::Quaternion<Real> q = Eigen::Quaternion<Real>::Identity();
   Vec3 normal0 = Vec3::UnitZ();  ///< plane: outward normal in the reference pose
   Vec3 half = Vec3::Zero();      ///< box: half sizes
+  Vec3 axis0 = Vec3::UnitZ();    ///< jaw: cylinder axis in the reference pose
+  Real radius = 0;               ///< jaw: cylinder radius [m]
+  Real cos_half_angle = 0;       ///< jaw: cos of the arc's half opening angle
   // Motion.
   bool free = false;
   Vec3 velocity = Vec3::Zero(), omega = Vec3::Zero();
@@ -34,6 +40,7 @@ struct Wall {
   Vec3 torque = Vec3::Zero();  ///< about its centre [N m]
 
   Vec3 plane_normal() const { return q * normal0; }
+  Vec3 jaw_axis() const { return q * axis0; }
   /// Box as a polytope (hexahedron topology, corners in gmsh order).
   Poly box_poly() const;
   Vec3 velocity_at(const Vec3& x) const { return velocity + omega.cross(x - centre); }

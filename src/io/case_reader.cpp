@@ -475,15 +475,32 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       w.name = s.str("name");
       for (const auto& o : c.walls)
         DSPDEM_CHECK(o.wall.name != w.name, "{}: wall name '{}' used twice", s.where("name"), w.name);
-      w.type = s.str("type") == "box" ? contact::Wall::Type::Box : contact::Wall::Type::Plane;
+      const std::string type = s.str("type");
+      w.type = type == "box" ? contact::Wall::Type::Box
+               : type == "jaw" ? contact::Wall::Type::Jaw
+                               : contact::Wall::Type::Plane;
       w.centre = s.vec3("point");
       const Vec3 nrm = s.vec3("normal");
-      if (w.type == contact::Wall::Type::Plane && !(nrm.norm() > 0))
+      if (w.type != contact::Wall::Type::Box && !(nrm.norm() > 0))
         fail("{}: [[walls]] '{}' key 'normal' must not be zero", s.where("normal"), w.name);
       if (nrm.norm() > 0) w.normal0 = nrm.normalized();
       w.half = s.vec3("half_size");
       if (w.type == contact::Wall::Type::Box && !(w.half.minCoeff() > 0))
         fail("{}: [[walls]] '{}' is a box: half_size needs three positive extents", s.where("half_size"), w.name);
+      if (w.type == contact::Wall::Type::Jaw) {
+        if (!s.has("radius")) fail("{}: [[walls]] '{}' is a jaw: give its radius", s.where(), w.name);
+        w.radius = s.real("radius");
+        const Vec3 ax = s.vec3("axis");
+        if (!(ax.norm() > 0)) fail("{}: [[walls]] '{}' key 'axis' must not be zero", s.where("axis"), w.name);
+        w.axis0 = ax.normalized();
+        if (std::abs(w.axis0.dot(w.normal0)) > 1e-9)
+          fail("{}: [[walls]] '{}': a jaw's normal (from its axis to the arc) must be normal to its axis",
+               s.where("normal"), w.name);
+        w.cos_half_angle = std::cos(s.real("half_angle") * M_PI / 180.0);
+      } else {
+        if (s.has("radius")) fail("{}: [[walls]] '{}': key 'radius' is for jaws only", s.where("radius"), w.name);
+        s.vec3("axis"), s.real("half_angle");  // defaults written to case.resolved.toml; unused
+      }
       w.velocity_target = s.vec3("velocity");
       w.ramp = s.real("ramp");
       w.free = s.boolean("free");

@@ -129,6 +129,14 @@ TEST(Generators, BrazilianDiscSplitPlaneAndBand) {
   EXPECT_NEAR((group_volume(band, "disc_band") + group_volume(band, "disc_side")) / group_volume(band, "disc"), 1.0,
               1e-12);
   EXPECT_EQ(count(band, "disc_band") + count(band, "disc_side"), count(band, "disc"));
+  // cap_height: the two circular segments within c of the loaded lines are disc_caps; each
+  // has area R^2 acos(1 - c/R) - (R - c) sqrt(2 R c - c^2).
+  const double c = 0.02;
+  const Mesh caps = meshing::generate(params("brazilian_disc", {"cap_height=0.02", "plates=0"}));
+  expect_groups(caps, {"disc", "disc_core", "disc_caps", "disc_top_line", "disc_bottom_line"});
+  const double segment = R * R * std::acos(1 - c / R) - (R - c) * std::sqrt(2 * R * c - c * c);
+  EXPECT_NEAR(group_volume(caps, "disc_caps") / (2 * segment * L), 1.0, 0.02);
+  EXPECT_EQ(count(caps, "disc_core") + count(caps, "disc_caps"), count(caps, "disc"));
   // load_size: elements at the loaded lines are about load_size, those at the centre about
   // size (the cube root of a regular tet's volume is 0.49 x its edge).
   const Mesh graded = meshing::generate(params("brazilian_disc", {"load_size=0.0025", "plates=0"}));

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "contact/narrow_phase.hpp"
 #include "joint/fragments.hpp"
 #include "support/run_helpers.hpp"
 #include "support/scene.hpp"
@@ -432,4 +433,31 @@ TEST(Contact, SplittingKeepsTheEnergyLedger) {
   RecordProperty("worst_balance_error", sci(worst));
   EXPECT_GT(fr.count, 1);
   EXPECT_LT(worst, 1e-3);
+}
+
+// A curved jaw (concave cylinder of radius R about the z axis through the origin, arc
+// +-30 deg about +y): a tet skeleton whose top vertex is pushed past the cylinder touches
+// it at that vertex only, with the gap R - rho and the normal towards the axis; outside
+// the arc nothing touches.
+TEST(Contact, JawTouchesTheVertexPastItsCylinder) {
+  const Real R = 0.1, cos30 = std::cos(M_PI / 6);
+  contact::Poly A;
+  A.topo = &contact::topology(contact::Shape::Tet);
+  A.v[0] = Vec3(0.01, 0.098, 0.0), A.v[1] = Vec3(0.0, 0.09, 0.0), A.v[2] = Vec3(0.02, 0.09, 0.0),
+  A.v[3] = Vec3(0.01, 0.09, 0.01);
+  std::vector<contact::Touch> t;
+  contact::find_jaw_touches(A, 0.003, Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitY(), R, cos30, t);
+  ASSERT_EQ(t.size(), 1u);
+  const Real rho = std::hypot(0.01, 0.098);
+  EXPECT_EQ(t[0].fa, 0);
+  EXPECT_NEAR(t[0].d, R - rho, 1e-15);
+  EXPECT_LT((t[0].n + Vec3(0.01, 0.098, 0).normalized()).norm(), 1e-14);
+  EXPECT_NEAR((t[0].pa - t[0].pb).dot(t[0].n), t[0].d, 1e-15);
+  EXPECT_NEAR(t[0].pb.head<2>().norm(), R, 1e-15);
+  // The same tet turned to 60 deg from +y: beyond the arc.
+  const Mat3 Q = Eigen::AngleAxis<Real>(M_PI / 3, Vec3::UnitZ()).toRotationMatrix();
+  for (int k = 0; k < 4; ++k) A.v[k] = Q * A.v[k];
+  t.clear();
+  contact::find_jaw_touches(A, 0.003, Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitY(), R, cos30, t);
+  EXPECT_TRUE(t.empty());
 }
