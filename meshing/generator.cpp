@@ -55,7 +55,8 @@ const std::vector<Generator>& registry() {
        "[[walls]] as plates). Volumes: disc, plate_top, plate_bottom. Surfaces: plate_top_load (top face of the top "
        "plate), plate_bottom_load (bottom face of the bottom plate). Curves: disc_top_line, disc_bottom_line (the "
        "loaded generator lines, meshed with nodes). Options: split_plane (the loaded diametral plane x = 0 as a mesh "
-       "surface), band_width (volumes disc_band, the slab |x| < band_width/2, and disc_side), cap_height (volumes disc_caps, "
+       "surface), band_width (volumes disc_band, the slab |x| < band_width/2, and disc_side), cap_height (volumes "
+       "disc_caps, "
        "the two segments within cap_height of the loaded lines, and disc_core).",
        build_brazilian_disc, "disc"},
       {"galvez_beam",

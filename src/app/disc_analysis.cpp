@@ -231,11 +231,6 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       break;
     }
   crack_path(run_dir, r, r.split_frame);
-  if (getenv("DSPDEM_DEBUG_INIT")) {
-    DiscResult q = r;
-    crack_path(run_dir, q, r.init_frame);
-    fmt::print("first-break frame {}: area {:.2f} cm2, mean |x| {:.1f} mm, near plates {:.0f} %\n", r.init_frame, 1e4*q.crack_area, 1e3*q.crack_mean_x, 100*q.crack_near_plates);
-  }
   const std::string summary = read_summary(run_dir);
   auto number = [&](const char* key) { return number_in(summary, key, run_dir); };
   r.fragments = static_cast<int>(number("fragments"));

@@ -168,7 +168,8 @@ int report_command(const ReportArgs& a) {
         "Crack path (broken joints at the split, frame {}, {:.0f} cm^2): their centroids lie {:.1f} mm from the loaded "
         "plane x = 0 on average (area-weighted; an element is {:.1f} mm); {:.0f} % of the broken area is within D/4 "
         "of a plate.\n\n",
-        r.split_frame, 1e4 * r.crack_area, 1e3 * r.crack_mean_x, 1e3 * c.mesh_num.at("size"), 100 * r.crack_near_plates);
+        r.split_frame, 1e4 * r.crack_area, 1e3 * r.crack_mean_x, 1e3 * c.mesh_num.at("size"),
+        100 * r.crack_near_plates);
   if (!a.no_render) {
     for (const char* view : {"fragments", "stress"})
       md += fmt::format(

@@ -153,10 +153,10 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     for (std::size_t i = 0; i < base.walls.size(); ++i) {
       const Real side = base.walls[i].wall.centre(1) > 0 ? 1.0 : -1.0;
       const std::string w = fmt::format("walls.{}.", i);
-      sets.insert(sets.end(), {override_of(w + "type", std::string("jaw")),
-                               override_of(w + "point", Vec3(0, side * (R - Rj), 0)),
-                               override_of(w + "normal", Vec3(0, side, 0)), override_of(w + "radius", Rj),
-                               override_of(w + "half_size", Vec3(0, 0, 0))});
+      sets.insert(sets.end(),
+                  {override_of(w + "type", std::string("jaw")), override_of(w + "point", Vec3(0, side * (R - Rj), 0)),
+                   override_of(w + "normal", Vec3(0, side, 0)), override_of(w + "radius", Rj),
+                   override_of(w + "half_size", Vec3(0, 0, 0))});
     }
     if (!sets.empty()) add("curved_jaws", "curved jaws, radius 1.5 R (reference: flat plates)", sets);
   }

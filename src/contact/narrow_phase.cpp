@@ -301,8 +301,8 @@ void find_plane_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& n, st
   weigh(out, first, rA);
 }
 
-void find_jaw_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& a, const Vec3& side, Real R,
-                      Real cos_half, std::vector<Touch>& out) {
+void find_jaw_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& a, const Vec3& side, Real R, Real cos_half,
+                      std::vector<Touch>& out) {
   const std::size_t first = out.size();
   for (int i = 0; i < A.topo->nv; ++i) {
     const Vec3 r = A.v[i] - p;

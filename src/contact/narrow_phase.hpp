@@ -53,7 +53,7 @@ void find_plane_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& n, st
 /// cosine cos_half about the unit direction `side` (normal to a). The distance to the
 /// axis is convex, so its largest value on a skeleton is at a vertex: one touch per vertex
 /// closer than rA to the cylinder (kind VF, fb = 0), normal towards the axis.
-void find_jaw_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& a, const Vec3& side, Real R,
-                      Real cos_half, std::vector<Touch>& out);
+void find_jaw_touches(const Poly& A, Real rA, const Vec3& p, const Vec3& a, const Vec3& side, Real R, Real cos_half,
+                      std::vector<Touch>& out);
 
 }  // namespace dspdem::contact

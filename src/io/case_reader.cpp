@@ -476,7 +476,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       for (const auto& o : c.walls)
         DSPDEM_CHECK(o.wall.name != w.name, "{}: wall name '{}' used twice", s.where("name"), w.name);
       const std::string type = s.str("type");
-      w.type = type == "box" ? contact::Wall::Type::Box
+      w.type = type == "box"   ? contact::Wall::Type::Box
                : type == "jaw" ? contact::Wall::Type::Jaw
                                : contact::Wall::Type::Plane;
       w.centre = s.vec3("point");

@@ -79,7 +79,8 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
       const Real fs = coupled_shear_strength(p, dn);
       const CoupledEnvelope e = coupled_envelope(p, un / lambda, ds / lambda, fs);
       if (lambda > e.lambda0) {
-        const Real d = lambda >= e.lambdaf ? 1.0 : e.lambdaf * (lambda - e.lambda0) / (lambda * (e.lambdaf - e.lambda0));
+        const Real d =
+            lambda >= e.lambdaf ? 1.0 : e.lambdaf * (lambda - e.lambda0) / (lambda * (e.lambdaf - e.lambda0));
         s.damage = std::max(s.damage, d);
       }
     }

@@ -1,8 +1,8 @@
 #include "joint/joint_forces.hpp"
 
-#include "joint/coupled_law.hpp"
-
 #include <cmath>
+
+#include "joint/coupled_law.hpp"
 
 namespace dspdem::joint {
 

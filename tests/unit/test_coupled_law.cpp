@@ -98,7 +98,8 @@ TEST(CoupledLaw, MixedPathsDissipateBetweenTheModesAsTheEnvelopeSays) {
     EXPECT_GT(total, last) << deg;
     last = total;
     // The break is on the eq. 6 ellipse of the displacements past the onset.
-    const Real a = (e.lambdaf - e.lambda0) * ct / (2 * p.GfI / p.ft), b = (e.lambdaf - e.lambda0) * st / (2 * p.GfII / p.c);
+    const Real a = (e.lambdaf - e.lambda0) * ct / (2 * p.GfI / p.ft),
+               b = (e.lambdaf - e.lambda0) * st / (2 * p.GfII / p.c);
     EXPECT_NEAR(a * a + b * b, 1.0, 1e-12) << deg;
   }
 }

@@ -58,8 +58,8 @@ std::vector<double> json_numbers(const fs::path& p, const std::string& key) {
 fs::path run_case(const std::string& name, const std::string& case_file, const std::string& sets) {
   const fs::path out = fs::temp_directory_path() / ("dspdem_bias_" + name);
   fs::remove_all(out);
-  const auto r = dspdem::testsupport::shell(std::string(DSPDEM_BIN) + " -q run " + DSPDEM_SOURCE_DIR + "/" +
-                                            case_file + " --out " + out.string() + " " + sets);
+  const auto r = dspdem::testsupport::shell(std::string(DSPDEM_BIN) + " -q run " + DSPDEM_SOURCE_DIR + "/" + case_file +
+                                            " --out " + out.string() + " " + sets);
   EXPECT_EQ(r.code, 0) << r.out;
   return out;
 }
