@@ -6,6 +6,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "app/case_mesh.hpp"
 #include "core/error.hpp"
@@ -15,7 +16,9 @@
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"
 #include "joint/fragments.hpp"
+#include "joint/joint_compliance.hpp"
 #include "time/integrator.hpp"
+#include "time/stop_rule.hpp"
 
 namespace dspdem {
 
@@ -79,6 +82,20 @@ class Series {
  private:
   std::ofstream f_;
 };
+/// The series.csv column named by [time] stop_series: a wall force or a monitor.
+std::function<Real()> series_column(const CaseConfig& c, const Model& m, const Integrator& it) {
+  const std::string& name = c.stop_series;
+  for (const auto& w : m.contact.walls())
+    for (int k = 0; k < 3; ++k)
+      if (name == w.name + "_f" + "xyz"[k]) return [&w, k]() { return w.force(k); };
+  for (const auto& ms : m.monitors)
+    if (name == ms.cfg.name) return [&it, &ms]() { return it.monitor(ms); };
+  std::string known;
+  for (const auto& w : m.contact.walls()) known += fmt::format(" {0}_fx {0}_fy {0}_fz", w.name);
+  for (const auto& ms : m.monitors) known += " " + ms.cfg.name;
+  fail("{}: [time] stop_series = \"{}\" is not a wall force or monitor column of series.csv (known:{})", c.path, name,
+       known.empty() ? " none" : known);
+}
 }  // namespace
 
 int run_case(const CaseConfig& c, const RunOptions& opt) {
@@ -94,6 +111,18 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     log::info("  joints: {} ({} triangles, {} quadrilaterals) on fracturable bodies; nodes {} -> {}",
               model.joint_report.joints, model.joint_report.tri, model.joint_report.quad,
               model.joint_report.nodes_before, model.joint_report.nodes_after);
+  Real joint_compliance = 0;
+  if (model.joints.size() > 0) {
+    std::vector<Real> elem_E(fem.n_elements), elem_vol(fem.n_elements, 0.0);
+    for (Index e = 0; e < fem.n_elements; ++e) elem_E[e] = model.materials[fem.elem_material[e]].E;
+    for (const auto& b : fem.blocks)
+      for (Index e = 0; e < b.size(); ++e) elem_vol[b.elem[e]] = b.vol[e];
+    joint_compliance = joint::added_compliance(model.joints, elem_E, elem_vol);
+    log::info(
+        "  intact joints add about {:.2f} % to the compliance of the jointed bodies (penalty springs in series; "
+        "joint_penalty trades this against the step)",
+        100 * joint_compliance);
+  }
   if (model.joint_report.split_without_joint > 0)
     log::warn(
         "{} node(s) were split into unconnected copies with no joint between them (elements meeting only at an "
@@ -189,6 +218,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     kv("elements", std::to_string(fem.n_elements));
     kv("frames", std::to_string(frames.size()));
     kv("joints", std::to_string(model.joints.size()));
+    kv("joint_added_compliance", json_number(joint_compliance));
     kv("broken_joints", std::to_string(e.broken_joints));
     kv("crack_area", json_number(e.crack_area));
     kv("fragments", std::to_string(frag.count));
@@ -224,6 +254,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   } restore{old_int, old_term};
 
   const bool tty_progress = opt.progress;
+  std::function<Real()> stop_value;
+  if (!c.stop_series.empty()) stop_value = series_column(c, model, it);
+  PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
+  std::string stop_message;
+  Real stop_at = -1;
   try {
     write_frame();
     series.row(it, model);
@@ -232,10 +267,20 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     double last_report = 0;
     for (long s = 0; s < n_steps; ++s) {
       it.step();
-      const bool last = s + 1 == n_steps;
+      bool last = s + 1 == n_steps;
       const Real t = it.time();
       if (t >= next_series - 1e-12 * c.t_end || last) {
         it.check_energy(c.energy_blowup_factor);
+        if (stop_value && stop_at < 0 && stop_rule.update(stop_value())) {
+          stop_at = t + c.stop_delay;
+          stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ", c.stop_series,
+                                     c.stop_fraction, stop_rule.peak(), t);
+        }
+        if (stop_at >= 0 && t >= stop_at - 1e-12 * c.t_end && !last) {
+          last = true;  // this row and a last frame, then stop
+          stop_message += fmt::format("t = {:.6g} s", t);
+          log::info("  {}", stop_message);
+        }
         series.row(it, model);
         while (next_series <= t + 1e-12 * c.t_end) next_series += c.series_interval;
       }
@@ -245,6 +290,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       }
       if (g_interrupted)
         throw NumericalError(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
+      if (last) break;
       if (tty_progress && loop.seconds() - last_report > 0.5) {
         last_report = loop.seconds();
         const double rate = static_cast<double>(s + 1) / last_report;
@@ -261,7 +307,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     throw NumericalError(fmt::format("{}\n  partial results (frames up to the failure) kept in {}", e.what(), kept),
                          e.step, e.time);
   }
-  write_summary(stage.path(), "completed", "");
+  write_summary(stage.path(), "completed", stop_message);
   stage.commit();
   const Energy e = it.energy();
   log::info("  {} steps to t = {:.6g} s in {:.2f} s ({:.3g} element-steps/s, {} threads); energy balance error {:.2e}",

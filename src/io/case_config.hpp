@@ -103,6 +103,8 @@ struct CaseConfig {
   Real t_end = 0, dt = 0, safety = 0.9;
   bool allow_unstable = false;
   long max_steps = 0;
+  std::string stop_series;  ///< empty: run to t_end
+  Real stop_fraction = 0.3, stop_min_peak = 0, stop_delay = 0;
   // output
   Real frame_interval = 0, series_interval = 0;
   std::vector<std::string> fields;

@@ -534,6 +534,10 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     c.safety = s.real("safety");
     c.allow_unstable = s.boolean("allow_unstable");
     c.max_steps = s.integer("max_steps");
+    if (s.has("stop_series")) c.stop_series = s.str("stop_series");
+    c.stop_fraction = s.real("stop_fraction");
+    c.stop_min_peak = s.real("stop_min_peak");
+    c.stop_delay = s.real("stop_delay");
     s.finish();
   }
   {

@@ -149,6 +149,7 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
        replace(good_, "meshes/cantilever_hex.geo", "meshes/inverted.msh"),
        "",
        {"inverted", "element tags: 1"}},
+      {"stop_series", good_, "--set time.stop_series=plate_fy", {"stop_series = \"plate_fy\"", "known:"}},
       {"unknown_group",
        replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""),
        "",
@@ -258,6 +259,34 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
                         "--no-animation");
   EXPECT_EQ(rr.code, 0) << rr.out;
   EXPECT_TRUE(fs::exists(out / "images/cracks/frame_0010.png"));
+}
+
+TEST_F(Cli, RunEndsOnceTheLoadHasDroppedAndThePiecesSeparated) {
+  // [time] stop_series: the notched bar's reaction peaks near 0.38 ms and falls below 0.3 of
+  // its peak at 0.5 ms while the crack runs; 0.2 ms later the two halves are apart. The run
+  // must end there (not at 1 ms), say why, and leave a finished run with its last frame.
+  const fs::path out = dir_ / "nb_stop";
+  const Result r = run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml --out " +
+                       out.string() + " --set time.stop_series=force --set time.stop_delay=2e-4");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string s = slurp(out / "summary.json");
+  EXPECT_NE(s.find("\"status\": \"completed\""), std::string::npos) << s;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      s, m, std::regex("fell below 0.3 of its peak [0-9.]+ at t = ([0-9.e-]+) s; stopped at t = ([0-9.e-]+) s")))
+      << s;
+  const double t_drop = std::stod(m[1].str()), t_stop = std::stod(m[2].str());
+  EXPECT_GT(t_drop, 3e-4);
+  EXPECT_NEAR(t_stop - t_drop, 2e-4, 2e-5);  // within two series rows (1e-5 s each)
+  ASSERT_TRUE(std::regex_search(s, m, std::regex("\"t_end\": ([0-9.e-]+)")));
+  EXPECT_LT(std::stod(m[1].str()), 0.9e-3);
+  ASSERT_TRUE(std::regex_search(s, m, std::regex("\"largest_fragment_masses\": \\[([^,]*), ([^,]*),"))) << s;
+  EXPECT_NEAR(std::stod(m[1].str()) / (std::stod(m[1].str()) + std::stod(m[2].str())), 0.5, 0.1) << s;
+  ASSERT_TRUE(std::regex_search(s, m, std::regex("\"frames\": ([0-9]+)")));
+  const int frames = std::stoi(m[1].str());
+  EXPECT_LT(frames, 11);  // the full run writes 11
+  EXPECT_TRUE(fs::exists(out / fmt::format("frames/frame_{:04d}.vtu", frames - 1)));
+  EXPECT_NE(slurp(out / "run.pvd").find(fmt::format("frame_{:04d}.vtu", frames - 1)), std::string::npos);
 }
 
 TEST_F(Cli, HelpListsSubcommands) {

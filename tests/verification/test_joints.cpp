@@ -2,8 +2,11 @@
 // compliance against the penalty, a bar broken dynamically, stability.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "core/error.hpp"
 #include "joint/fragments.hpp"
+#include "joint/joint_compliance.hpp"
 #include "joint/joint_forces.hpp"
 #include "support/run_helpers.hpp"
 
@@ -140,14 +143,18 @@ RelaxedBlock relaxed_block(bool joints, Real penalty, joint::Quadrature rule = j
   return b;
 }
 
-// Static stiffness of the block. Returns {stiffness, critical dt}.
-std::pair<Real, Real> block_stiffness(bool joints, Real penalty) {
+// Static stiffness of the block. Returns {stiffness, critical dt, the joints' added
+// compliance as dspdem estimates and prints it}.
+std::tuple<Real, Real, Real> block_stiffness(bool joints, Real penalty) {
   const RelaxedBlock b = relaxed_block(joints, penalty);
   Real u = 0;
   const Group& g = *b.m.mesh.find_group("xmax");
   for (Index n : g.nodes) u += b.x[3 * n] - b.m.fem.x0[3 * n];
   u /= static_cast<Real>(g.nodes.size());
-  return {1e4 / u, b.dt};
+  std::vector<Real> E(b.m.fem.n_elements, 30e9), vol(b.m.fem.n_elements, 0.0);
+  for (const auto& blk : b.m.fem.blocks)
+    for (Index e = 0; e < blk.size(); ++e) vol[blk.elem[e]] = blk.vol[e];
+  return {1e4 / u, b.dt, joint::added_compliance(b.m.joints, E, vol)};
 }
 
 // Normal traction at every joint point against the exact sigma n_x^2 of the uniform field
@@ -175,17 +182,28 @@ std::pair<Real, Real> traction_scatter(const RelaxedBlock& b) {
 TEST(Joints, AddedComplianceWithTheDefaultPenalty) {
   // Joints on every face of a 384-tet block: the static stiffness with the default penalty
   // (100) is within 2 % of the block without joints (measured: 1.5 %). The table (penalty,
-  // dt, error) is recorded for the speed-against-error report.
-  const auto [k0, dt0] = block_stiffness(false, 0);
+  // dt, error) is recorded for the speed-against-error report. The compliance the run
+  // prints (isotropic-orientation estimate, joint_compliance.hpp) must match the measured
+  // one, k0/k - 1, within 20 % where the measurement is good (p 10 and 50: measured 1.62/p
+  // and 1.55/p, estimate 1.75/p). This block's faces are not isotropic (a structured split
+  // of cubes), and the estimate is what a user reads to choose the penalty: right in size,
+  // not to the percent. At p 100 and 200 the measured p x C falls to 1.44 and 1.21, the
+  // trend of an offset of about 0.2 % in the relaxed static solution, so not asserted there.
+  const auto [k0, dt0, c0] = block_stiffness(false, 0);
+  EXPECT_EQ(c0, 0.0);
   for (Real p : {10.0, 50.0, 100.0, 200.0}) {
-    const auto [k, dt] = block_stiffness(true, p);
-    const Real err = 1 - k / k0;
+    const auto [k, dt, est] = block_stiffness(true, p);
+    const Real err = 1 - k / k0, added = k0 / k - 1;
     RecordProperty(fmt::format("penalty_{:g}", p),
-                   fmt::format("dt/dt_elements={:.3f} stiffness_error={:.4f}", dt / dt0, err));
+                   fmt::format("dt/dt_elements={:.3f} stiffness_error={:.4f} added_compliance={:.4f} estimate={:.4f}",
+                               dt / dt0, err, added, est));
     if (p == 100.0) {
       EXPECT_LT(std::abs(err), 0.02) << "stiffness error " << err;
     }
     EXPECT_GT(err, 0.0);  // joints only ever add compliance
+    if (p <= 50) {
+      EXPECT_NEAR(est / added, 1.0, 0.2) << "penalty " << p << ": measured " << added << ", estimate " << est;
+    }
   }
 }
 
