@@ -9,10 +9,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "io/run_summary.hpp"
 #include "post/brazilian.hpp"
 #include "render/plot.hpp"
 #include "render/series.hpp"
@@ -31,31 +30,6 @@ struct Column {
     fail("series.csv has no column '{}'", n);
   }
 };
-
-std::string read_summary(const std::string& run_dir) {
-  std::ifstream f(fs::path(run_dir) / "summary.json");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-// A number from summary.json's text (flat keys only); throws naming the key.
-double number_in(const std::string& text, const std::string& key, const std::string& run_dir) {
-  const std::regex re("\"" + key + "\": ([-0-9.eE+]+)");
-  std::smatch m;
-  if (!std::regex_search(text, m, re)) fail("'{}/summary.json' has no number '{}'", run_dir, key);
-  return std::stod(m[1]);
-}
-
-std::vector<double> list_in(const std::string& text, const std::string& key) {
-  const std::regex re("\"" + key + "\": \\[([^\\]]*)\\]");
-  std::smatch m;
-  std::vector<double> out;
-  if (!std::regex_search(text, m, re)) return out;
-  std::stringstream items(m[1].str());
-  for (std::string v; std::getline(items, v, ',');) out.push_back(std::stod(v));
-  return out;
-}
 
 }  // namespace
 
@@ -231,16 +205,14 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       break;
     }
   crack_path(run_dir, r, r.split_frame);
-  const std::string summary = read_summary(run_dir);
-  auto number = [&](const char* key) { return number_in(summary, key, run_dir); };
-  r.fragments = static_cast<int>(number("fragments"));
-  const double total = number("total_mass");
-  for (double m : list_in(summary, "largest_fragment_masses")) r.mass_fractions.push_back(m / total);
-  r.wall_s = number("wall_s");
-  r.steps = static_cast<long>(number("steps"));
-  r.dt = number("dt");
-  r.elements = static_cast<long>(number("elements"));
-  r.joints = static_cast<long>(number("joints"));
+  const RunSummary sum = read_run_summary((fs::path(run_dir) / "summary.json").string());
+  r.fragments = static_cast<int>(sum.fragments);
+  for (double m : sum.largest_fragment_masses) r.mass_fractions.push_back(m / sum.total_mass);
+  r.wall_s = sum.wall_s;
+  r.steps = sum.steps;
+  r.dt = sum.dt;
+  r.elements = sum.elements;
+  r.joints = sum.joints;
   return r;
 }
 

@@ -13,6 +13,7 @@
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "fem/stable_dt.hpp"
+#include "io/run_summary.hpp"
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"
 #include "joint/fragments.hpp"
@@ -26,23 +27,6 @@ namespace {
 namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void on_signal(int) { g_interrupted = 1; }
-
-std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
-
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\')
-      o += '\\', o += ch;
-    else if (ch == '\n')
-      o += "\\n";
-    else if (static_cast<unsigned char>(ch) < 0x20)
-      o += ' ';
-    else
-      o += ch;
-  }
-  return o;
-}
 
 std::string format_duration(double s) {
   if (!std::isfinite(s)) return "?";
@@ -199,50 +183,22 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
 
   auto write_summary = [&](const std::string& dir, const std::string& status, const std::string& message) {
     const Energy e = it.energy();
-    const double ws = wall.seconds();
-    std::string s = "{\n";
-    auto kv = [&s](const std::string& k, const std::string& v) { s += fmt::format("  \"{}\": {},\n", k, v); };
-    kv("case", '"' + json_escape(c.name) + '"');
-    kv("case_file", '"' + json_escape(c.path) + '"');
-    kv("status", '"' + status + '"');
-    kv("message", '"' + json_escape(message) + '"');
-    kv("steps", std::to_string(it.steps()));
-    kv("dt", json_number(dt));
-    kv("dt_critical", json_number(crit.dt));
-    kv("dt_limiter", '"' + crit.limiter + '"');
-    kv("dt_limiting_element", std::to_string(lim_tag));
-    kv("t_end", json_number(it.time()));
-    kv("wall_s", json_number(ws));
-    kv("threads", std::to_string(omp_get_max_threads()));
-    kv("nodes", std::to_string(fem.n_nodes));
-    kv("elements", std::to_string(fem.n_elements));
-    kv("frames", std::to_string(frames.size()));
-    kv("joints", std::to_string(model.joints.size()));
-    kv("joint_added_compliance", json_number(joint_compliance));
-    kv("broken_joints", std::to_string(e.broken_joints));
-    kv("crack_area", json_number(e.crack_area));
-    kv("fragments", std::to_string(frag.count));
-    {
-      Real total = 0;
-      for (Real mm : frag.mass) total += mm;
-      kv("total_mass", json_number(total));
-    }
-    {
-      std::string masses;
-      for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)
-        masses += (i ? ", " : "") + json_number(frag.mass[i]);
-      kv("largest_fragment_masses", "[" + masses + "]");
-    }
-    kv("element_steps_per_s", json_number(ws > 0 ? static_cast<double>(it.steps()) * fem.n_elements / ws : 0.0));
-    s += fmt::format(
-        "  \"energy\": {{\"kinetic\": {}, \"internal\": {}, \"external_work\": {}, \"damping\": {}, \"initial\": {}, "
-        "\"joint_elastic\": {}, \"fracture_I\": {}, \"fracture_II\": {}, \"contact_elastic\": {}, \"friction\": {}, "
-        "\"contact_damping\": {}, \"balance_error\": {}}}\n}}\n",
-        json_number(e.kinetic), json_number(e.internal), json_number(e.external_work), json_number(e.damping),
-        json_number(e.initial), json_number(e.joint_elastic), json_number(e.fracture_I), json_number(e.fracture_II),
-        json_number(e.contact_elastic), json_number(e.friction), json_number(e.contact_damping),
-        json_number(e.balance_error()));
-    write_file_atomic((fs::path(dir) / "summary.json").string(), s);
+    RunSummary s;
+    s.case_name = c.name, s.case_file = c.path, s.status = status, s.message = message;
+    s.steps = it.steps(), s.dt = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
+    s.dt_limiting_element = static_cast<long>(lim_tag);
+    s.t_end = it.time(), s.wall_s = wall.seconds(), s.threads = omp_get_max_threads();
+    s.nodes = fem.n_nodes, s.elements = fem.n_elements, s.frames = static_cast<long>(frames.size());
+    s.joints = model.joints.size(), s.joint_added_compliance = joint_compliance;
+    s.broken_joints = e.broken_joints, s.crack_area = e.crack_area;
+    s.fragments = frag.count;
+    for (Real mm : frag.mass) s.total_mass += mm;
+    for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)
+      s.largest_fragment_masses.push_back(frag.mass[i]);
+    s.element_steps_per_s = s.wall_s > 0 ? static_cast<double>(it.steps()) * fem.n_elements / s.wall_s : 0.0;
+    s.energy = {e.kinetic,    e.internal,    e.external_work,   e.damping,  e.initial,         e.joint_elastic,
+                e.fracture_I, e.fracture_II, e.contact_elastic, e.friction, e.contact_damping, e.balance_error()};
+    write_run_summary((fs::path(dir) / "summary.json").string(), s);
   };
 
   g_interrupted = 0;
@@ -273,8 +229,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         it.check_energy(c.energy_blowup_factor);
         if (stop_value && stop_at < 0 && stop_rule.update(stop_value())) {
           stop_at = t + c.stop_delay;
-          stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ", c.stop_series,
-                                     c.stop_fraction, stop_rule.peak(), t);
+          stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",
+                                     c.stop_series, c.stop_fraction, stop_rule.peak(), t);
         }
         if (stop_at >= 0 && t >= stop_at - 1e-12 * c.t_end && !last) {
           last = true;  // this row and a last frame, then stop

@@ -1,0 +1,46 @@
+// summary.json of a run folder: one struct written by `dspdem run` and read by every report,
+// through nlohmann-json both ways, so a key cannot be written under one name and read under
+// another. Unknown keys in a file are ignored (newer writers), missing ones are an error
+// naming the file and key.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace dspdem {
+
+struct EnergySummary {
+  double kinetic = 0, internal = 0, external_work = 0, damping = 0, initial = 0;
+  double joint_elastic = 0, fracture_I = 0, fracture_II = 0;
+  double contact_elastic = 0, friction = 0, contact_damping = 0;
+  double balance_error = 0;
+};
+
+struct RunSummary {
+  std::string case_name, case_file;
+  std::string status;   ///< "completed" or "failed"
+  std::string message;  ///< why it failed, or why it ended before [time] end
+  long steps = 0;
+  double dt = 0, dt_critical = 0;
+  std::string dt_limiter;
+  long dt_limiting_element = 0;
+  double t_end = 0, wall_s = 0;
+  int threads = 1;
+  long nodes = 0, elements = 0, frames = 0, joints = 0, broken_joints = 0;
+  double joint_added_compliance = 0, crack_area = 0;
+  long fragments = 0;
+  double total_mass = 0;
+  std::vector<double> largest_fragment_masses;  ///< the ten largest, descending [kg]
+  double element_steps_per_s = 0;
+  EnergySummary energy;
+};
+
+/// Writes `s` as JSON to `path` (atomically: a temporary file, then rename).
+void write_run_summary(const std::string& path, const RunSummary& s);
+
+/// Reads a summary.json; throws Error naming the file (and the key) when it is missing or
+/// malformed.
+RunSummary read_run_summary(const std::string& path);
+
+}  // namespace dspdem
