@@ -9,13 +9,14 @@
 #include <filesystem>
 
 #include "app/mesh_command.hpp"
-#include "app/render_command.hpp"
 #include "app/report_command.hpp"
-#include "app/run_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "render/image_compare.hpp"
+#include "run/render_run.hpp"
+#include "run/run_case.hpp"
+#include "scenes/registry.hpp"
 
 using namespace dspdem;
 
@@ -65,8 +66,11 @@ int main(int argc, char** argv) {
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
 
   auto* rep = app.add_subcommand(
-      "report", "Run the Brazilian disc scene and write DIR/report.md with its figures (--study: speed against error)");
-  ReportArgs rpa;
+      "report",
+      "Run a benchmark scene's case and write DIR/report.md with its figures against the reference (--study: speed "
+      "against error); `dspdem scenes` lists the scenes");
+  auto* scn = app.add_subcommand("scenes", "List the benchmark scenes dspdem report knows ([case] scene = \"...\")");
+  report::ReportArgs rpa;
   rep->add_option("case", rpa.case_file, "Case file (TOML)")->required();
   rep->add_option("-o,--out", rpa.out_dir, "Output directory (default: results/<case name>_report)");
   rep->add_option("--set", rpa.sets, "Override a case key: section.key=value (repeatable)");
@@ -110,6 +114,11 @@ int main(int argc, char** argv) {
     }
     if (*rend) return render_command(ra);
     if (*rep) return report_command(rpa);
+    if (*scn) {
+      for (const auto& sc : scenes::all())
+        fmt::print("{:<16} {} (cases with mesh generator '{}' by default)\n", sc.name, sc.title, sc.generator);
+      return 0;
+    }
     if (*imgdiff) {
       const std::string diff = img_diff.empty() ? img_a.substr(0, img_a.rfind('.')) + ".diff.png" : img_diff;
       const render::ImageDiff d = render::compare_png(img_a, img_b, diff, img_tol);

@@ -2,7 +2,6 @@
 
 #include <filesystem>
 
-#include "app/case_mesh.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
@@ -10,6 +9,7 @@
 #include "mesh/gmsh_reader.hpp"
 #include "meshing/generator.hpp"
 #include "meshing/quality.hpp"
+#include "run/case_mesh.hpp"
 
 namespace dspdem {
 

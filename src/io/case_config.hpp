@@ -84,6 +84,7 @@ struct CaseConfig {
   std::string path;  ///< the case file
   std::string dir;   ///< its directory (relative paths are resolved against it)
   std::string name, description;
+  std::string scene;  ///< [case] scene: empty = from the mesh generator
   std::string mesh_file;                        ///< absolute or relative to dir (empty when a generator is used)
   std::string mesh_generator;                   ///< generator name (empty when a file is used)
   std::map<std::string, double> mesh_num;       ///< its numeric parameters

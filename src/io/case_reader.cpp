@@ -275,6 +275,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     Section s(ctx, sub_table(ctx, root, "case"), "case", "[case]");
     c.name = s.has("name") ? s.str("name") : fs::path(path).stem().string();
     c.description = s.str("description");
+    if (s.has("scene")) c.scene = s.str("scene");
     s.finish();
   }
   {

@@ -300,13 +300,21 @@ TEST(Docs, CasesReadmeHoldsTheSchemaTable) {
   EXPECT_NE(doc.find(r.out), std::string::npos) << "regenerate the table with: build/dspdem keys";
 }
 
-TEST_F(Cli, ReportRefusesAnotherSceneWithAMessage) {
-  // dspdem report is the Brazilian-disc report: any other case is bad input (exit 2).
+TEST_F(Cli, ReportRefusesACaseWithoutASceneAndListsTheScenes) {
+  // A case that is no benchmark scene (no [case] scene, a mesh file without a scene of its
+  // own), or names an unknown scene, is bad input (exit 2) and the message lists the scenes.
   const fs::path c = write("cantilever.toml", good_);
-  const Result r = run("report " + c.string() + " --out " + (dir_ / "rep").string());
+  Result r = run("report " + c.string() + " --out " + (dir_ / "rep").string());
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("Brazilian disc"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[case] scene"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("known: brazilian_disc"), std::string::npos) << r.out;
+  r = run("report " + c.string() + " --out " + (dir_ / "rep").string() + " --set case.scene=galvez");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("scene = \"galvez\" is not a scene"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "report.md"));
+  r = run("scenes");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("brazilian_disc"), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, WallsNeedContactAndNameTheirKey) {

@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
-#include "app/disc_analysis.hpp"
-#include "app/stress_check.hpp"
+#include "scenes/brazilian_disc/analysis.hpp"
+#include "scenes/brazilian_disc/stress_check.hpp"
 #include "io/case_config.hpp"
 
 using namespace dspdem;

@@ -1,4 +1,4 @@
-#include "app/case_mesh.hpp"
+#include "run/case_mesh.hpp"
 
 #include "core/log.hpp"
 #include "core/timer.hpp"

@@ -1,4 +1,4 @@
-#include "app/report_study.hpp"
+#include "scenes/brazilian_disc/study.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -6,22 +6,25 @@
 #include <utility>
 #include <vector>
 
-#include "app/disc_analysis.hpp"
-#include "app/run_command.hpp"
-#include "app/stress_check.hpp"
 #include "core/log.hpp"
 #include "render/plot.hpp"
+#include "report/study_runner.hpp"
+#include "run/run_case.hpp"
+#include "scenes/brazilian_disc/analysis.hpp"
+#include "scenes/brazilian_disc/stress_check.hpp"
 
 namespace dspdem {
 
 namespace {
 namespace fs = std::filesystem;
 
-struct Variant {
-  std::string name, knob;
-  std::vector<std::string> sets;  ///< overrides on top of the base's (read when it runs)
-  bool reference = false;         ///< the base case itself: its run is reused
-  bool elastic = false;           ///< the stress check's case: no joints, no strength
+// A row of the sweep: the generic variant, and whether it is the stress check's elastic
+// case (no joints, no strength).
+struct Variant : report::Variant {
+  bool reference = false;  ///< the base case itself: its run is reused
+  bool elastic = false;
+  Variant(std::string n, std::string k, std::vector<std::string> s, bool ref = false, bool el = false)
+      : report::Variant{std::move(n), std::move(k), std::move(s)}, reference(ref), elastic(el) {}
 };
 
 // The sweep: three mesh sizes at the reference settings, then each knob moved alone. Each
@@ -167,35 +170,26 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
 std::string run_study(const CaseConfig& base, const DiscResult& reference, const DiscResult* check,
                       const std::string& dir, const std::string& image_dir) {
   std::string study_md;
+  std::vector<Variant> variants = study_variants(base);
+  std::vector<report::Variant> generic;
+  for (auto& v : variants) {
+    v.reuse = v.reference || (v.elastic && check);
+    generic.push_back(v);
+  }
   std::vector<std::pair<Variant, DiscResult>> rows;
+  for (const auto& v : variants)
+    rows.emplace_back(v, v.reference ? reference : v.elastic && check ? *check : DiscResult{});
   // A variant that fails (bad derived parameter, no frame before its peak, numerical
   // trouble) gets a row saying why; the others and the main report are kept.
+  const auto outcome = report::run_variants(generic, dir, [&](std::size_t i, const std::string& run_dir) {
+    const Variant& v = variants[i];
+    if (v.elastic)  // the stress check's case needs the reference's profile time
+      rows[i].second = run_stress_check(stress_check_case(base, reference.t_profile), reference.P_profile, run_dir);
+    else
+      rows[i].second = analyse_disc_run(report::run_variant_case(base, v, run_dir), run_dir, false);
+  });
   std::vector<std::string> failed;
-  for (auto& v : study_variants(base)) {
-    if (v.reference || (v.elastic && check)) {
-      rows.emplace_back(v, v.reference ? reference : *check), failed.emplace_back();
-      continue;
-    }
-    log::info("study: {} ({})", v.name, v.knob);
-    RunOptions vo;
-    vo.out_dir = (fs::path(dir) / "study" / v.name).string();
-    try {
-      // Read here, so a variant the reader refuses gets a failed row like one that fails
-      // to run (the stress check's case needs the reference's profile time).
-      if (v.elastic) {
-        rows.emplace_back(
-            v, run_stress_check(stress_check_case(base, reference.t_profile), reference.P_profile, vo.out_dir));
-      } else {
-        const CaseConfig c = reread_with(base, v.sets);
-        run_case(c, vo);
-        rows.emplace_back(v, analyse_disc_run(c, vo.out_dir, false));
-      }
-      failed.emplace_back();
-    } catch (const std::exception& e) {
-      log::warn("study: {} failed: {}", v.name, e.what());
-      rows.emplace_back(v, DiscResult{}), failed.emplace_back(e.what());
-    }
-  }
+  for (const auto& o : outcome) failed.push_back(o.error);
   const std::string csv = (fs::path(dir) / "study" / "study.csv").string();
   {
     std::ofstream f(csv);

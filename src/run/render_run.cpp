@@ -1,4 +1,4 @@
-#include "app/render_command.hpp"
+#include "run/render_run.hpp"
 
 #include <spawn.h>
 #include <sys/wait.h>

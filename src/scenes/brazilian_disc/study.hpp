@@ -4,8 +4,8 @@
 #pragma once
 #include <string>
 
-#include "app/disc_analysis.hpp"
 #include "io/case_config.hpp"
+#include "scenes/brazilian_disc/analysis.hpp"
 
 namespace dspdem {
 

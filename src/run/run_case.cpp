@@ -1,4 +1,4 @@
-#include "app/run_command.hpp"
+#include "run/run_case.hpp"
 
 #include <omp.h>
 #include <unistd.h>
@@ -8,7 +8,6 @@
 #include <fstream>
 #include <functional>
 
-#include "app/case_mesh.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
@@ -18,6 +17,7 @@
 #include "io/vtu_writer.hpp"
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
+#include "run/case_mesh.hpp"
 #include "time/integrator.hpp"
 #include "time/stop_rule.hpp"
 

@@ -1,8 +1,8 @@
-#include "app/stress_check.hpp"
+#include "scenes/brazilian_disc/stress_check.hpp"
 
-#include "app/run_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "run/run_case.hpp"
 
 namespace dspdem {
 

@@ -1,4 +1,4 @@
-#include "app/disc_analysis.hpp"
+#include "scenes/brazilian_disc/analysis.hpp"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -11,25 +11,15 @@
 #include <fstream>
 
 #include "core/error.hpp"
-#include "io/run_summary.hpp"
 #include "post/brazilian.hpp"
 #include "render/plot.hpp"
 #include "render/series.hpp"
+#include "report/run_data.hpp"
 
 namespace dspdem {
 
 namespace {
 namespace fs = std::filesystem;
-
-struct Column {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> cols;
-  const std::vector<double>& operator[](const std::string& n) const {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == n) return cols[i];
-    fail("series.csv has no column '{}'", n);
-  }
-};
 
 }  // namespace
 
@@ -77,8 +67,8 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
         if (c.materials[m].name == c.bodies[b].material) r.ft = c.joint_materials[m].ft;
   DSPDEM_CHECK(c.walls.size() == 2, "{}: dspdem report expects the two plates as [[walls]] (found {})", c.path,
                c.walls.size());
-  Column s;
-  render::read_csv((fs::path(run_dir) / "series.csv").string(), s.names, s.cols);
+  const report::RunData run = report::RunData::open(run_dir);
+  const report::Series& s = run.series;
   const auto& t = s["time"];
   const auto& f_top = s[c.walls[0].wall.name + "_fy"];
   const auto& f_bot = s[c.walls[1].wall.name + "_fy"];
@@ -111,7 +101,7 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
   // Frame for the stress profile: the paper's 33/40.6 of the peak, taken before the first
   // broken joint (the analytic solution is elastic): when the peak comes late, the last
   // frame before cracking.
-  const auto frames = render::read_series(run_dir);
+  const auto& frames = run.frames;
   auto load_at = [&](double time) {
     std::size_t k = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), time - 1e-15) - t.begin());
     return P[std::min(k, P.size() - 1)];
@@ -205,7 +195,7 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       break;
     }
   crack_path(run_dir, r, r.split_frame);
-  const RunSummary sum = read_run_summary((fs::path(run_dir) / "summary.json").string());
+  const RunSummary& sum = run.summary;
   r.fragments = static_cast<int>(sum.fragments);
   for (double m : sum.largest_fragment_masses) r.mass_fractions.push_back(m / sum.total_mass);
   r.wall_s = sum.wall_s;

@@ -1,0 +1,17 @@
+// What `dspdem report CASE.toml` was asked for; every scene's report takes the same.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace dspdem::report {
+
+struct ReportArgs {
+  std::string case_file, out_dir;
+  std::vector<std::string> sets;
+  bool study = false;            ///< also run the speed-against-error sweep
+  bool no_render = false;        ///< skip images (numbers and plots only)
+  std::string from_run;          ///< analyse this finished run of the same case instead of running it
+  bool no_stress_check = false;  ///< skip a scene's extra verification runs (the disc's stress check)
+};
+
+}  // namespace dspdem::report

@@ -1,0 +1,58 @@
+#include "report/run_data.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "render/plot.hpp"
+
+namespace dspdem::report {
+
+namespace fs = std::filesystem;
+
+Series::Series(const std::string& csv_path) : path_(csv_path) { render::read_csv(csv_path, names_, cols_); }
+
+bool Series::has(const std::string& name) const {
+  return std::find(names_.begin(), names_.end(), name) != names_.end();
+}
+
+const std::vector<double>& Series::operator[](const std::string& name) const {
+  for (std::size_t i = 0; i < names_.size(); ++i)
+    if (names_[i] == name) return cols_[i];
+  std::string known;
+  for (const auto& n : names_) known += " " + n;
+  fail("'{}' has no column '{}' (columns:{})", path_, name, known);
+}
+
+RunData RunData::open(const std::string& dir) {
+  RunData r;
+  r.dir = dir;
+  const fs::path d(dir);
+  DSPDEM_CHECK(fs::exists(d / "summary.json"), "{}: no summary.json there (not the output folder of a finished run)",
+               dir);
+  r.summary = read_run_summary((d / "summary.json").string());
+  r.series = Series((d / "series.csv").string());
+  r.frames = render::read_series(dir);
+  if (fs::exists(d / "joints.pvd")) r.joint_frames = render::read_series(dir, "joints.pvd");
+  if (std::ifstream f(d / "case.resolved.toml"); f) {
+    std::stringstream ss;
+    ss << f.rdbuf();
+    r.resolved_case = ss.str();
+  }
+  return r;
+}
+
+std::size_t RunData::frame_at_or_after(double t) const {
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].time >= t) return i;
+  return frames.empty() ? 0 : frames.size() - 1;
+}
+
+double value_at(const std::vector<double>& time, const std::vector<double>& values, double t) {
+  const std::size_t k = static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), t - 1e-15) - time.begin());
+  return values[std::min(k, values.size() - 1)];
+}
+
+}  // namespace dspdem::report

@@ -1,0 +1,47 @@
+// A finished run folder opened for analysis: its summary, its series by column name, its
+// frames (and the joints frames when there are joints), and its resolved case text. Every
+// scene's analysis starts here instead of reading the files itself.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "io/run_summary.hpp"
+#include "render/series.hpp"
+
+namespace dspdem::report {
+
+/// series.csv as columns.
+class Series {
+ public:
+  Series() = default;
+  explicit Series(const std::string& csv_path);
+  /// The column called `name`; throws Error naming the file and the columns it has.
+  const std::vector<double>& operator[](const std::string& name) const;
+  bool has(const std::string& name) const;
+  std::size_t rows() const { return cols_.empty() ? 0 : cols_.front().size(); }
+
+ private:
+  std::string path_;
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> cols_;
+};
+
+struct RunData {
+  std::string dir;
+  RunSummary summary;
+  Series series;
+  std::vector<render::FrameRef> frames;
+  std::vector<render::FrameRef> joint_frames;  ///< empty without joints
+  std::string resolved_case;                   ///< case.resolved.toml, as run
+
+  /// Opens DIR; throws Error naming what is missing (summary.json, series.csv, run.pvd).
+  static RunData open(const std::string& dir);
+
+  /// Index of the first frame at or after time t (the last frame when none).
+  std::size_t frame_at_or_after(double t) const;
+};
+
+/// Series value at time t: the row at or just after t (series are sampled finer than frames).
+double value_at(const std::vector<double>& time, const std::vector<double>& values, double t);
+
+}  // namespace dspdem::report

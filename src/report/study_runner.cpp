@@ -1,0 +1,38 @@
+#include "report/study_runner.hpp"
+
+#include <filesystem>
+
+#include "core/log.hpp"
+#include "run/run_case.hpp"
+
+namespace dspdem::report {
+
+namespace fs = std::filesystem;
+
+std::vector<VariantOutcome> run_variants(const std::vector<Variant>& variants, const std::string& dir,
+                                         const std::function<void(std::size_t, const std::string&)>& run) {
+  std::vector<VariantOutcome> out(variants.size());
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    const Variant& v = variants[i];
+    if (v.reuse) continue;
+    log::info("study: {} ({})", v.name, v.knob);
+    out[i].run_dir = (fs::path(dir) / "study" / v.name).string();
+    try {
+      run(i, out[i].run_dir);
+    } catch (const std::exception& e) {
+      log::warn("study: {} failed: {}", v.name, e.what());
+      out[i].error = e.what();
+    }
+  }
+  return out;
+}
+
+CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir) {
+  const CaseConfig c = reread_with(base, v.sets);
+  RunOptions o;
+  o.out_dir = run_dir;
+  run_case(c, o);
+  return c;
+}
+
+}  // namespace dspdem::report
