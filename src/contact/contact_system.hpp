@@ -14,6 +14,7 @@
 
 #include "contact/broad_phase.hpp"
 #include "contact/contact_law.hpp"
+#include "contact/contact_params.hpp"
 #include "contact/narrow_phase.hpp"
 #include "contact/skeleton.hpp"
 #include "contact/walls.hpp"
@@ -21,21 +22,6 @@
 #include "mesh/mesh.hpp"
 
 namespace dspdem::contact {
-
-/// Contact properties of a material.
-struct ContactMaterial {
-  Real radius = 0;  ///< dilation radius [m]; 0: radius_fraction x inradius
-  Real radius_fraction = 0.1;
-  Real penalty = 10;       ///< kn = penalty x E x 2 inradius of the element, when kn = 0
-  Real kn = 0;             ///< [N/m]
-  Real kt_ratio = 1.0;     ///< kt = kt_ratio x kn
-  Real friction = 0.5;     ///< Coulomb coefficient
-  Real damping_ratio = 0;  ///< normal viscous damping, fraction of critical
-};
-
-struct ContactSettings {
-  Real skin = 0;  ///< broad-phase skin [m]; 0: 0.2 x the mean radius-inflated element size
-};
 
 struct ContactTotals {
   Real elastic = 0;       ///< stored in the springs now [J]

@@ -6,9 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "contact/contact_system.hpp"
+#include "contact/contact_params.hpp"
+#include "contact/walls.hpp"
 #include "core/types.hpp"
 #include "fem/fem_model.hpp"
+#include "time/monitor.hpp"
 
 namespace dspdem {
 
@@ -60,13 +62,6 @@ struct InitialConfig {
   std::string where;
 };
 
-struct MonitorConfig {
-  enum class Type { Reaction, Displacement, DisplacementDifference, MaxDisplacement, Velocity } type;
-  std::string name, group, group2;
-  int component = 3;  ///< 0,1,2 = x,y,z; 3 = magnitude
-  std::string where;
-};
-
 /// [render]: how `dspdem render` draws a run.
 struct RenderConfig {
   std::vector<std::string> views = {"stress", "fragments"};
@@ -84,7 +79,7 @@ struct CaseConfig {
   std::string path;  ///< the case file
   std::string dir;   ///< its directory (relative paths are resolved against it)
   std::string name, description;
-  std::string scene;  ///< [case] scene: empty = from the mesh generator
+  std::string scene;                            ///< [case] scene: empty = from the mesh generator
   std::string mesh_file;                        ///< absolute or relative to dir (empty when a generator is used)
   std::string mesh_generator;                   ///< generator name (empty when a file is used)
   std::map<std::string, double> mesh_num;       ///< its numeric parameters

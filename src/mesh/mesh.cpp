@@ -2,9 +2,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <limits>
 
 #include "core/error.hpp"
-#include "fem/hex8.hpp"
 
 namespace dspdem {
 
@@ -30,6 +30,25 @@ Real tet4_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return (b - a).cross(c - a).dot(d - a) / 6.0;
 }
 
+// Smallest corner Jacobian determinant of a trilinear hexahedron in gmsh order: at corner I
+// with natural coordinates (a, b, c) the Jacobian's columns are a (X_I - X_xi) / 2,
+// b (X_I - X_eta) / 2, c (X_I - X_zeta) / 2, the edges to its three neighbours. Negative
+// or zero at some corner: the element is inverted or degenerate there.
+Real hex8_min_corner_jacobian(const Vec3 (&X)[8]) {
+  // gmsh: 0 (-,-,-) 1 (+,-,-) 2 (+,+,-) 3 (-,+,-), then 4-7 the same at zeta = +1.
+  static const int sx[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, sy[8] = {-1, -1, 1, 1, -1, -1, 1, 1},
+                   sz[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+  static const int nxi[8] = {1, 0, 3, 2, 5, 4, 7, 6}, neta[8] = {3, 2, 1, 0, 7, 6, 5, 4},
+                   nzeta[8] = {4, 5, 6, 7, 0, 1, 2, 3};
+  Real m = std::numeric_limits<Real>::infinity();
+  for (int I = 0; I < 8; ++I) {
+    const Vec3 a = 0.5 * sx[I] * (X[I] - X[nxi[I]]), b = 0.5 * sy[I] * (X[I] - X[neta[I]]),
+               c = 0.5 * sz[I] * (X[I] - X[nzeta[I]]);
+    m = std::min(m, a.dot(b.cross(c)));
+  }
+  return m;
+}
+
 void check_element_volumes(const Mesh& mesh) {
   for (const auto& blk : mesh.blocks) {
     const int npe = blk.npe();
@@ -45,9 +64,9 @@ void check_element_volumes(const Mesh& mesh) {
         const Real h = (node_pos(mesh.x, c[1]) - node_pos(mesh.x, c[0])).norm();
         ok = v > 1e-12 * h * h * h;
       } else {
-        Eigen::Matrix<Real, 3, 8> xe;
-        for (int i = 0; i < 8; ++i) xe.col(i) = node_pos(mesh.x, c[i]);
-        ok = hex8::min_corner_jacobian(xe) > 0.0;
+        Vec3 xe[8];
+        for (int i = 0; i < 8; ++i) xe[i] = node_pos(mesh.x, c[i]);
+        ok = hex8_min_corner_jacobian(xe) > 0.0;
       }
       if (!ok) {
         ++n_bad;

@@ -50,6 +50,10 @@ struct Mesh {
 /// elements (by tag) of the mesh.
 void check_element_volumes(const Mesh& mesh);
 
+/// Smallest Jacobian determinant over the eight corners of a trilinear hexahedron (gmsh
+/// node order); the element is valid when it is positive.
+Real hex8_min_corner_jacobian(const Vec3 (&X)[8]);
+
 /// Volume of a tet4 from its four corner positions (positive for gmsh's orientation).
 Real tet4_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 

@@ -12,6 +12,7 @@
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "fem/stable_dt.hpp"
+#include "io/model_builder.hpp"
 #include "io/run_summary.hpp"
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"

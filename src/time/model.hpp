@@ -7,9 +7,9 @@
 #include "contact/contact_system.hpp"
 #include "fem/fem_model.hpp"
 #include "fem/stable_dt.hpp"
-#include "io/case_config.hpp"
 #include "joint/joint_set.hpp"
 #include "mesh/mesh.hpp"
+#include "time/monitor.hpp"
 
 namespace dspdem {
 
@@ -56,9 +56,5 @@ inline Real ramp_rate(Real t, Real ramp) { return ramp > 0 && t < ramp ? 1.0 / r
 /// Critical time step of the model: elements, joint penalties and contact springs
 /// (limiter says which).
 StableStep stable_step(const Model& m);
-
-/// Builds the model from a case and a mesh. Throws Error naming the case key for groups or
-/// bodies that do not match the mesh.
-Model build_model(const CaseConfig& c, Mesh mesh);
 
 }  // namespace dspdem

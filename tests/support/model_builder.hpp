@@ -1,6 +1,7 @@
 // Builds a CaseConfig in code for tests: one material, one body "all".
 #pragma once
 #include "io/case_config.hpp"
+#include "io/model_builder.hpp"
 #include "time/model.hpp"
 
 namespace dspdem::testsupport {

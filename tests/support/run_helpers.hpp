@@ -1,6 +1,7 @@
 // Helpers for verification tests that drive the Integrator directly.
 #pragma once
 #include "fem/stable_dt.hpp"
+#include "io/model_builder.hpp"
 #include "support/box_mesh.hpp"
 #include "support/model_builder.hpp"
 #include "time/integrator.hpp"

@@ -6,6 +6,7 @@
 
 #include "fem/fem_model.hpp"
 #include "fem/hex8.hpp"
+#include "mesh/mesh.hpp"
 #include "support/box_mesh.hpp"
 
 using namespace dspdem;
@@ -130,5 +131,24 @@ TEST(Kinematics, RigidRotationIsStressFreeOnlyWhenCorotational) {
       EXPECT_LT(smax, 1e-6 * 30e9 * 1e-6);
     else
       EXPECT_GT(smax, 1e-2 * 30e9);  // a 0.8 rad rotation reads as ~30 % strain
+  }
+}
+
+TEST(Hex8, MeshCornerJacobianMatchesTheShapeFunctions) {
+  // The mesh checks hexahedra without the FEM layer (edge triple products at the corners);
+  // it must agree with the Jacobian of the shape functions at every corner, for distorted
+  // and for inverted elements.
+  std::srand(7);
+  const Real nat[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                          {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  for (int trial = 0; trial < 50; ++trial) {
+    hex8::Coords X;
+    Vec3 xs[8];
+    const Real amp = trial < 40 ? 0.2 : 1.2;  // the last ten are often inverted
+    for (int i = 0; i < 8; ++i) {
+      xs[i] = 0.5 * Vec3(nat[i][0], nat[i][1], nat[i][2]) + amp * Vec3::Random() * 0.5;
+      X.col(i) = xs[i];
+    }
+    EXPECT_NEAR(hex8_min_corner_jacobian(xs), hex8::min_corner_jacobian(X), 1e-12) << "trial " << trial;
   }
 }

@@ -1,0 +1,282 @@
+#include "io/model_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/error.hpp"
+
+namespace dspdem {
+
+namespace {
+const Group& need_group(const Mesh& mesh, const std::string& name, const std::string& where) {
+  const Group* g = mesh.find_group(name);
+  if (!g)
+    fail("{}: group '{}' is not a physical group of mesh '{}' (groups: {})", where, name, mesh.source,
+         mesh.group_names());
+  if (g->nodes.empty()) fail("{}: group '{}' of mesh '{}' has no nodes", where, name, mesh.source);
+  return *g;
+}
+
+// Nodal weights that spread a total force over a group: by tributary area on surface
+// groups (a uniform traction), equally over nodes otherwise.
+std::vector<std::pair<Index, Real>> load_weights(const Mesh& mesh, const Group& g) {
+  std::map<Index, Real> w;
+  Real total = 0;
+  auto add_face = [&](const Index* c, int n) {
+    Vec3 area = Vec3::Zero();
+    const Vec3 p0 = node_pos(mesh.x, c[0]);
+    for (int i = 1; i + 1 < n; ++i) area += 0.5 * (node_pos(mesh.x, c[i]) - p0).cross(node_pos(mesh.x, c[i + 1]) - p0);
+    const Real a = area.norm();
+    for (int i = 0; i < n; ++i) w[c[i]] += a / n;
+    total += a;
+  };
+  for (std::size_t i = 0; i < g.tri.size(); i += 3) add_face(&g.tri[i], 3);
+  for (std::size_t i = 0; i < g.quad.size(); i += 4) add_face(&g.quad[i], 4);
+  std::vector<std::pair<Index, Real>> out;
+  if (total > 0) {
+    for (auto [n, a] : w) out.emplace_back(n, a / total);
+  } else {
+    for (Index n : g.nodes) out.emplace_back(n, 1.0 / static_cast<Real>(g.nodes.size()));
+  }
+  return out;
+}
+}  // namespace
+
+Model build_model(const CaseConfig& c, Mesh mesh) {
+  Model m;
+  m.mesh = std::move(mesh);
+  m.materials = c.materials;
+  m.gravity = c.gravity;
+  const Mesh& me = m.mesh;
+
+  // Element -> body and material.
+  const Index ne = me.n_elements();
+  std::vector<Index> body(ne, -1), material(ne, -1);
+  std::vector<Kinematics> body_kin;
+  std::vector<Index> block_offset;
+  {
+    Index off = 0;
+    for (const auto& b : me.blocks) block_offset.push_back(off), off += b.size();
+  }
+  for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
+    const BodyConfig& bc = c.bodies[bi];
+    m.body_names.push_back(bc.name);
+    body_kin.push_back(bc.kinematics);
+    Index mat = 0;
+    for (std::size_t k = 0; k < c.materials.size(); ++k)
+      if (c.materials[k].name == bc.material) mat = static_cast<Index>(k);
+    for (const auto& gname : bc.groups) {
+      const Group* g = me.find_group(gname);
+      const std::string where = fmt::format("{}: [[bodies]] '{}'", c.path, bc.name);
+      if (!g)
+        fail("{}: group '{}' is not a physical group of mesh '{}' (groups: {})", where, gname, me.source,
+             me.group_names());
+      if (g->dim != 3)
+        fail("{}: group '{}' has dimension {}; bodies are made of volume (3D) groups", where, gname, g->dim);
+      for (std::size_t b = 0; b < g->elements.size(); ++b)
+        for (Index e : g->elements[b]) {
+          const Index gid = block_offset[b] + e;
+          if (body[gid] >= 0 && body[gid] != static_cast<Index>(bi))
+            fail("{}: element {} is in body '{}' and in body '{}'", where, me.blocks[b].tag[e],
+                 c.bodies[body[gid]].name, bc.name);
+          body[gid] = static_cast<Index>(bi);
+          material[gid] = mat;
+        }
+    }
+  }
+  Index orphans = 0;
+  std::size_t first_orphan = 0;
+  for (std::size_t b = 0; b < me.blocks.size(); ++b)
+    for (Index e = 0; e < me.blocks[b].size(); ++e)
+      if (body[block_offset[b] + e] < 0 && orphans++ == 0) first_orphan = me.blocks[b].tag[e];
+  if (orphans > 0)
+    fail(
+        "{}: {} element(s) of mesh '{}' belong to no body (first: element {}); list their volume groups in [[bodies]] "
+        "groups",
+        c.path, orphans, me.source, first_orphan);
+
+  const std::vector<Index> cfg_body = body;  // before splitting into components
+  // Split bodies into connected components where asked (e.g. one body per particle).
+  for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
+    if (!c.bodies[bi].split_components) continue;
+    std::vector<Index> parent(me.n_nodes());
+    for (Index n = 0; n < me.n_nodes(); ++n) parent[n] = n;
+    auto find = [&](Index a) {
+      while (parent[a] != a) a = parent[a] = parent[parent[a]];
+      return a;
+    };
+    auto each_element = [&](auto&& fn) {
+      for (std::size_t b = 0; b < me.blocks.size(); ++b)
+        for (Index e = 0; e < me.blocks[b].size(); ++e)
+          if (body[block_offset[b] + e] == static_cast<Index>(bi)) fn(me.blocks[b], block_offset[b] + e, e);
+    };
+    each_element([&](const ElementBlock& blk, Index, Index e) {
+      const Index* cn = &blk.conn[static_cast<std::size_t>(e) * blk.npe()];
+      for (int i = 1; i < blk.npe(); ++i) parent[find(cn[i])] = find(cn[0]);
+    });
+    std::map<Index, Index> component_body;  // root node -> body id, numbered in element order
+    Index k = 0;
+    each_element([&](const ElementBlock& blk, Index gid, Index e) {
+      const Index root = find(blk.conn[static_cast<std::size_t>(e) * blk.npe()]);
+      auto [it, inserted] = component_body.try_emplace(root, -1);
+      if (inserted) {
+        if (k == 0) {
+          it->second = static_cast<Index>(bi);  // the first component keeps the body's slot
+          m.body_names[bi] = c.bodies[bi].name + "#0";
+        } else {
+          it->second = static_cast<Index>(m.body_names.size());
+          m.body_names.push_back(c.bodies[bi].name + "#" + std::to_string(k));
+          body_kin.push_back(c.bodies[bi].kinematics);
+        }
+        ++k;
+      }
+      body[gid] = it->second;
+    });
+  }
+
+  // Force conditions are spread over the original mesh (its surface faces are exact); after
+  // joint insertion each node's share is split equally among its copies.
+  std::vector<std::vector<std::pair<Index, Real>>> force_weights(c.boundaries.size());
+  for (std::size_t i = 0; i < c.boundaries.size(); ++i)
+    if (c.boundaries[i].type == BoundaryConfig::Type::Force)
+      force_weights[i] = load_weights(me, need_group(me, c.boundaries[i].group, c.boundaries[i].where));
+
+  // Cohesive joints on the faces of fracturable bodies (node duplication).
+  {
+    joint::InsertionInput in;
+    in.fracturable.assign(ne, 0);
+    in.body = cfg_body;
+    bool any = false;
+    for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
+      const BodyConfig& bc = c.bodies[bi];
+      if (bc.fracture == BodyConfig::Fracture::None) continue;
+      any = true;
+      if (bc.fracture == BodyConfig::Fracture::All) {
+        for (Index g = 0; g < ne; ++g)
+          if (cfg_body[g] == static_cast<Index>(bi)) in.fracturable[g] = 1;
+        continue;
+      }
+      for (const auto& gname : bc.fracture_groups) {
+        const Group* g = me.find_group(gname);
+        const std::string where = fmt::format("{}: [[bodies]] '{}' fracture_groups", c.path, bc.name);
+        if (!g || g->dim != 3)
+          fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
+        for (std::size_t b = 0; b < g->elements.size(); ++b)
+          for (Index e : g->elements[b]) {
+            const Index gid = block_offset[b] + e;
+            if (cfg_body[gid] != static_cast<Index>(bi))
+              fail("{}: group '{}' holds element {} of another body", where, gname, me.blocks[b].tag[e]);
+            in.fracturable[gid] = 1;
+          }
+      }
+    }
+    if (any) {
+      m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
+      // Loads on surfaces whose faces are element faces are spread again by area over the
+      // copies that own those faces; otherwise each node's share is split among its copies.
+      for (std::size_t bi = 0; bi < c.boundaries.size(); ++bi) {
+        auto& fw = force_weights[bi];
+        if (fw.empty()) continue;
+        const Group& g = need_group(me, c.boundaries[bi].group, c.boundaries[bi].where);
+        const auto& um = m.joint_report.unmatched_face_groups;
+        if ((!g.tri.empty() || !g.quad.empty()) && std::find(um.begin(), um.end(), g.name) == um.end()) {
+          fw = load_weights(me, g);
+          continue;
+        }
+        std::vector<std::pair<Index, Real>> split;
+        for (auto [n, w] : fw) {
+          const auto& cp = m.joint_report.copies[n];
+          for (Index k : cp) split.emplace_back(k, w / static_cast<Real>(cp.size()));
+        }
+        fw = std::move(split);
+      }
+      // Penalty stiffness from the two elements' heights over the face.
+      std::vector<Real> vol(ne);
+      for (std::size_t b = 0; b < me.blocks.size(); ++b)
+        for (Index e = 0; e < me.blocks[b].size(); ++e) vol[block_offset[b] + e] = element_volume(me, me.blocks[b], e);
+      auto height = [&](Index g, Real area) {
+        const bool tet = me.blocks[0].size() > g;  // block 0 holds the tets
+        return (tet ? 3.0 : 1.0) * vol[g] / area;
+      };
+      joint::JointSet& js = m.joints;
+      js.param.resize(js.size());
+      for (Index j = 0; j < js.size(); ++j) {
+        const Index mat = material[js.ea[j]];
+        const JointMaterial& jm = c.joint_materials[mat];
+        const Real h = 0.5 * (height(js.ea[j], js.area0[j]) + height(js.eb[j], js.area0[j]));
+        joint::CohesiveParams p;
+        p.kn = jm.kn > 0 ? jm.kn : jm.penalty * c.materials[mat].E / h;
+        p.ks = jm.ks > 0 ? jm.ks : p.kn;
+        p.ft = jm.ft, p.GfI = jm.GfI, p.c = jm.c, p.GfII = jm.GfII;
+        p.tan_phi = std::tan(jm.phi_deg * M_PI / 180.0);
+        p.law = jm.coupled ? joint::JointLaw::Coupled : joint::JointLaw::Paper;
+        js.param[j] = static_cast<Index>(js.params.size());
+        js.params.push_back(p);
+        js.quadrature.push_back(jm.nodal_quadrature ? joint::Quadrature::Nodal : joint::Quadrature::Gauss);
+      }
+    }
+  }
+
+  m.fem = build_fem_model(me, m.materials, material, body, body_kin);
+
+  if (c.contact.enabled) {
+    std::vector<Real> elem_E(ne);
+    for (Index e = 0; e < ne; ++e) elem_E[e] = c.materials[material[e]].E;
+    std::vector<contact::Wall> walls;
+    for (const auto& wc : c.walls) walls.push_back(wc.wall);
+    m.contact.setup(me, m.joints, material, c.contact_materials, elem_E, m.fem.mass, walls, c.contact.settings);
+    if (!m.contact.setup_error().empty())
+      fail("{}: contact: {}; lower contact_radius or contact_radius_fraction of its material", c.path,
+           m.contact.setup_error());
+  }
+
+  // Constraints: the last condition on a dof wins; say so when two disagree.
+  std::map<Index, Constraint> cons;
+  for (std::size_t bi = 0; bi < c.boundaries.size(); ++bi) {
+    const BoundaryConfig& bc = c.boundaries[bi];
+    const Group& g = need_group(me, bc.group, bc.where);
+    if (bc.type == BoundaryConfig::Type::Force) {
+      for (auto [n, w] : force_weights[bi])
+        for (int d = 0; d < 3; ++d)
+          if (bc.dof[d] && bc.value(d) != 0) m.loads.push_back({3 * n + d, w * bc.value(d), bc.ramp});
+      continue;
+    }
+    const bool fixed = bc.type == BoundaryConfig::Type::Fixed;
+    for (Index n : g.nodes)
+      for (int d = 0; d < 3; ++d)
+        if (bc.dof[d]) cons[3 * n + d] = {3 * n + d, fixed ? 0.0 : bc.value(d), fixed ? 0.0 : bc.ramp};
+  }
+  for (auto& [dof, con] : cons) m.constraints.push_back(con);
+
+  m.v0.assign(3 * static_cast<std::size_t>(me.n_nodes()), 0.0);
+  for (const auto& ic : c.initial) {
+    const Group& g = need_group(me, ic.group, ic.where);
+    for (Index n : g.nodes) {
+      const Vec3 v = ic.velocity + ic.angular_velocity.cross(node_pos(me.x, n) - ic.center);
+      for (int d = 0; d < 3; ++d) m.v0[3 * n + d] = v(d);
+    }
+  }
+  for (const auto& mc : c.monitors) {
+    MonitorSet ms;
+    ms.cfg = mc;
+    if (!mc.group.empty())
+      ms.nodes = need_group(me, mc.group, mc.where).nodes;
+    else
+      for (Index n = 0; n < me.n_nodes(); ++n) ms.nodes.push_back(n);
+    if (!mc.group2.empty()) ms.nodes2 = need_group(me, mc.group2, mc.where).nodes;
+    if (mc.type == MonitorConfig::Type::Reaction) {
+      ms.dof_in_group.assign(3 * static_cast<std::size_t>(me.n_nodes()), 0);
+      bool any = false;
+      for (Index n : ms.nodes)
+        for (int d = 0; d < 3; ++d)
+          if (cons.count(3 * n + d)) ms.dof_in_group[3 * n + d] = 1, any = true;
+      if (!any)
+        fail("{}: reaction monitor '{}': group '{}' has no fixed or velocity-driven dofs", mc.where, mc.name, mc.group);
+    }
+    m.monitors.push_back(std::move(ms));
+  }
+  return m;
+}
+
+}  // namespace dspdem
