@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "fem/fem_model.hpp"
+#include "fem/linear_elastic.hpp"
 #include "fem/polar.hpp"
 
 namespace dspdem {
@@ -53,11 +54,12 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
       eps = 0.5 * (H + H.transpose());
       Q = u * gamma.transpose();
     }
-    const Real lam = b.lambda[e], mu = b.mu[e], V = b.vol[e];
-    Mat3 s = lam * eps.trace() * Mat3::Identity() + 2.0 * mu * eps;
+    const LinearElastic law{b.lambda[e], b.mu[e]};
+    const Real V = b.vol[e];
+    Mat3 s = law.stress(eps);
     const V12 q = Eigen::Map<const V12>(Q.data());
     V12 kq = khg * q;
-    energy[b.elem[e]] = V * (0.5 * lam * eps.trace() * eps.trace() + mu * eps.squaredNorm()) + 0.5 * q.dot(kq);
+    energy[b.elem[e]] = V * law.energy_density(eps) + 0.5 * q.dot(kq);
     if constexpr (Damped) {
       M38 ve;
       for (int i = 0; i < 8; ++i)
@@ -69,7 +71,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
         Qd = R.transpose() * Qd;
       }
       const Mat3 ed = 0.5 * (L + L.transpose());
-      const Mat3 sd = lam * ed.trace() * Mat3::Identity() + 2.0 * mu * ed;
+      const Mat3 sd = law.stress(ed);
       const V12 qd = Eigen::Map<const V12>(Qd.data());
       const V12 kqd = khg * qd;
       const Real beta = b.beta[e];
@@ -80,7 +82,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
     const M38 fl = -(V * s * grad + Eigen::Map<const M34>(kq.data()) * gamma);
     Eigen::Map<M38>(slots + 24 * es) = R * fl;
     if constexpr (Stress) {
-      const Mat3 se = lam * eps.trace() * Mat3::Identity() + 2.0 * mu * eps;
+      const Mat3 se = law.stress(eps);
       const Mat3 sc = R * se * R.transpose();
       Real* o = stress_out + 6 * static_cast<std::size_t>(b.elem[e]);
       o[0] = sc(0, 0), o[1] = sc(1, 1), o[2] = sc(2, 2), o[3] = sc(0, 1), o[4] = sc(1, 2), o[5] = sc(0, 2);

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "fem/fem_model.hpp"
+#include "fem/linear_elastic.hpp"
 #include "fem/polar.hpp"
 
 namespace dspdem {
@@ -41,9 +42,10 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
       eps = 0.5 * (H + H.transpose());
     }
     if (!(det > 0.0) && det < min_det) min_det = det;
-    const Real lam = b.lambda[e], mu = b.mu[e], V = b.vol[e];
-    Mat3 s = lam * eps.trace() * Mat3::Identity() + 2.0 * mu * eps;
-    energy[b.elem[e]] = V * (0.5 * lam * eps.trace() * eps.trace() + mu * eps.squaredNorm());
+    const LinearElastic law{b.lambda[e], b.mu[e]};
+    const Real V = b.vol[e];
+    Mat3 s = law.stress(eps);
+    energy[b.elem[e]] = V * law.energy_density(eps);
     if constexpr (Damped) {
       Eigen::Matrix<Real, 3, 4> ve;
       for (int i = 0; i < 4; ++i)
@@ -51,7 +53,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
       Mat3 L = ve * grad.transpose();
       if constexpr (Corot) L = R.transpose() * L;
       const Mat3 ed = 0.5 * (L + L.transpose());
-      const Mat3 sd = lam * ed.trace() * Mat3::Identity() + 2.0 * mu * ed;
+      const Mat3 sd = law.stress(ed);
       dpower[b.elem[e]] = V * b.beta[e] * (sd.array() * ed.array()).sum();
       s += b.beta[e] * sd;
     }
@@ -59,7 +61,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
     Eigen::Map<Eigen::Matrix<Real, 3, 4>>(slots + 12 * static_cast<std::size_t>(e)) = fl;
     if constexpr (Stress) {
       // Output stress is the elastic part only: damping stress is not a material state.
-      const Mat3 se = lam * eps.trace() * Mat3::Identity() + 2.0 * mu * eps;
+      const Mat3 se = law.stress(eps);
       const Mat3 sc = R * se * R.transpose();
       Real* o = stress_out + 6 * static_cast<std::size_t>(b.elem[e]);
       o[0] = sc(0, 0), o[1] = sc(1, 1), o[2] = sc(2, 2), o[3] = sc(0, 1), o[4] = sc(1, 2), o[5] = sc(0, 2);
