@@ -1,6 +1,6 @@
 // Broad phase of contact detection: which axis-aligned boxes overlap.
 //
-// The grid is linear in the number of boxes for bounded size ratios (METHOD.md section 3:
+// The grid is linear in the number of boxes for bounded size ratios (README M3:
 // no binary search, O(n)): boxes are binned into every cell of a uniform grid they touch
 // (cell size from the mean box extent), and a pair is reported only by the cell holding
 // the lower corner of the two boxes' intersection, so each pair comes out once without a

@@ -1,4 +1,4 @@
-// Contact between the pieces of a model (METHOD.md section 3): which elements can touch,
+// Contact between the pieces of a model (README M3): which elements can touch,
 // the broad phase with a skin, the narrow phase per candidate pair, the force law with its
 // tangential history, nodal forces by the original element's shape functions (eq. 16),
 // rigid walls, the energy terms and the contact limit of the time step.

@@ -1,4 +1,4 @@
-// Narrow phase between two spheropolyhedra (METHOD.md section 3, paper eq. 8): skeletons A
+// Narrow phase between two spheropolyhedra (README M3, paper eq. 8): skeletons A
 // and B (convex polytopes) dilated by spheres of radii rA and rB. Every pair of features
 // closer than rA + rB is a contact; each geometric contact is counted once:
 //

@@ -1,4 +1,4 @@
-// Skeletons of elements (METHOD.md section 3): every face plane moved inward by the
+// Skeletons of elements (README M3): every face plane moved inward by the
 // dilation radius r. Tet: the homothety about the incentre with factor (rho - r)/rho.
 // Hex: each corner is the meeting point of its three offset face planes (the half-space
 // intersection, exact while the offset keeps the hexahedron's topology, which is checked).

@@ -363,7 +363,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
         if (!(jm.c > cut))
           fail(
               "{}: [materials.{}] cohesion = {:g} Pa must exceed tensile_strength x tan(friction_angle) = {:g} Pa: "
-              "the shear strength at the tension cut-off, c - f_t tan(phi) (METHOD.md eq. 5), must stay positive",
+              "the shear strength at the tension cut-off, c - f_t tan(phi) (README M2, eq. 5), must stay positive",
               s.where("cohesion"), mname, jm.c, cut);
       }
       jm.penalty = s.real("joint_penalty");

@@ -96,7 +96,7 @@ const std::vector<Key>& keys() {
     {"mesh.packing", "fill_height", T::Real, "30.0", 0, inf, true, false, "m", nullptr, "Top of the region, above the floor, where particles are placed."},
     {"mesh.packing", "seed", T::Int, "1", 0, 4294967295.0, false, false, "", nullptr, "Random seed: the same seed gives the same mesh."},
     {"physics", "gravity", T::Vec3, "[0.0, 0.0, 0.0]", -inf, inf, false, false, "m/s^2", nullptr, "Gravitational acceleration applied to every node."},
-    {"contact", "enabled", T::Bool, "false", 0, 0, false, false, "", nullptr, "Contact between pieces (elements with a free face in different fragments or bodies) and with [[walls]] (METHOD.md section 3)."},
+    {"contact", "enabled", T::Bool, "false", 0, 0, false, false, "", nullptr, "Contact between pieces (elements with a free face in different fragments or bodies) and with [[walls]] (README M3)."},
     {"contact", "skin", T::Real, "auto", 0, inf, true, false, "m", nullptr, "Broad-phase skin: candidate pairs are kept until a node has moved half of it. Default: 0.2 x the mean size of the surface elements."},
     {"materials.<name>", "density", T::Real, nullptr, 0, inf, true, false, "kg/m^3", nullptr, "Mass density."},
     {"materials.<name>", "E", T::Real, nullptr, 0, inf, true, false, "Pa", nullptr, "Young's modulus."},

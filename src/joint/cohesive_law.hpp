@@ -1,4 +1,4 @@
-// Cohesive joint law of the paper (eqs. 1-6; METHOD.md section 2), per integration point,
+// Cohesive joint law of the paper (eqs. 1-6; README M2), per integration point,
 // in the joint's local frame: opening dn (> 0 in tension) and slip magnitude ds.
 //
 //   mode I : w_ft = f_t / k_n, w_GI = 2 G_fI / f_t

@@ -1,5 +1,5 @@
 // Brazilian disc: the point-load solution along the loaded diameter (paper eqs. 24-25,
-// refdata/brazilian_analytic.md) and the error measures of the report. Pure functions.
+// src/scenes/brazilian_disc/REFERENCE.md) and the error measures of the report. Pure functions.
 #pragma once
 #include <cmath>
 #include <vector>

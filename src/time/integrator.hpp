@@ -1,6 +1,6 @@
 // Velocity Verlet (kick-drift-kick) time integration of M a = f_int + f_ext - C v with
 // lumped mass, prescribed-velocity constraints, nodal loads, gravity and Rayleigh damping
-// (METHOD.md section 4, paper eqs. 21-23). Damping forces use the mid-step velocity
+// (README M4, paper eqs. 21-23). Damping forces use the mid-step velocity
 // (lagged by half a step), as in central-difference codes.
 //
 // Energy ledger (all in J): kinetic and internal energy are state functions; external work

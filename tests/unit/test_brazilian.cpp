@@ -1,4 +1,4 @@
-// The analytic reference of the Brazilian-disc report (refdata/brazilian_analytic.md).
+// The analytic reference of the Brazilian-disc report (src/scenes/brazilian_disc/REFERENCE.md).
 #include <gtest/gtest.h>
 
 #include "post/brazilian.hpp"
@@ -7,7 +7,7 @@ using namespace dspdem;
 using namespace dspdem::post;
 
 TEST(Brazilian, PointLoadSolutionMatchesTheTabulatedValues) {
-  // refdata table: sigma_yy / (2P/(pi D L)) = -3.000, -3.167, -3.762, -4.333, -5.250,
+  // REFERENCE.md table: sigma_yy / (2P/(pi D L)) = -3.000, -3.167, -3.762, -4.333, -5.250,
   // -10.111, -20.053 at y/D = 0, 0.1, 0.2, 0.25, 0.3, 0.4, 0.45 (printed to 3 decimals:
   // tolerance 5e-4); sigma_xx is the uniform 2P/(pi D L).
   const Real P = 33.0e3, D = 0.1427, L = 0.0713, s0 = post::splitting_stress(P, D, L);
@@ -18,7 +18,7 @@ TEST(Brazilian, PointLoadSolutionMatchesTheTabulatedValues) {
     EXPECT_NEAR(post::sigma_yy_diameter(P, D, L, y[i] * D) / s0, ref[i], 5e-4) << "y/D = " << y[i];
     EXPECT_DOUBLE_EQ(post::sigma_xx_diameter(P, D, L, y[i] * D), s0);
   }
-  // The paper's peak: 40.6 kN on D L = 0.0101759 m^2 is 2.54 MPa (refdata section 2).
+  // The paper's peak: 40.6 kN on D L = 0.0101759 m^2 is 2.54 MPa (src/scenes/brazilian_disc/REFERENCE.md).
   EXPECT_NEAR(post::splitting_stress(40.6e3, 1.0, 0.010175891) / 1e6, 2.54, 5e-3);
 }
 

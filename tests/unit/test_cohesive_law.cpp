@@ -1,4 +1,4 @@
-// The cohesive law alone (METHOD.md section 2), with the Brazilian-disc parameters of the
+// The cohesive law alone (README M2), with the Brazilian-disc parameters of the
 // paper: f_t 2.3 MPa, G_fI 10 N/m, c 20 MPa, phi 45 deg, G_fII 1500 N/m; penalty
 // k = 10 E / h with E = 25.8 GPa, h = 7.6 mm (the default disc mesh).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Contact between bodies and with walls (METHOD.md section 3): conservation in impacts,
+// Contact between bodies and with walls (README M3): conservation in impacts,
 // smooth hand-over between feature pairs, friction on an incline, resting stacks (the
 // Hertz contact time of a meshed sphere is in test_hertz.cpp). Tolerances are stated per
 // test.

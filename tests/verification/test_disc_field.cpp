@@ -1,5 +1,5 @@
 // The elastic field of the Brazilian disc scene against the point-load solution (paper
-// eqs. 24-25, refdata/brazilian_analytic.md), on the report's stress-check mesh: the check
+// eqs. 24-25, src/scenes/brazilian_disc/REFERENCE.md), on the report's stress-check mesh: the check
 // that `dspdem report` runs beside the scene. The scene's own mesh (7.6 mm linear tets) is
 // too coarse near the plates for this; the check's case is built from the scene's file.
 #include <gtest/gtest.h>

@@ -101,8 +101,8 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   const std::string rel = fs::relative(run_dir, dir).string();
   std::string md;
   md += fmt::format(
-      "# Brazilian disc: report\n\nCase `{}` ({}), run in `run/`. Paper: section 2.2 of the seed "
-      "(METHOD.md section 5); analytic reference: refdata/brazilian_analytic.md.\n\n",
+      "# Brazilian disc: report\n\nCase `{}` ({}), run in `run/`. Paper: section 2.2 (dspdem's README, "
+      "M5); reference data, analytic solution and sources: src/scenes/brazilian_disc/REFERENCE.md in dspdem.\n\n",
       c.path, c.name);
   md += fmt::format(
       "Disc D = {:.1f} mm, L = {:.1f} mm, {} elements, {} joints; plates closing at {:.3g} m/s "
