@@ -22,11 +22,28 @@ void build_galvez_beam(const Params& p) {
     if (std::abs(xs[i]) >= L / 2) param_error(p, names[i], "outside the beam (|x| must be < length/2)");
     if (std::abs(xs[i]) <= w / 2) param_error(p, names[i], "on the notch");
   }
-  const int beam = occ::addBox(-L / 2, 0, -B / 2, L, D, B);
+  // The crack region: a slab x0 < x < x1 (through the depth and width) as a volume of its
+  // own, meshed at band_size, so joints can be put there only and refined there alone.
+  const double x0 = p["band_min_x"], x1 = p["band_max_x"], hb = p["band_size"] > 0 ? p["band_size"] : h;
+  const bool band = x1 > x0;
+  if (band && (x0 <= -L / 2 || x1 >= L / 2)) param_error(p, "band_max_x", "the band must lie inside the beam");
+  if (band && (x0 >= -w / 2 || x1 <= w / 2)) param_error(p, "band_min_x", "the band must contain the notch");
+  gmsh::vectorpair parts;
+  if (band) {
+    parts = {{3, occ::addBox(-L / 2, 0, -B / 2, x0 + L / 2, D, B)},
+             {3, occ::addBox(x0, 0, -B / 2, x1 - x0, D, B)},
+             {3, occ::addBox(x1, 0, -B / 2, L / 2 - x1, D, B)}};
+    gmsh::vectorpair glued;
+    std::vector<gmsh::vectorpair> gmap;
+    occ::fragment({parts[0]}, {parts[1], parts[2]}, glued, gmap);  // shared faces between the slabs
+    parts = glued;
+  } else {
+    parts = {{3, occ::addBox(-L / 2, 0, -B / 2, L, D, B)}};
+  }
   const int notch = occ::addBox(-w / 2, -D, -B, w, D + a, 2 * B);  // from below, through the width
   gmsh::vectorpair cut_out;
   std::vector<gmsh::vectorpair> map;
-  occ::cut({{3, beam}}, {{3, notch}}, cut_out, map);
+  occ::cut(parts, {{3, notch}}, cut_out, map);
   // Lines across the width at the supports (bottom) and load points (top), embedded by a
   // fragment so that they become mesh lines of the beam's faces.
   gmsh::vectorpair lines;
@@ -39,13 +56,21 @@ void build_galvez_beam(const Params& p) {
   occ::fragment(cut_out, lines, frag_out, map);
   occ::synchronize();
   const std::vector<int> vols = entities_in_box(3, -L / 2, 0, -B / 2, L / 2, D, B / 2);
-  set_volume_size(vols, h);
+  std::vector<int> band_vols, side_vols;
+  for (int t : vols) {
+    double cx, cy, cz;
+    occ::getCenterOfMass(3, t, cx, cy, cz);
+    (band && cx > x0 && cx < x1 ? band_vols : side_vols).push_back(t);
+  }
+  set_volume_size(side_vols, h);
+  if (!band_vols.empty()) set_volume_size(band_vols, hb);
   // Refine around the notch tip, where the crack starts.
   gmsh::vectorpair tip_pts;
   gmsh::model::getEntitiesInBoundingBox(-w / 2 - 1e-9, a - 1e-9, -B, w / 2 + 1e-9, a + 1e-9, B, tip_pts, 0);
   gmsh::model::mesh::setSize(tip_pts, hn);
   gmsh::model::mesh::generate(3);
   add_group(3, vols, "beam");
+  if (band) add_group(3, band_vols, "beam_band"), add_group(3, side_vols, "beam_side");
   const char* groups[4] = {"support_left", "support_right", "load_inner", "load_outer"};
   const double ys[4] = {0, 0, D, D};
   for (int i = 0; i < 4; ++i) add_group(1, entities_in_box(1, xs[i], ys[i], -B / 2, xs[i], ys[i], B / 2), groups[i]);

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "scenes/brazilian_disc/scene.hpp"
+#include "scenes/galvez_beam/scene.hpp"
 
 namespace dspdem::scenes {
 
@@ -9,6 +10,7 @@ const std::vector<Scene>& all() {
   static const std::vector<Scene> s = {
       {"brazilian_disc", "brazilian_disc", "Brazilian disc split between two plates (paper 2.2)",
        brazilian_disc_report},
+      {"galvez_beam", "galvez_beam", "Galvez mixed-mode notched beam (paper 2.3)", galvez_beam_report},
   };
   return s;
 }

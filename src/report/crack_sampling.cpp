@@ -1,0 +1,93 @@
+#include "report/crack_sampling.hpp"
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "render/series.hpp"
+
+namespace dspdem::report {
+
+std::vector<CrackPiece> broken_joints(const std::string& joints_vtu) {
+  std::vector<CrackPiece> out;
+  if (!std::filesystem::exists(joints_vtu)) return out;
+  auto g = render::read_frame(joints_vtu);
+  vtkDataArray* state = g->GetCellData()->GetArray("state");
+  DSPDEM_CHECK(state, "'{}' has no cell array 'state' (not a joints frame)", joints_vtu);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
+    if (state->GetComponent(e, 0) != 2) continue;
+    g->GetCellPoints(e, ids);
+    const vtkIdType nv = ids->GetNumberOfIds();
+    std::vector<Vec3> v(nv);
+    for (vtkIdType k = 0; k < nv; ++k) {
+      double q[3];
+      g->GetPoint(ids->GetId(k), q);
+      v[k] = Vec3(q[0], q[1], q[2]);
+    }
+    CrackPiece p;
+    p.centroid = Vec3::Zero();
+    for (const auto& q : v) p.centroid += q;
+    p.centroid /= static_cast<Real>(nv);
+    for (vtkIdType k = 1; k + 1 < nv; ++k) p.area += 0.5 * (v[k] - v[0]).cross(v[k + 1] - v[0]).norm();
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<std::pair<double, double>> trace_path(const std::vector<CrackPiece>& pieces, int along, int across,
+                                                  double lo, double hi, int bins,
+                                                  bool (*keep)(const Vec3&, const void*), const void* ctx) {
+  std::vector<double> w(bins, 0), s_along(bins, 0), s_across(bins, 0);
+  const double d = (hi - lo) / bins;
+  for (const auto& p : pieces) {
+    const double a = p.centroid(along);
+    if (a <= lo || a >= hi || (keep && !keep(p.centroid, ctx))) continue;
+    const int b = std::min(bins - 1, static_cast<int>((a - lo) / d));
+    w[b] += p.area, s_along[b] += p.area * a, s_across[b] += p.area * p.centroid(across);
+  }
+  std::vector<std::pair<double, double>> path;
+  for (int b = 0; b < bins; ++b)
+    if (w[b] > 0) path.emplace_back(s_along[b] / w[b], s_across[b] / w[b]);
+  return path;
+}
+
+namespace {
+double point_to_polyline(const std::pair<double, double>& p, const std::vector<std::pair<double, double>>& l) {
+  double best = INFINITY;
+  const Eigen::Vector2d q(p.first, p.second);
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    const Eigen::Vector2d a(l[i].first, l[i].second);
+    if (i + 1 == l.size()) {
+      best = std::min(best, (q - a).norm());
+      break;
+    }
+    const Eigen::Vector2d b(l[i + 1].first, l[i + 1].second), ab = b - a;
+    const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (q - (a + t * ab)).norm());
+  }
+  return best;
+}
+}  // namespace
+
+PathDistance path_distance(const std::vector<std::pair<double, double>>& a,
+                           const std::vector<std::pair<double, double>>& b) {
+  DSPDEM_CHECK(!a.empty() && !b.empty(), "path_distance: an empty path");
+  PathDistance d;
+  for (const auto& p : a) {
+    const double x = point_to_polyline(p, b);
+    d.mean += x, d.hausdorff = std::max(d.hausdorff, x);
+  }
+  d.mean /= static_cast<double>(a.size());
+  for (const auto& p : b) d.hausdorff = std::max(d.hausdorff, point_to_polyline(p, a));
+  return d;
+}
+
+}  // namespace dspdem::report

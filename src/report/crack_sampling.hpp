@@ -1,0 +1,38 @@
+// Cracks read back from a run: the broken joints of a joints frame as area-weighted points,
+// a crack traced as a polyline through them, and distances between polylines (to compare a
+// crack path with a reference path or a stored one).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace dspdem::report {
+
+struct CrackPiece {
+  Vec3 centroid;
+  double area = 0;  ///< mid-surface area [m^2]
+};
+
+/// Broken joints (state 2) of a joints_NNNN.vtu frame. Empty when the file has none.
+std::vector<CrackPiece> broken_joints(const std::string& joints_vtu);
+
+/// A crack traced along `along` (0, 1, 2 = x, y, z): the pieces with lo < p(along) < hi and
+/// `keep` true, binned into `bins` equal slices; per non-empty slice the area-weighted mean
+/// of the other coordinate `across` at the slice's mean position. Returns (along, across)
+/// pairs in increasing `along`.
+std::vector<std::pair<double, double>> trace_path(const std::vector<CrackPiece>& pieces, int along, int across,
+                                                  double lo, double hi, int bins,
+                                                  bool (*keep)(const Vec3&, const void*) = nullptr,
+                                                  const void* ctx = nullptr);
+
+struct PathDistance {
+  double mean = 0;       ///< mean over the points of `a` of the distance to polyline `b` [m]
+  double hausdorff = 0;  ///< symmetric Hausdorff distance between the two point sets [m]
+};
+
+/// Distances between two 2D polylines (points in order). Both must have a point.
+PathDistance path_distance(const std::vector<std::pair<double, double>>& a,
+                           const std::vector<std::pair<double, double>>& b);
+
+}  // namespace dspdem::report

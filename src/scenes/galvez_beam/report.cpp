@@ -1,0 +1,179 @@
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "io/staging.hpp"
+#include "render/plot.hpp"
+#include "report/crack_sampling.hpp"
+#include "report/study_runner.hpp"
+#include "run/render_run.hpp"
+#include "run/run_case.hpp"
+#include "scenes/galvez_beam/analysis.hpp"
+#include "scenes/galvez_beam/scene.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+
+// The sweep: each knob moved alone from the case (every variant is the case re-read with
+// its overrides, so its case.resolved.toml is what ran).
+std::vector<report::Variant> galvez_variants(const CaseConfig& base) {
+  std::vector<report::Variant> v;
+  const std::string m = "mesh.galvez_beam.";
+  const Real hb = base.mesh_num.count("band_size") && base.mesh_num.at("band_size") > 0 ? base.mesh_num.at("band_size")
+                                                                                        : base.mesh_num.at("size");
+  v.push_back({fmt::format("crack_size_{:.1f}mm", 1e3 * hb), "reference", {}, true});
+  v.push_back({fmt::format("crack_size_{:.1f}mm", 1.5e3 * hb),
+               "coarser in the crack region",
+               {override_of(m + "band_size", 1.5 * hb)}});
+  {
+    std::vector<std::string> sets;
+    for (std::size_t i = 0; i < base.boundaries.size(); ++i)
+      if (base.boundaries[i].type == BoundaryConfig::Type::Velocity) {
+        sets.push_back(override_of(fmt::format("boundary.{}.value", i), Vec3(0.5 * base.boundaries[i].value)));
+        sets.push_back(override_of(fmt::format("boundary.{}.ramp", i), 2 * base.boundaries[i].ramp));
+      }
+    sets.push_back(override_of("time.end", 2 * base.t_end));
+    v.push_back({"rate_x0.5", "actuator at half the speed", sets});
+  }
+  std::vector<std::string> pen, law, all;
+  for (std::size_t i = 0; i < base.materials.size(); ++i) {
+    if (!base.joint_materials[i].given) continue;
+    const std::string mm = "materials." + base.materials[i].name + ".";
+    pen.push_back(override_of(mm + "joint_penalty", base.joint_materials[i].penalty >= 100 ? 30.0 : 100.0));
+    // The paper's law and shear numbers (section 2.3): c 15.59 MPa, G_fII 1380 N/m.
+    law.insert(law.end(), {override_of(mm + "joint_law", std::string("paper")), override_of(mm + "cohesion", 15.59e6),
+                           override_of(mm + "fracture_energy_II", 1380.0)});
+  }
+  v.push_back({"penalty_other", "joint penalty 30 <-> 100", pen});
+  v.push_back({"paper_law", "the paper's joint law and shear parameters (c 15.59 MPa, G_fII 1380 N/m)", law});
+  for (std::size_t i = 0; i < base.bodies.size(); ++i)
+    if (base.bodies[i].fracture == BodyConfig::Fracture::Groups)
+      all.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("all")));
+  if (!all.empty()) v.push_back({"joints_everywhere", "joints on every face (reference: the crack band)", all});
+  return v;
+}
+}  // namespace
+
+int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
+  Timer total;
+  const std::string dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+  const std::string run_dir = a.from_run.empty() ? (fs::path(dir) / "run").string() : a.from_run;
+  fs::create_directories(dir);
+  if (a.from_run.empty()) {
+    RunOptions ro;
+    ro.out_dir = run_dir;
+    run_case(c, ro);
+  }
+  const GalvezResult r = analyse_galvez_run(c, run_dir, true);
+  const fs::path img = fs::path(run_dir) / "images";
+  if (!a.no_render) {
+    RenderArgs ra;
+    ra.run_dir = run_dir;
+    render_command(ra);  // the case's views: stress x100, fragments, cracks
+  }
+  fs::create_directories(img / "plots");
+  auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& title,
+                  const std::string& png) {
+    render::PlotSpec s{x, std::move(y), "", title};
+    render::plot_csv((fs::path(run_dir) / csv).string(), s, (img / "plots" / png).string());
+  };
+  plot("load.csv", "cmod_mm", {"load_kN"}, "actuator load [kN] against CMOD [mm]", "load_cmod.png");
+  plot("load.csv", "deflection_mm", {"load_kN"}, "actuator load [kN] against load-point deflection [mm]",
+       "load_deflection.png");
+  plot("load.csv", "time_ms", {"load_kN"}, "actuator load [kN] against time [ms]", "load_time.png");
+  if (!r.path_mid.empty())
+    plot("crack_mid.csv", "x_mm", {"y_mm"}, "crack path on the mid-plane: height y [mm] against x [mm]",
+         "crack_path.png");
+
+  std::string study_md;
+  if (a.study) {
+    const auto variants = galvez_variants(c);
+    std::vector<GalvezResult> rows(variants.size());
+    rows[0] = r;
+    const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
+      rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd), rd, false);
+    });
+    study_md +=
+        "| variant | knob | elements | wall time [s] | steps | peak load [kN] | CMOD at peak [mm] | crack top x [mm] | "
+        "path vs reference: mean / Hausdorff [mm] | KE/IE max |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+      const auto& v = variants[i];
+      if (!out[i].error.empty()) {
+        study_md += fmt::format("| {} | {} | failed: {} | | | | | | | |\n", v.name, v.knob, out[i].error);
+        continue;
+      }
+      const GalvezResult& q = rows[i];
+      std::string dist = "-";
+      if (i > 0 && !q.path_mid.empty() && !r.path_mid.empty()) {
+        const auto d = report::path_distance(q.path_mid, r.path_mid);
+        dist = fmt::format("{:.1f} / {:.1f}", 1e3 * d.mean, 1e3 * d.hausdorff);
+      }
+      study_md += fmt::format("| {} | {} | {} | {:.1f} | {} | {:.3f} | {:.4f} | {:.1f} | {} | {:.3f} |\n", v.name,
+                              v.knob, q.elements, q.wall_s, q.steps, 1e-3 * q.P_peak, 1e3 * q.cmod_peak, 1e3 * q.top_x,
+                              dist, q.ke_ratio_max);
+    }
+  }
+
+  const std::string rel = fs::relative(run_dir, dir).string();
+  std::string md;
+  md += fmt::format(
+      "# Galvez notched beam: report\n\nCase `{}` ({}), run in `{}/`. Paper: section 2.3 (dspdem's README, M5); "
+      "reference data and sources: src/scenes/galvez_beam/REFERENCE.md in dspdem. The experiment's peak load, "
+      "load-CMOD envelope and crack trajectory (Galvez et al. 1998) were not found in a readable source, so this "
+      "report compares with no experimental number; the crack path is compared with the paper's qualitative "
+      "description (from the notch towards the loading side).\n\n",
+      c.path, c.name, rel);
+  md += fmt::format(
+      "Beam depth D = {:.0f} mm, thickness {:.0f} mm, notch {:.0f} mm; {} elements, {} joints; loading line at x = "
+      "{:+.0f} mm. Run: {} steps of {:.3g} s, {:.1f} s wall time.\n\n",
+      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, r.steps, r.dt, r.wall_s);
+  md += "## Load\n\n";
+  md += fmt::format(
+      "Peak actuator load {:.3f} kN at t = {:.3f} ms, CMOD {:.4f} mm, load-point deflection {:.4f} mm. "
+      "Quasi-static check: kinetic / internal energy at most {:.3f} once the load passed a quarter of the peak, "
+      "{:.3f} at the peak{}.\n\n",
+      1e-3 * r.P_peak, 1e3 * r.t_peak, 1e3 * r.cmod_peak, 1e3 * r.defl_peak, r.ke_ratio_max, r.ke_ratio_peak,
+      r.ke_ratio_max > 0.1 ? " (above 0.1: inertia is part of the load; slow the actuator)" : "");
+  md += fmt::format(
+      "![load-CMOD]({0}/images/plots/load_cmod.png)\n![load-deflection]({0}/images/plots/load_deflection.png)\n\n",
+      rel);
+  md += "## Crack path\n\n";
+  if (r.first_crack_frame >= 0) {
+    md += fmt::format(
+        "The first joints break at x = {:+.1f} mm, y = {:.1f} mm (the notch tip is at x = 0, y = {:.0f} mm), "
+        "joints frame {}. At the end ({:.0f} cm^2 of crack) the mid-plane path reaches y = {:.1f} mm at x = {:+.1f} "
+        "mm, "
+        "{} the loading line at x = {:+.0f} mm.\n\n",
+        1e3 * r.start_x, 1e3 * r.start_y, 1e3 * r.notch, r.first_crack_frame, 1e4 * r.crack_area, 1e3 * r.top_y,
+        1e3 * r.top_x, r.top_x * r.load_x > 0 ? "towards" : "away from", 1e3 * r.load_x);
+    md += "| y [mm] | x mid-plane [mm] |\n|---|---|\n";
+    for (const auto& [y, x] : r.path_mid) md += fmt::format("| {:.1f} | {:+.1f} |\n", 1e3 * y, 1e3 * x);
+    md += fmt::format("\nBoth faces: `{}/crack_path.csv`.\n\n![crack path]({}/images/plots/crack_path.png)\n\n", rel,
+                      rel);
+  } else {
+    md += "No joint broke.\n\n";
+  }
+  md += fmt::format("{} fragments; largest mass fractions", r.fragments);
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, r.mass_fractions.size()); ++i)
+    md += fmt::format("{} {:.3f}", i ? "," : "", r.mass_fractions[i]);
+  md += ".\n\n";
+  if (!a.no_render)
+    for (const char* view : {"cracks", "fragments", "stress"})
+      md += fmt::format("{0}, last frame:\n\n![]({1}/images/{0}/frame_{2:04d}.png)\n\n", view, rel, r.last_frame);
+  md += "## Energy ledger\n\n";
+  md += fmt::format(
+      "Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).\n\n"
+      "![energy]({}/images/plots/energy.png)\n\n",
+      r.balance_max, r.largest_energy, rel);
+  if (a.study) md += "## Speed against error\n\n" + study_md + "\n";
+  write_file_atomic((fs::path(dir) / "report.md").string(), md);
+  log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
+  return 0;
+}
+
+}  // namespace dspdem

@@ -1,0 +1,39 @@
+// Crack paths compared as polylines (report/crack_sampling): the distances the Galvez
+// report and its regression test use, on cases with known answers.
+#include <gtest/gtest.h>
+
+#include "report/crack_sampling.hpp"
+
+using namespace dspdem;
+using namespace dspdem::report;
+
+TEST(CrackSampling, DistancesBetweenPolylinesHaveTheirGeometricValues) {
+  // Points are (along, across) = (y, x). A vertical path x = 0 and the same shifted by 3 mm:
+  // mean and Hausdorff both 3 mm.
+  const std::vector<std::pair<double, double>> a = {{0, 0}, {0.05, 0}, {0.1, 0}};
+  std::vector<std::pair<double, double>> b = a;
+  for (auto& p : b) p.second += 0.003;
+  auto d = path_distance(a, b);
+  EXPECT_NEAR(d.mean, 0.003, 1e-15);
+  EXPECT_NEAR(d.hausdorff, 0.003, 1e-15);
+  // A path that follows a up to y = 75 mm and then turns away by 10 mm at its end: mean over
+  // its points 10/3 mm; Hausdorff 10 mm (a's last point is 9.3 mm from c's last segment:
+  // distances are to the polyline, not only to its vertices).
+  const std::vector<std::pair<double, double>> c = {{0, 0}, {0.075, 0}, {0.1, 0.01}};
+  d = path_distance(c, a);
+  EXPECT_NEAR(d.mean, 0.01 / 3, 1e-15);
+  EXPECT_NEAR(d.hausdorff, 0.01, 1e-15);
+  EXPECT_NEAR(path_distance(a, a).hausdorff, 0.0, 0.0);
+}
+
+TEST(CrackSampling, TraceAveragesEachSliceByArea) {
+  // Two pieces per slice at x = 1 mm (area 3) and x = 5 mm (area 1): mean x = 2 mm; a piece
+  // outside the range or rejected by the filter does not count.
+  std::vector<CrackPiece> p = {
+      {Vec3(0.001, 0.01, 0), 3.0}, {Vec3(0.005, 0.01, 0), 1.0}, {Vec3(0.5, 0.01, 0.02), 9.0}, {Vec3(0.0, 0.5, 0), 1.0}};
+  auto keep = [](const Vec3& q, const void*) { return q(2) < 0.01; };
+  const auto path = trace_path(p, 1, 0, 0.0, 0.1, 4, keep);
+  ASSERT_EQ(path.size(), 1u);
+  EXPECT_NEAR(path[0].first, 0.01, 1e-15);
+  EXPECT_NEAR(path[0].second, 0.002, 1e-15);
+}
