@@ -27,9 +27,10 @@ std::vector<report::Variant> galvez_variants(const CaseConfig& base) {
   const Real hb = base.mesh_num.count("band_size") && base.mesh_num.at("band_size") > 0 ? base.mesh_num.at("band_size")
                                                                                         : base.mesh_num.at("size");
   v.push_back({fmt::format("crack_size_{:.1f}mm", 1e3 * hb), "reference", {}, true});
-  v.push_back({fmt::format("crack_size_{:.1f}mm", 1.5e3 * hb),
-               "coarser in the crack region",
-               {override_of(m + "band_size", 1.5 * hb)}});
+  for (Real f : {2.0 / 3.0, 1.5})
+    v.push_back({fmt::format("crack_size_{:.1f}mm", 1e3 * f * hb),
+                 f < 1 ? "finer in the crack region" : "coarser in the crack region",
+                 {override_of(m + "band_size", f * hb)}});
   {
     std::vector<std::string> sets;
     for (std::size_t i = 0; i < base.boundaries.size(); ++i)
