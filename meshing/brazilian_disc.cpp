@@ -3,6 +3,7 @@
 #include <gmsh.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -130,5 +131,29 @@ void build_brazilian_disc(const Params& p) {
   add_group(2, entities_in_box(2, -pw / 2, D / 2 + pt, -L / 2, pw / 2, D / 2 + pt, L / 2), "plate_top_load");
   add_group(2, entities_in_box(2, -pw / 2, -D / 2 - pt, -L / 2, pw / 2, -D / 2 - pt, L / 2), "plate_bottom_load");
 }
+
+// Parameters of [mesh.brazilian_disc], declared beside the generator that uses them (the case reader
+// validates them, `dspdem keys` documents them).
+// clang-format off
+const std::vector<schema::Key>& brazilian_disc_keys() {
+  using T = schema::Type;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<schema::Key> k = {
+    {"mesh.brazilian_disc", "diameter", T::Real, "0.1427", 0, inf, true, false, "m", nullptr, "Disc diameter D. [NF] in the paper; chosen so that D L = 2 P/(pi sigma) = 0.0101759 m^2 from its 40.6 kN and 2.54 MPa, with L/D = 0.5 (thickness = radius, the ISRM suggestion)."},
+    {"mesh.brazilian_disc", "thickness", T::Real, "0.0713", 0, inf, true, false, "m", nullptr, "Disc thickness L (along z). See diameter."},
+    {"mesh.brazilian_disc", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the disc: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
+    {"mesh.brazilian_disc", "size", T::Real, "0.0076", 0, inf, true, false, "m", nullptr, "Target element size in the disc; the default gives about the paper's 12335 tetrahedra."},
+    {"mesh.brazilian_disc", "plates", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the two steel plates as bodies; 0: the disc alone (load it with rigid [[walls]])."},
+    {"mesh.brazilian_disc", "load_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: element size at the loaded generator lines, growing linearly to size at a distance D/4 from them, so the concentrated load's field (singular at the lines) is resolved; 0: size everywhere."},
+    {"mesh.brazilian_disc", "split_plane", T::Int, "0", 0, 1, false, false, "", nullptr, "1: the loaded diametral plane (x = 0) is a surface of the mesh, so element faces lie on the crack path that the analytic solution predicts; 0: the mesh is unstructured across it and a facet crack must zigzag."},
+    {"mesh.brazilian_disc", "cap_height", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: planes y = +-(D/2 - cap_height) split the disc into the volume groups disc_caps (the two bearing zones under the loads) and disc_core; the group disc holds both. With fracture = \"groups\" and fracture_groups = [\"disc_core\"] the bearing zones stay intact, as the curved jaws and bearing strips of the standard tests intend: the splitting strength is read from the crack at the centre, not from crushing under a load that a faceted mesh concentrates on one element."},
+    {"mesh.brazilian_disc", "band_width", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: planes x = +-band_width/2 split the disc into the volume group disc_band (the central slab) and disc_side; the group disc holds both. With fracture = \"groups\" and fracture_groups = [\"disc_band\"] joints are made only in the band."},
+    {"mesh.brazilian_disc", "plate_width", T::Real, "0.06", 0, inf, true, false, "m", nullptr, "Plate extent along x (the plates span the disc thickness along z)."},
+    {"mesh.brazilian_disc", "plate_thickness", T::Real, "0.02", 0, inf, true, false, "m", nullptr, "Plate thickness along y."},
+    {"mesh.brazilian_disc", "plate_size", T::Real, "0.01", 0, inf, true, false, "m", nullptr, "Element size in the plates."},
+  };
+  return k;
+}
+// clang-format on
 
 }  // namespace dspdem::meshing

@@ -4,6 +4,7 @@
 #include <gmsh.h>
 
 #include <cmath>
+#include <limits>
 
 #include "meshing/generator.hpp"
 
@@ -77,5 +78,32 @@ void build_galvez_beam(const Params& p) {
   add_group(1, entities_in_box(1, -w / 2, 0, -B / 2, -w / 2, 0, B / 2), "cmod_left");
   add_group(1, entities_in_box(1, w / 2, 0, -B / 2, w / 2, 0, B / 2), "cmod_right");
 }
+
+// Parameters of [mesh.galvez_beam], declared beside the generator that uses them (the case reader
+// validates them, `dspdem keys` documents them).
+// clang-format off
+const std::vector<schema::Key>& galvez_beam_keys() {
+  using T = schema::Type;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<schema::Key> k = {
+    {"mesh.galvez_beam", "length", T::Real, "0.675", 0, inf, true, false, "m", nullptr, "Beam length (4.5 D). The Galvez et al. geometry was not found in a readable source [NF]: the defaults are the medium size D = 150 mm as we chose it (src/scenes/galvez_beam/REFERENCE.md)."},
+    {"mesh.galvez_beam", "depth", T::Real, "0.15", 0, inf, true, false, "m", nullptr, "Beam depth D (along y)."},
+    {"mesh.galvez_beam", "thickness", T::Real, "0.05", 0, inf, true, false, "m", nullptr, "Beam thickness (along z)."},
+    {"mesh.galvez_beam", "notch_depth", T::Real, "0.075", 0, inf, true, false, "m", nullptr, "Notch depth from the bottom face (D/2)."},
+    {"mesh.galvez_beam", "notch_width", T::Real, "0.002", 0, inf, true, false, "m", nullptr, "Notch width."},
+    {"mesh.galvez_beam", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the beam: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
+    {"mesh.galvez_beam", "size", T::Real, "0.01", 0, inf, true, false, "m", nullptr, "Element size away from the notch."},
+    {"mesh.galvez_beam", "notch_size", T::Real, "0.004", 0, inf, true, false, "m", nullptr, "Element size at the notch tip."},
+    {"mesh.galvez_beam", "band_min_x", T::Real, "0", -inf, inf, false, false, "m", nullptr, "With band_max_x > band_min_x: the slab band_min_x < x < band_max_x (it must contain the notch) is the volume group beam_band (the rest beam_side; beam holds both), meshed at band_size: joints there only with fracture_groups = [\"beam_band\"]."},
+    {"mesh.galvez_beam", "band_max_x", T::Real, "0", -inf, inf, false, false, "m", nullptr, "See band_min_x."},
+    {"mesh.galvez_beam", "band_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "Element size in the band (0: size)."},
+    {"mesh.galvez_beam", "support_left_x", T::Real, "-0.3", -inf, inf, false, false, "m", nullptr, "Bottom support line, x from the notch (span 4 D). [NF]: chosen."},
+    {"mesh.galvez_beam", "support_right_x", T::Real, "0.3", -inf, inf, false, false, "m", nullptr, "Bottom support line, x from the notch. [NF]: chosen."},
+    {"mesh.galvez_beam", "load_inner_x", T::Real, "0.075", -inf, inf, false, false, "m", nullptr, "Top loading line carrying the actuator load, x from the notch (D/2). [NF]: chosen."},
+    {"mesh.galvez_beam", "load_outer_x", T::Real, "-0.075", -inf, inf, false, false, "m", nullptr, "Second top line (the spring-held point of the nonproportional test). [NF]: chosen."},
+  };
+  return k;
+}
+// clang-format on
 
 }  // namespace dspdem::meshing

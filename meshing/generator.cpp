@@ -16,10 +16,15 @@ namespace fs = std::filesystem;
 
 // One translation unit per generator; each defines its build function.
 void build_brazilian_disc(const Params&);
+const std::vector<schema::Key>& brazilian_disc_keys();
 void build_galvez_beam(const Params&);
+const std::vector<schema::Key>& galvez_beam_keys();
 void build_murray_beam(const Params&);
+const std::vector<schema::Key>& murray_beam_keys();
 void build_sphere_plate(const Params&);
+const std::vector<schema::Key>& sphere_plate_keys();
 void build_packing(const Params&);
+const std::vector<schema::Key>& packing_keys();
 
 double Params::operator[](const std::string& key) const {
   auto it = num.find(key);
@@ -58,29 +63,29 @@ const std::vector<Generator>& registry() {
        "surface), band_width (volumes disc_band, the slab |x| < band_width/2, and disc_side), cap_height (volumes "
        "disc_caps, "
        "the two segments within cap_height of the loaded lines, and disc_core).",
-       build_brazilian_disc, "disc"},
+       build_brazilian_disc, "disc", brazilian_disc_keys},
       {"galvez_beam",
        "Galvez et al. (1998) notched beam for mixed-mode fracture (four-point shear): beam along x (bottom at y = 0, "
        "mid-thickness at z = 0) with a notch at mid-span from the bottom. Volume: beam. Curves across the width: "
        "support_left, support_right (bottom), load_inner, load_outer (top). Curves: cmod_left, cmod_right (the two "
        "notch-mouth edges).",
-       build_galvez_beam, "beam"},
+       build_galvez_beam, "beam", galvez_beam_keys},
       {"murray_beam",
        "Murray et al. (2007) plain concrete beam for impact: box along x (centred at the origin, depth along y, width "
        "along z), structured hexahedra, split at the support and impactor lines. Volumes: beam, impactor_left, "
        "impactor_right, support_left, support_right (cylinders along z). Curves: midspan_bottom. Surfaces: "
        "beam_bottom, beam_top.",
-       build_murray_beam, nullptr},
+       build_murray_beam, nullptr, murray_beam_keys},
       {"sphere_plate",
        "Sphere (centre at the origin) above a plate below it (-y), touching or with a gap. Volumes: sphere, plate. "
        "Surfaces: plate_top, plate_bottom.",
-       build_sphere_plate, "sphere"},
+       build_sphere_plate, "sphere", sphere_plate_keys},
       {"packing",
        "Open-top rigid box (inner size lx x ly(height) x lz, floor at y = 0) made of five wall slabs, and N "
        "tetrahedral particles (one tet4 each, randomly oriented, edge length uniform in [size_min, size_max], "
        "vertices jittered by 'irregularity') on a lattice inside and above it, without overlaps; deterministic for a "
        "seed. Volumes: container, particles (each particle is a connected component: use split_components = true).",
-       build_packing, nullptr},
+       build_packing, nullptr, packing_keys},
   };
   return r;
 }

@@ -1,7 +1,7 @@
 // Mesh generators for the benchmark geometries, on the gmsh C++ API, and their registry.
 // A case names a generator and its parameters ([mesh] generator = "...", [mesh.<name>]);
-// the parameters are declared (type, default, range, unit, doc) in src/io/case_schema.cpp
-// under section "mesh.<name>" and validated there; a generator only checks relations
+// each generator declares its parameters (type, default, range, unit, doc) beside its code
+// (<name>_keys() in meshing/<name>.cpp), the case reader validates them; a generator only checks relations
 // between parameters (a notch deeper than the beam, a size larger than the part) and
 // reports them naming the key.
 #pragma once
@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/key_spec.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dspdem::meshing {
@@ -30,9 +31,10 @@ struct Params {
 
 struct Generator {
   const char* name;
-  const char* doc;               ///< geometry, groups, and where defaults come from
-  void (*build)(const Params&);  ///< builds and meshes the current gmsh model, adds groups
-  const char* count_group;       ///< group counted for target_elements (null: no target)
+  const char* doc;                            ///< geometry, groups, and where defaults come from
+  void (*build)(const Params&);               ///< builds and meshes the current gmsh model, adds groups
+  const char* count_group;                    ///< group counted for target_elements (null: no target)
+  const std::vector<schema::Key>& (*keys)();  ///< its [mesh.<name>] parameters
 };
 
 /// All generators, by name.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "meshing/generator.hpp"
@@ -92,5 +93,27 @@ void build_murray_beam(const Params& p) {
   add_group(2, entities_in_box(2, -L / 2, -H / 2, -W / 2, L / 2, -H / 2, W / 2), "beam_bottom");
   add_group(2, entities_in_box(2, -L / 2, H / 2, -W / 2, L / 2, H / 2, W / 2), "beam_top");
 }
+
+// Parameters of [mesh.murray_beam], declared beside the generator that uses them (the case reader
+// validates them, `dspdem keys` documents them).
+// clang-format off
+const std::vector<schema::Key>& murray_beam_keys() {
+  using T = schema::Type;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<schema::Key> k = {
+    {"mesh.murray_beam", "length", T::Real, "1.524", 0, inf, true, false, "m", nullptr, "Beam length (60 in) [S]."},
+    {"mesh.murray_beam", "depth", T::Real, "0.1143", 0, inf, true, false, "m", nullptr, "Beam depth along y (4.5 in) [S]."},
+    {"mesh.murray_beam", "width", T::Real, "0.1", 0, inf, true, false, "m", nullptr, "Beam width along z [S]."},
+    {"mesh.murray_beam", "span", T::Real, "1.4224", 0, inf, true, false, "m", nullptr, "Support span. [NF]: 1/3 of the FHWA full-scale span 4267.2 mm, the tests being 1/3-scale."},
+    {"mesh.murray_beam", "impactor_spacing", T::Real, "0.2032", 0, inf, true, false, "m", nullptr, "Distance between the two impactor lines. [NF]: 1/3 of the full-scale 609.6 mm."},
+    {"mesh.murray_beam", "cylinder_radius", T::Real, "0.016", 0, inf, true, false, "m", nullptr, "Radius of the impactor and support cylinders [S]."},
+    {"mesh.murray_beam", "cylinder_size", T::Real, "0.006", 0, inf, true, false, "m", nullptr, "Element size in the cylinders."},
+    {"mesh.murray_beam", "nx", T::Int, "68", 2, 100000, false, false, "", nullptr, "Hexahedra along the length (68 x 6 x 10 = 4080, the paper's count)."},
+    {"mesh.murray_beam", "ny", T::Int, "6", 1, 100000, false, false, "", nullptr, "Hexahedra through the depth."},
+    {"mesh.murray_beam", "nz", T::Int, "10", 1, 100000, false, false, "", nullptr, "Hexahedra across the width."},
+  };
+  return k;
+}
+// clang-format on
 
 }  // namespace dspdem::meshing

@@ -12,6 +12,7 @@
 #include <gmsh.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/types.hpp"
@@ -108,5 +109,28 @@ void build_packing(const Params& p) {
   add_group(3, container, "container");
   add_group(3, {ent}, "particles");
 }
+
+// Parameters of [mesh.packing], declared beside the generator that uses them (the case reader
+// validates them, `dspdem keys` documents them).
+// clang-format off
+const std::vector<schema::Key>& packing_keys() {
+  using T = schema::Type;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<schema::Key> k = {
+    {"mesh.packing", "box_x", T::Real, "16.0", 0, inf, true, false, "m", nullptr, "Inner box size along x [S]."},
+    {"mesh.packing", "box_z", T::Real, "13.8", 0, inf, true, false, "m", nullptr, "Inner box size along z [S]."},
+    {"mesh.packing", "box_height", T::Real, "15.2", 0, inf, true, false, "m", nullptr, "Inner box height along y (gravity along -y) [S]; which of the paper's three sizes is the height is [NF]."},
+    {"mesh.packing", "wall_thickness", T::Real, "0.5", 0, inf, true, false, "m", nullptr, "Thickness of the five wall slabs."},
+    {"mesh.packing", "wall_size", T::Real, "2.0", 0, inf, true, false, "m", nullptr, "Element size in the walls."},
+    {"mesh.packing", "count", T::Int, "5346", 1, 10000000, false, false, "", nullptr, "Number of particles [S]."},
+    {"mesh.packing", "size_min", T::Real, "0.4", 0, inf, true, false, "m", nullptr, "Smallest particle edge length. Sizes are [NF]: chosen so 5346 particles start in a 30 m column over the box."},
+    {"mesh.packing", "size_max", T::Real, "0.7", 0, inf, true, false, "m", nullptr, "Largest particle edge length (sizes uniform in [size_min, size_max])."},
+    {"mesh.packing", "irregularity", T::Real, "0.1", 0, 0.25, false, false, "", nullptr, "Vertex jitter as a fraction of the edge length (0 = regular tetrahedra)."},
+    {"mesh.packing", "fill_height", T::Real, "30.0", 0, inf, true, false, "m", nullptr, "Top of the region, above the floor, where particles are placed."},
+    {"mesh.packing", "seed", T::Int, "1", 0, 4294967295.0, false, false, "", nullptr, "Random seed: the same seed gives the same mesh."},
+  };
+  return k;
+}
+// clang-format on
 
 }  // namespace dspdem::meshing

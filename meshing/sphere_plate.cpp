@@ -1,6 +1,8 @@
 // Rock sphere above a plate (paper section 2.5).
 #include <gmsh.h>
 
+#include <limits>
+
 #include "meshing/generator.hpp"
 
 namespace dspdem::meshing {
@@ -23,5 +25,24 @@ void build_sphere_plate(const Params& p) {
   add_group(2, entities_in_box(2, -pw / 2, ytop, -pw / 2, pw / 2, ytop, pw / 2), "plate_top");
   add_group(2, entities_in_box(2, -pw / 2, ytop - pt, -pw / 2, pw / 2, ytop - pt, pw / 2), "plate_bottom");
 }
+
+// Parameters of [mesh.sphere_plate], declared beside the generator that uses them (the case reader
+// validates them, `dspdem keys` documents them).
+// clang-format off
+const std::vector<schema::Key>& sphere_plate_keys() {
+  using T = schema::Type;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<schema::Key> k = {
+    {"mesh.sphere_plate", "diameter", T::Real, "0.2", 0, inf, true, false, "m", nullptr, "Sphere diameter [S]."},
+    {"mesh.sphere_plate", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the sphere: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
+    {"mesh.sphere_plate", "size", T::Real, "0.0168", 0, inf, true, false, "m", nullptr, "Element size in the sphere; the default gives about the paper's 4539 tetrahedra."},
+    {"mesh.sphere_plate", "gap", T::Real, "0.0", 0, inf, false, false, "m", nullptr, "Gap between the sphere and the plate."},
+    {"mesh.sphere_plate", "plate_width", T::Real, "0.3", 0, inf, true, false, "m", nullptr, "Plate side (square, in x and z)."},
+    {"mesh.sphere_plate", "plate_thickness", T::Real, "0.02", 0, inf, true, false, "m", nullptr, "Plate thickness."},
+    {"mesh.sphere_plate", "plate_size", T::Real, "0.03", 0, inf, true, false, "m", nullptr, "Element size in the plate."},
+  };
+  return k;
+}
+// clang-format on
 
 }  // namespace dspdem::meshing

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <limits>
+#include <string>
+
+#include "meshing/generator.hpp"
 
 namespace dspdem::schema {
 
@@ -12,30 +15,23 @@ using T = Type;
 }  // namespace
 
 const std::vector<const char*>& sections() {
-  static const std::vector<const char*> s = {"case",
-                                             "mesh",
-                                             "mesh.brazilian_disc",
-                                             "mesh.galvez_beam",
-                                             "mesh.murray_beam",
-                                             "mesh.sphere_plate",
-                                             "mesh.packing",
-                                             "physics",
-                                             "contact",
-                                             "materials.<name>",
-                                             "bodies[]",
-                                             "boundary[]",
-                                             "initial[]",
-                                             "walls[]",
-                                             "time",
-                                             "output",
-                                             "monitors[]",
-                                             "render",
-                                             "checks"};
+  static const std::vector<const char*> s = [] {
+    std::vector<const char*> out = {"case", "mesh"};
+    static std::vector<std::string> names;  // keeps the "mesh.<name>" strings alive
+    names.reserve(meshing::registry().size());
+    for (const auto& g : meshing::registry()) names.push_back(std::string("mesh.") + g.name);
+    for (const auto& n : names) out.push_back(n.c_str());
+    for (const char* r : {"physics", "contact", "materials.<name>", "bodies[]", "boundary[]", "initial[]", "walls[]",
+                          "time", "output", "monitors[]", "render", "checks"})
+      out.push_back(r);
+    return out;
+  }();
   return s;
 }
 
 // clang-format off
-const std::vector<Key>& keys() {
+namespace {
+const std::vector<Key>& general_keys() {
   static const std::vector<Key> k = {
     {"case", "name", T::String, "auto", 0, 0, false, false, "", nullptr, "Case name used in outputs; defaults to the file name without extension."},
     {"case", "scene", T::String, "auto", 0, 0, false, false, "", nullptr, "Benchmark scene whose report `dspdem report` writes (`dspdem scenes` lists them); default: the one made for the mesh generator, if any."},
@@ -43,61 +39,6 @@ const std::vector<Key>& keys() {
     {"mesh", "file", T::String, "auto", 0, 0, false, false, "", nullptr, "Mesh file (.msh v2/v4, or a .geo script that gmsh meshes in 3D), relative to the case file. Give either file or generator."},
     {"mesh", "generator", T::String, "auto", 0, 0, false, false, "", "brazilian_disc|galvez_beam|murray_beam|sphere_plate|packing", "Mesh generator; its parameters go in a [mesh.<generator>] table."},
     {"mesh", "cache", T::Bool, "true", 0, 0, false, false, "", nullptr, "Reuse a generated mesh when generator, parameters and gmsh version are unchanged (folder: $DSPDEM_MESH_CACHE, else ~/.cache/dspdem/meshes)."},
-    {"mesh.brazilian_disc", "diameter", T::Real, "0.1427", 0, inf, true, false, "m", nullptr, "Disc diameter D. [NF] in the paper; chosen so that D L = 2 P/(pi sigma) = 0.0101759 m^2 from its 40.6 kN and 2.54 MPa, with L/D = 0.5 (thickness = radius, the ISRM suggestion)."},
-    {"mesh.brazilian_disc", "thickness", T::Real, "0.0713", 0, inf, true, false, "m", nullptr, "Disc thickness L (along z). See diameter."},
-    {"mesh.brazilian_disc", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the disc: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
-    {"mesh.brazilian_disc", "size", T::Real, "0.0076", 0, inf, true, false, "m", nullptr, "Target element size in the disc; the default gives about the paper's 12335 tetrahedra."},
-    {"mesh.brazilian_disc", "plates", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the two steel plates as bodies; 0: the disc alone (load it with rigid [[walls]])."},
-    {"mesh.brazilian_disc", "load_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: element size at the loaded generator lines, growing linearly to size at a distance D/4 from them, so the concentrated load's field (singular at the lines) is resolved; 0: size everywhere."},
-    {"mesh.brazilian_disc", "split_plane", T::Int, "0", 0, 1, false, false, "", nullptr, "1: the loaded diametral plane (x = 0) is a surface of the mesh, so element faces lie on the crack path that the analytic solution predicts; 0: the mesh is unstructured across it and a facet crack must zigzag."},
-    {"mesh.brazilian_disc", "cap_height", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: planes y = +-(D/2 - cap_height) split the disc into the volume groups disc_caps (the two bearing zones under the loads) and disc_core; the group disc holds both. With fracture = \"groups\" and fracture_groups = [\"disc_core\"] the bearing zones stay intact, as the curved jaws and bearing strips of the standard tests intend: the splitting strength is read from the crack at the centre, not from crushing under a load that a faceted mesh concentrates on one element."},
-    {"mesh.brazilian_disc", "band_width", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: planes x = +-band_width/2 split the disc into the volume group disc_band (the central slab) and disc_side; the group disc holds both. With fracture = \"groups\" and fracture_groups = [\"disc_band\"] joints are made only in the band."},
-    {"mesh.brazilian_disc", "plate_width", T::Real, "0.06", 0, inf, true, false, "m", nullptr, "Plate extent along x (the plates span the disc thickness along z)."},
-    {"mesh.brazilian_disc", "plate_thickness", T::Real, "0.02", 0, inf, true, false, "m", nullptr, "Plate thickness along y."},
-    {"mesh.brazilian_disc", "plate_size", T::Real, "0.01", 0, inf, true, false, "m", nullptr, "Element size in the plates."},
-    {"mesh.galvez_beam", "length", T::Real, "0.675", 0, inf, true, false, "m", nullptr, "Beam length (4.5 D). The Galvez et al. geometry was not found in a readable source [NF]: the defaults are the medium size D = 150 mm as we chose it (src/scenes/galvez_beam/REFERENCE.md)."},
-    {"mesh.galvez_beam", "depth", T::Real, "0.15", 0, inf, true, false, "m", nullptr, "Beam depth D (along y)."},
-    {"mesh.galvez_beam", "thickness", T::Real, "0.05", 0, inf, true, false, "m", nullptr, "Beam thickness (along z)."},
-    {"mesh.galvez_beam", "notch_depth", T::Real, "0.075", 0, inf, true, false, "m", nullptr, "Notch depth from the bottom face (D/2)."},
-    {"mesh.galvez_beam", "notch_width", T::Real, "0.002", 0, inf, true, false, "m", nullptr, "Notch width."},
-    {"mesh.galvez_beam", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the beam: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
-    {"mesh.galvez_beam", "size", T::Real, "0.01", 0, inf, true, false, "m", nullptr, "Element size away from the notch."},
-    {"mesh.galvez_beam", "notch_size", T::Real, "0.004", 0, inf, true, false, "m", nullptr, "Element size at the notch tip."},
-    {"mesh.galvez_beam", "band_min_x", T::Real, "0", -inf, inf, false, false, "m", nullptr, "With band_max_x > band_min_x: the slab band_min_x < x < band_max_x (it must contain the notch) is the volume group beam_band (the rest beam_side; beam holds both), meshed at band_size: joints there only with fracture_groups = [\"beam_band\"]."},
-    {"mesh.galvez_beam", "band_max_x", T::Real, "0", -inf, inf, false, false, "m", nullptr, "See band_min_x."},
-    {"mesh.galvez_beam", "band_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "Element size in the band (0: size)."},
-    {"mesh.galvez_beam", "support_left_x", T::Real, "-0.3", -inf, inf, false, false, "m", nullptr, "Bottom support line, x from the notch (span 4 D). [NF]: chosen."},
-    {"mesh.galvez_beam", "support_right_x", T::Real, "0.3", -inf, inf, false, false, "m", nullptr, "Bottom support line, x from the notch. [NF]: chosen."},
-    {"mesh.galvez_beam", "load_inner_x", T::Real, "0.075", -inf, inf, false, false, "m", nullptr, "Top loading line carrying the actuator load, x from the notch (D/2). [NF]: chosen."},
-    {"mesh.galvez_beam", "load_outer_x", T::Real, "-0.075", -inf, inf, false, false, "m", nullptr, "Second top line (the spring-held point of the nonproportional test). [NF]: chosen."},
-    {"mesh.murray_beam", "length", T::Real, "1.524", 0, inf, true, false, "m", nullptr, "Beam length (60 in) [S]."},
-    {"mesh.murray_beam", "depth", T::Real, "0.1143", 0, inf, true, false, "m", nullptr, "Beam depth along y (4.5 in) [S]."},
-    {"mesh.murray_beam", "width", T::Real, "0.1", 0, inf, true, false, "m", nullptr, "Beam width along z [S]."},
-    {"mesh.murray_beam", "span", T::Real, "1.4224", 0, inf, true, false, "m", nullptr, "Support span. [NF]: 1/3 of the FHWA full-scale span 4267.2 mm, the tests being 1/3-scale."},
-    {"mesh.murray_beam", "impactor_spacing", T::Real, "0.2032", 0, inf, true, false, "m", nullptr, "Distance between the two impactor lines. [NF]: 1/3 of the full-scale 609.6 mm."},
-    {"mesh.murray_beam", "cylinder_radius", T::Real, "0.016", 0, inf, true, false, "m", nullptr, "Radius of the impactor and support cylinders [S]."},
-    {"mesh.murray_beam", "cylinder_size", T::Real, "0.006", 0, inf, true, false, "m", nullptr, "Element size in the cylinders."},
-    {"mesh.murray_beam", "nx", T::Int, "68", 2, 100000, false, false, "", nullptr, "Hexahedra along the length (68 x 6 x 10 = 4080, the paper's count)."},
-    {"mesh.murray_beam", "ny", T::Int, "6", 1, 100000, false, false, "", nullptr, "Hexahedra through the depth."},
-    {"mesh.murray_beam", "nz", T::Int, "10", 1, 100000, false, false, "", nullptr, "Hexahedra across the width."},
-    {"mesh.sphere_plate", "diameter", T::Real, "0.2", 0, inf, true, false, "m", nullptr, "Sphere diameter [S]."},
-    {"mesh.sphere_plate", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the sphere: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
-    {"mesh.sphere_plate", "size", T::Real, "0.0168", 0, inf, true, false, "m", nullptr, "Element size in the sphere; the default gives about the paper's 4539 tetrahedra."},
-    {"mesh.sphere_plate", "gap", T::Real, "0.0", 0, inf, false, false, "m", nullptr, "Gap between the sphere and the plate."},
-    {"mesh.sphere_plate", "plate_width", T::Real, "0.3", 0, inf, true, false, "m", nullptr, "Plate side (square, in x and z)."},
-    {"mesh.sphere_plate", "plate_thickness", T::Real, "0.02", 0, inf, true, false, "m", nullptr, "Plate thickness."},
-    {"mesh.sphere_plate", "plate_size", T::Real, "0.03", 0, inf, true, false, "m", nullptr, "Element size in the plate."},
-    {"mesh.packing", "box_x", T::Real, "16.0", 0, inf, true, false, "m", nullptr, "Inner box size along x [S]."},
-    {"mesh.packing", "box_z", T::Real, "13.8", 0, inf, true, false, "m", nullptr, "Inner box size along z [S]."},
-    {"mesh.packing", "box_height", T::Real, "15.2", 0, inf, true, false, "m", nullptr, "Inner box height along y (gravity along -y) [S]; which of the paper's three sizes is the height is [NF]."},
-    {"mesh.packing", "wall_thickness", T::Real, "0.5", 0, inf, true, false, "m", nullptr, "Thickness of the five wall slabs."},
-    {"mesh.packing", "wall_size", T::Real, "2.0", 0, inf, true, false, "m", nullptr, "Element size in the walls."},
-    {"mesh.packing", "count", T::Int, "5346", 1, 10000000, false, false, "", nullptr, "Number of particles [S]."},
-    {"mesh.packing", "size_min", T::Real, "0.4", 0, inf, true, false, "m", nullptr, "Smallest particle edge length. Sizes are [NF]: chosen so 5346 particles start in a 30 m column over the box."},
-    {"mesh.packing", "size_max", T::Real, "0.7", 0, inf, true, false, "m", nullptr, "Largest particle edge length (sizes uniform in [size_min, size_max])."},
-    {"mesh.packing", "irregularity", T::Real, "0.1", 0, 0.25, false, false, "", nullptr, "Vertex jitter as a fraction of the edge length (0 = regular tetrahedra)."},
-    {"mesh.packing", "fill_height", T::Real, "30.0", 0, inf, true, false, "m", nullptr, "Top of the region, above the floor, where particles are placed."},
-    {"mesh.packing", "seed", T::Int, "1", 0, 4294967295.0, false, false, "", nullptr, "Random seed: the same seed gives the same mesh."},
     {"physics", "gravity", T::Vec3, "[0.0, 0.0, 0.0]", -inf, inf, false, false, "m/s^2", nullptr, "Gravitational acceleration applied to every node."},
     {"contact", "enabled", T::Bool, "false", 0, 0, false, false, "", nullptr, "Contact between pieces (elements with a free face in different fragments or bodies) and with [[walls]] (README M3)."},
     {"contact", "skin", T::Real, "auto", 0, inf, true, false, "m", nullptr, "Broad-phase skin: candidate pairs are kept until a node has moved half of it. Default: 0.2 x the mean size of the surface elements."},
@@ -192,6 +133,26 @@ const std::vector<Key>& keys() {
   };
   return k;
 }
+}  // namespace
+// clang-format on
+
+// The general keys, with each mesh generator's own keys (declared in meshing/<name>.cpp)
+// after the [mesh] ones.
+const std::vector<Key>& keys() {
+  static const std::vector<Key> k = [] {
+    std::vector<Key> out;
+    const auto& g = general_keys();
+    std::size_t i = 0;
+    while (i < g.size() && std::string(g[i].section) != "mesh") out.push_back(g[i++]);
+    while (i < g.size() && std::string(g[i].section) == "mesh") out.push_back(g[i++]);
+    for (const auto& gen : meshing::registry())
+      for (const auto& key : gen.keys()) out.push_back(key);
+    out.insert(out.end(), g.begin() + static_cast<std::ptrdiff_t>(i), g.end());
+    return out;
+  }();
+  return k;
+}
+
 // clang-format on
 
 const char* type_name(Type t) {

@@ -4,21 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "core/key_spec.hpp"
+
 namespace dspdem::schema {
-
-enum class Type { Real, Int, Bool, String, Vec3, StringList };
-
-struct Key {
-  const char* section;  ///< "time", "materials.<name>", "bodies[]" ...
-  const char* key;
-  Type type;
-  const char* def;  ///< default as written in TOML; nullptr = required; "auto" = derived
-  double lo, hi;    ///< numeric range
-  bool lo_open, hi_open;
-  const char* unit;
-  const char* choices;  ///< "a|b|c" for strings, or nullptr
-  const char* doc;
-};
 
 /// Every key of the case file.
 const std::vector<Key>& keys();
