@@ -1,12 +1,24 @@
 #include "app/report_command.hpp"
 
+#include <filesystem>
+
+#include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "scenes/registry.hpp"
 
 namespace dspdem {
 
 int report_command(const report::ReportArgs& a) {
-  const CaseConfig c = read_case(a.case_file, a.sets);
+  CaseConfig c = read_case(a.case_file, a.sets);
+  if (!a.from_run.empty()) {
+    // Analyse the run as it ran: its resolved case holds the overrides it was run with
+    // (mesh size, speeds), which the case file alone does not.
+    const auto resolved = std::filesystem::path(a.from_run) / "case.resolved.toml";
+    if (std::filesystem::exists(resolved)) {
+      if (!a.sets.empty()) log::warn("--from-run: the run's own case.resolved.toml is analysed; --set is ignored");
+      c = read_case(resolved.string());
+    }
+  }
   return scenes::of_case(c).report(c, a);
 }
 
