@@ -15,7 +15,7 @@
 
 namespace dspdem::report {
 
-std::vector<CrackPiece> broken_joints(const std::string& joints_vtu) {
+std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_state) {
   std::vector<CrackPiece> out;
   if (!std::filesystem::exists(joints_vtu)) return out;
   auto g = render::read_frame(joints_vtu);
@@ -23,7 +23,7 @@ std::vector<CrackPiece> broken_joints(const std::string& joints_vtu) {
   DSPDEM_CHECK(state, "'{}' has no cell array 'state' (not a joints frame)", joints_vtu);
   vtkNew<vtkIdList> ids;
   for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
-    if (state->GetComponent(e, 0) != 2) continue;
+    if (state->GetComponent(e, 0) < min_state) continue;
     g->GetCellPoints(e, ids);
     const vtkIdType nv = ids->GetNumberOfIds();
     std::vector<Vec3> v(nv);

@@ -14,8 +14,9 @@ struct CrackPiece {
   double area = 0;  ///< mid-surface area [m^2]
 };
 
-/// Broken joints (state 2) of a joints_NNNN.vtu frame. Empty when the file has none.
-std::vector<CrackPiece> broken_joints(const std::string& joints_vtu);
+/// Joints of a joints_NNNN.vtu frame whose state is at least `min_state` (2: broken, the
+/// default; 1: softening or broken, the whole damaged zone). Empty when the file has none.
+std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_state = 2);
 
 /// A crack traced along `along` (0, 1, 2 = x, y, z): the pieces with lo < p(along) < hi and
 /// `keep` true, binned into `bins` equal slices; per non-empty slice the area-weighted mean

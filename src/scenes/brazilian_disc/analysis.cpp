@@ -14,6 +14,7 @@
 #include "post/brazilian.hpp"
 #include "render/plot.hpp"
 #include "render/series.hpp"
+#include "report/crack_sampling.hpp"
 #include "report/run_data.hpp"
 
 namespace dspdem {
@@ -29,28 +30,10 @@ namespace {
 void crack_path(const std::string& run_dir, DiscResult& r, Index frame) {
   const fs::path jf = fs::path(run_dir) / "frames" / fmt::format("joints_{:04d}.vtu", frame);
   if (frame < 0 || !fs::exists(jf)) return;
-  auto g = render::read_frame(jf.string());
-  vtkDataArray* state = g->GetCellData()->GetArray("state");
-  if (!state) return;
   double area = 0, ax = 0, near = 0;
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
-    if (state->GetComponent(e, 0) != 2) continue;
-    g->GetCellPoints(e, ids);
-    const vtkIdType nv = ids->GetNumberOfIds();
-    std::vector<Vec3> v(nv);
-    for (vtkIdType k = 0; k < nv; ++k) {
-      double q[3];
-      g->GetPoint(ids->GetId(k), q);
-      v[k] = Vec3(q[0], q[1], q[2]);
-    }
-    Vec3 cen = Vec3::Zero();
-    for (const auto& q : v) cen += q;
-    cen /= static_cast<Real>(nv);
-    double a = 0;
-    for (vtkIdType k = 1; k + 1 < nv; ++k) a += 0.5 * (v[k] - v[0]).cross(v[k + 1] - v[0]).norm();
-    area += a, ax += a * std::abs(cen(0));
-    if (std::abs(cen(1)) > 0.25 * r.D) near += a;
+  for (const auto& p : report::broken_joints(jf.string())) {
+    area += p.area, ax += p.area * std::abs(p.centroid(0));
+    if (std::abs(p.centroid(1)) > 0.25 * r.D) near += p.area;
   }
   r.crack_area = area;
   if (area > 0) r.crack_mean_x = ax / area, r.crack_near_plates = near / area;

@@ -8,6 +8,7 @@
 #include "io/case_config.hpp"
 #include "io/staging.hpp"
 #include "render/plot.hpp"
+#include "report/report_dirs.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
@@ -21,17 +22,8 @@ namespace fs = std::filesystem;
 
 int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
-  const std::string dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
-  const std::string run_dir = a.from_run.empty() ? (fs::path(dir) / "run").string() : a.from_run;
-  fs::create_directories(dir);
-  if (a.from_run.empty()) {
-    RunOptions ro;
-    ro.out_dir = run_dir;
-    run_case(c, ro);
-  } else {
-    DSPDEM_CHECK(fs::exists(fs::path(run_dir) / "summary.json"),
-                 "--from-run {}: no summary.json there (not the output folder of a finished run)", run_dir);
-  }
+  const report::ReportDirs dirs = report::prepare_report_run(c, a);
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
   const DiscResult r = analyse_disc_run(c, run_dir, true);
   const fs::path img = fs::path(run_dir) / "images";
   if (!a.no_render) {

@@ -15,14 +15,14 @@ struct GalvezResult {
   std::string run_dir;
   Real D = 0, B = 0, notch = 0, load_x = 0;  ///< depth, thickness, notch depth, loading line x [m]
   Real P_peak = 0, t_peak = 0, cmod_peak = 0, defl_peak = 0;
-  Real ke_ratio_max = 0;  ///< largest kinetic / internal energy up to the peak (quasi-static: << 1)
+  Real ke_ratio_max = 0;  ///< largest kinetic / internal energy from half the peak load to the peak
   Real ke_ratio_peak = 0;
   Real balance_max = 0, largest_energy = 0;
-  // Crack path (broken joints of the last joints frame), as (y, x) in metres from the notch
-  // tip upwards: mid-plane (|z| < B/6) and the two faces (outer sixths).
+  // Crack path (damaged joints, softening or broken, of the last joints frame), as (y, x) in
+  // metres from the notch tip upwards: mid-plane (|z| < B/6) and the two faces (outer sixths).
   std::vector<std::pair<double, double>> path_mid, path_front, path_back;
   Real crack_area = 0;
-  Real start_x = 0, start_y = 0;  ///< centroid of the first broken joints
+  Real start_x = 0, start_y = 0;  ///< centroid of the first damaged joints
   Real top_x = 0;                 ///< x where the mid-plane path is highest
   Real top_y = 0;
   Index first_crack_frame = -1, last_frame = -1;

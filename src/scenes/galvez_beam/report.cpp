@@ -8,6 +8,7 @@
 #include "io/staging.hpp"
 #include "render/plot.hpp"
 #include "report/crack_sampling.hpp"
+#include "report/report_dirs.hpp"
 #include "report/study_runner.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
@@ -62,14 +63,8 @@ std::vector<report::Variant> galvez_variants(const CaseConfig& base) {
 
 int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
-  const std::string dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
-  const std::string run_dir = a.from_run.empty() ? (fs::path(dir) / "run").string() : a.from_run;
-  fs::create_directories(dir);
-  if (a.from_run.empty()) {
-    RunOptions ro;
-    ro.out_dir = run_dir;
-    run_case(c, ro);
-  }
+  const report::ReportDirs dirs = report::prepare_report_run(c, a);
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
   const GalvezResult r = analyse_galvez_run(c, run_dir, true);
   const fs::path img = fs::path(run_dir) / "images";
   if (!a.no_render) {
@@ -136,7 +131,7 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   md += "## Load\n\n";
   md += fmt::format(
       "Peak actuator load {:.3f} kN at t = {:.3f} ms, CMOD {:.4f} mm, load-point deflection {:.4f} mm. "
-      "Quasi-static check: kinetic / internal energy at most {:.3f} once the load passed a quarter of the peak, "
+      "Quasi-static check: kinetic / internal energy at most {:.3f} from half the peak load to the peak, "
       "{:.3f} at the peak{}.\n\n",
       1e-3 * r.P_peak, 1e3 * r.t_peak, 1e3 * r.cmod_peak, 1e3 * r.defl_peak, r.ke_ratio_max, r.ke_ratio_peak,
       r.ke_ratio_max > 0.1 ? " (above 0.1: inertia is part of the load; slow the actuator)" : "");
@@ -146,8 +141,9 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   md += "## Crack path\n\n";
   if (r.first_crack_frame >= 0) {
     md += fmt::format(
-        "The first joints break at x = {:+.1f} mm, y = {:.1f} mm (the notch tip is at x = 0, y = {:.0f} mm), "
-        "joints frame {}. At the end ({:.0f} cm^2 of crack) the mid-plane path reaches y = {:.1f} mm at x = {:+.1f} "
+        "The first joints soften at x = {:+.1f} mm, y = {:.1f} mm (the notch tip is at x = 0, y = {:.0f} mm), "
+        "joints frame {}. At the end ({:.0f} cm^2 of damaged joints, softening or broken) the mid-plane path reaches y "
+        "= {:.1f} mm at x = {:+.1f} "
         "mm, "
         "{} the loading line at x = {:+.0f} mm.\n\n",
         1e3 * r.start_x, 1e3 * r.start_y, 1e3 * r.notch, r.first_crack_frame, 1e4 * r.crack_area, 1e3 * r.top_y,

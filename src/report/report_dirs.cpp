@@ -1,0 +1,28 @@
+#include "report/report_dirs.hpp"
+
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "run/run_case.hpp"
+
+namespace dspdem::report {
+
+namespace fs = std::filesystem;
+
+ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
+  ReportDirs d;
+  d.dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+  d.run_dir = a.from_run.empty() ? (fs::path(d.dir) / "run").string() : a.from_run;
+  fs::create_directories(d.dir);
+  if (a.from_run.empty()) {
+    RunOptions ro;
+    ro.out_dir = d.run_dir;
+    run_case(c, ro);
+  } else {
+    DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
+                 "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);
+  }
+  return d;
+}
+
+}  // namespace dspdem::report
