@@ -8,6 +8,7 @@
 #include "io/case_config.hpp"
 #include "io/staging.hpp"
 #include "render/plot.hpp"
+#include "report/document.hpp"
 #include "report/report_dirs.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
@@ -90,28 +91,27 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   const std::string study_md = a.study ? run_study(c, r, checked ? &check : nullptr, dir, img.string()) : std::string();
 
   // report.md
-  const std::string rel = fs::relative(run_dir, dir).string();
-  std::string md;
-  md += fmt::format(
-      "# Brazilian disc: report\n\nCase `{}` ({}), run in `run/`. Paper: section 2.2 (dspdem's README, "
-      "M5); reference data, analytic solution and sources: src/scenes/brazilian_disc/REFERENCE.md in dspdem.\n\n",
-      c.path, c.name);
-  md += fmt::format(
-      "Disc D = {:.1f} mm, L = {:.1f} mm, {} elements, {} joints; plates closing at {:.3g} m/s "
-      "in all; input f_t = {:.2f} MPa. Run: {} steps of {:.3g} s, {:.1f} s wall time.\n\n",
-      1e3 * r.D, 1e3 * r.L, r.elements, r.joints,
-      c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm(), 1e-6 * r.ft, r.steps, r.dt,
-      r.wall_s);
-  md += "## Load and splitting strength\n\n";
-  md += fmt::format(
-      "Peak plate load P = {:.2f} kN at t = {:.3f} ms. Splitting strength 2P/(pi D L) = {:.3f} MPa, {} "
-      "against the input f_t = {:.2f} MPa (the paper: 40.6 kN, 2.54 MPa for 2.3 MPa, +10 %).\n\n",
-      1e-3 * r.P_peak, 1e3 * r.t_peak, 1e-6 * r.split, pct(r.split_err), 1e-6 * r.ft);
-  md +=
-      "![load against time](run/images/plots/load_time.png)\n![load against closure](run/images/plots/"
-      "load_closure.png)\n\n";
-  md += "## Stresses along the loaded diameter\n\n";
-  md += fmt::format(
+  report::Document doc(dir, run_dir);
+  doc.title("Brazilian disc: report");
+  doc.para(fmt::format(
+      "Case `{}` ({}), run in `{}`. Paper: section 2.2 (dspdem's README, "
+      "M5); reference data, analytic solution and sources: src/scenes/brazilian_disc/REFERENCE.md in dspdem.",
+      c.path, c.name, doc.run_link("")));
+  doc.para(
+      fmt::format("Disc D = {:.1f} mm, L = {:.1f} mm, {} elements, {} joints; plates closing at {:.3g} m/s "
+                  "in all; input f_t = {:.2f} MPa. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
+                  1e3 * r.D, 1e3 * r.L, r.elements, r.joints,
+                  c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm(), 1e-6 * r.ft, r.steps,
+                  r.dt, r.wall_s));
+  doc.section("Load and splitting strength");
+  doc.para(
+      fmt::format("Peak plate load P = {:.2f} kN at t = {:.3f} ms. Splitting strength 2P/(pi D L) = {:.3f} MPa, {} "
+                  "against the input f_t = {:.2f} MPa (the paper: 40.6 kN, 2.54 MPa for 2.3 MPa, +10 %).",
+                  1e-3 * r.P_peak, 1e3 * r.t_peak, 1e-6 * r.split, pct(r.split_err), 1e-6 * r.ft));
+  doc.figures(
+      {{"load against time", "images/plots/load_time.png"}, {"load against closure", "images/plots/load_closure.png"}});
+  doc.section("Stresses along the loaded diameter");
+  doc.para(fmt::format(
       "At P = {:.2f} kN ({:.0f} % of the peak; the paper uses 33.0 of 40.6 kN = 81 %; never after the first broken "
       "joint), frame {} (t = {:.3f} ms). "
       "Elements within half an element size of x = 0, averaged in 16 bins over the central 80 % of the diameter, "
@@ -122,14 +122,14 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
       "instead: {:.1f} %). "
       "At the centre: sigma_xx {}, sigma_yy {}. The disc is 3D and the reference is plane stress: through the "
       "thickness at the centre (|y| < h), sigma_xx is {} on the end faces (outer half-element layer) and {} on "
-      "the mid-plane against the 2D value{}."
-      "\n\n![profile](run/images/plots/profile.png)\n\n",
+      "the mid-plane against the 2D value{}.",
       1e-3 * r.P_profile, 100 * r.P_profile / r.P_peak, r.profile_frame, 1e3 * r.t_profile, 100 * r.l2_xx,
       100 * r.l2_yy, 100 * r.l2_xx_centroid, pct(r.centre_xx), pct(r.centre_yy), pct(r.face_xx), pct(r.mid_xx),
-      r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t" : "");
+      r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t" : ""));
+  doc.figure("profile", "images/plots/profile.png");
   if (checked) {
-    md += fmt::format(
-        "### Stress check on a mesh that resolves the loads\n\n"
+    doc.subsection("Stress check on a mesh that resolves the loads");
+    doc.para(fmt::format(
         "The scene's mesh is sized for the split ({} elements; the paper's has 12335); within 0.2 D of a "
         "plate the point-load field goes as 1/r and changes sign across an element of that size, so sigma_xx there "
         "is off by the figure above. The check (in `stress_check/`) is the same disc, plates and contact, elastic "
@@ -138,47 +138,45 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
         "transit time D / sqrt(E / rho)), {:.1f} s "
         "wall time. At P = {:.2f} kN (frame {}, t = {:.3f} ms), measured as above: L2 error sigma_xx {:.1f} %, "
         "sigma_yy {:.1f} % (sigma_xx against the centroid values: {:.1f} %); at the centre sigma_xx {}, sigma_yy "
-        "{}.\n\n![profile, stress check](run/images/plots/profile_check.png)\n\n",
+        "{}.",
         r.elements, 1e3 * check_case.mesh_num.at("size"), 1e3 * check_case.mesh_num.at("load_size"), check.elements,
         load_ratio, check.wall_s, 1e-3 * check.P_profile, check.profile_frame, 1e3 * check.t_profile, 100 * check.l2_xx,
-        100 * check.l2_yy, 100 * check.l2_xx_centroid, pct(check.centre_xx), pct(check.centre_yy));
+        100 * check.l2_yy, 100 * check.l2_xx_centroid, pct(check.centre_xx), pct(check.centre_yy)));
+    doc.figure("profile, stress check", "images/plots/profile_check.png");
   }
-  if (!check_note.empty()) md += check_note + "\n\n";
-  md += "## Fracture\n\n";
+  if (!check_note.empty()) doc.para(check_note);
+  doc.section("Fracture");
   std::string fr;
   for (std::size_t i = 0; i < std::min<std::size_t>(4, r.mass_fractions.size()); ++i)
     fr += fmt::format("{}{:.3f}", i ? ", " : "", r.mass_fractions[i]);
-  md += fmt::format("{} fragments; largest mass fractions {}. First broken joint at t = {:.3f} ms (frame {}).\n\n",
-                    r.fragments, fr, 1e3 * r.t_init, r.init_frame);
+  doc.para(fmt::format("{} fragments; largest mass fractions {}. First broken joint at t = {:.3f} ms (frame {}).",
+                       r.fragments, fr, 1e3 * r.t_init, r.init_frame));
   if (r.crack_mean_x >= 0)
-    md += fmt::format(
+    doc.para(fmt::format(
         "Crack path (broken joints at the split, frame {}, {:.0f} cm^2): their centroids lie {:.1f} mm from the loaded "
         "plane x = 0 on average (area-weighted; an element is {:.1f} mm); {:.0f} % of the broken area is within D/4 "
-        "of a plate.\n\n",
+        "of a plate.",
         r.split_frame, 1e4 * r.crack_area, 1e3 * r.crack_mean_x, 1e3 * c.mesh_num.at("size"),
-        100 * r.crack_near_plates);
+        100 * r.crack_near_plates));
   if (!a.no_render) {
-    for (const char* view : {"fragments", "stress"})
-      md += fmt::format(
-          "{}: start, crack initiation, failure\n\n![](run/images/{}/frame_0000.png)\n![](run/images/{}/"
-          "frame_{:04d}.png)\n![](run/images/{}/frame_{:04d}.png)\n\nAnimation: `run/images/{}.ogv`.\n\n",
-          view, view, view, std::max<Index>(0, r.init_frame), view, r.last_frame, view);
+    for (const std::string view : {"fragments", "stress"}) {
+      doc.para(view + ": start, crack initiation, failure");
+      doc.figures({{"", "images/" + view + "/frame_0000.png"},
+                   {"", fmt::format("images/{}/frame_{:04d}.png", view, std::max<Index>(0, r.init_frame))},
+                   {"", fmt::format("images/{}/frame_{:04d}.png", view, r.last_frame)}});
+      doc.para(fmt::format("Animation: `{}`.", doc.run_link("images/" + view + ".ogv")));
+    }
   }
-  md += "## Energy ledger\n\n";
-  md += fmt::format(
-      "Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).\n\n"
-      "![energy](run/images/plots/energy.png)\n![balance](run/images/plots/balance_error.png)\n\n",
-      r.balance_max, r.largest_energy);
+  doc.section("Energy ledger");
+  doc.para(fmt::format("Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).",
+                       r.balance_max, r.largest_energy));
+  doc.figures({{"energy", "images/plots/energy.png"}, {"balance", "images/plots/balance_error.png"}});
   if (a.study) {
-    md += "## Speed against error\n\n" + study_md + "\n![error against wall time](run/images/plots/study.png)\n\n";
+    doc.section("Speed against error");
+    doc.raw(study_md + "\n");
+    doc.figure("error against wall time", "images/plots/study.png");
   }
-  // Links point at the run folder, wherever it is (--from-run).
-  for (const std::string from : {"](run/", "`run/"}) {
-    const std::string to = from.substr(0, from.size() - 4) + rel + "/";
-    for (std::size_t p = md.find(from); p != std::string::npos; p = md.find(from, p + to.size()))
-      md.replace(p, from.size(), to);
-  }
-  write_file_atomic((fs::path(dir) / "report.md").string(), md);
+  doc.write();
   log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
   return 0;
 }

@@ -8,6 +8,7 @@
 #include "io/staging.hpp"
 #include "render/plot.hpp"
 #include "report/crack_sampling.hpp"
+#include "report/document.hpp"
 #include "report/report_dirs.hpp"
 #include "report/study_runner.hpp"
 #include "run/render_run.hpp"
@@ -86,7 +87,7 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     plot("crack_mid.csv", "x_mm", {"y_mm"}, "crack path on the mid-plane: height y [mm] against x [mm]",
          "crack_path.png");
 
-  std::string study_md;
+  std::vector<std::vector<std::string>> study_rows;
   if (a.study) {
     const auto variants = galvez_variants(c);
     std::vector<GalvezResult> rows(variants.size());
@@ -94,13 +95,10 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
       rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd), rd, false);
     });
-    study_md +=
-        "| variant | knob | elements | wall time [s] | steps | peak load [kN] | CMOD at peak [mm] | crack top x [mm] | "
-        "path vs reference: mean / Hausdorff [mm] | KE/IE max |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < variants.size(); ++i) {
       const auto& v = variants[i];
       if (!out[i].error.empty()) {
-        study_md += fmt::format("| {} | {} | failed: {} | | | | | | | |\n", v.name, v.knob, out[i].error);
+        study_rows.push_back({v.name, v.knob, "failed: " + out[i].error, "", "", "", "", "", "", ""});
         continue;
       }
       const GalvezResult& q = rows[i];
@@ -109,66 +107,71 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
         const auto d = report::path_distance(q.path_mid, r.path_mid);
         dist = fmt::format("{:.1f} / {:.1f}", 1e3 * d.mean, 1e3 * d.hausdorff);
       }
-      study_md += fmt::format("| {} | {} | {} | {:.1f} | {} | {:.3f} | {:.4f} | {:.1f} | {} | {:.3f} |\n", v.name,
-                              v.knob, q.elements, q.wall_s, q.steps, 1e-3 * q.P_peak, 1e3 * q.cmod_peak, 1e3 * q.top_x,
-                              dist, q.ke_ratio_max);
+      study_rows.push_back({v.name, v.knob, std::to_string(q.elements), fmt::format("{:.1f}", q.wall_s),
+                            std::to_string(q.steps), fmt::format("{:.3f}", 1e-3 * q.P_peak),
+                            fmt::format("{:.4f}", 1e3 * q.cmod_peak), fmt::format("{:.1f}", 1e3 * q.top_x), dist,
+                            fmt::format("{:.3f}", q.ke_ratio_max)});
     }
   }
 
-  const std::string rel = fs::relative(run_dir, dir).string();
-  std::string md;
-  md += fmt::format(
-      "# Galvez notched beam: report\n\nCase `{}` ({}), run in `{}/`. Paper: section 2.3 (dspdem's README, M5); "
+  report::Document doc(dir, run_dir);
+  doc.title("Galvez notched beam: report");
+  doc.para(fmt::format(
+      "Case `{}` ({}), run in `{}`. Paper: section 2.3 (dspdem's README, M5); "
       "reference data and sources: src/scenes/galvez_beam/REFERENCE.md in dspdem. The experiment's peak load, "
       "load-CMOD envelope and crack trajectory (Galvez et al. 1998) were not found in a readable source, so this "
       "report compares with no experimental number; the crack path is compared with the paper's qualitative "
-      "description (from the notch towards the loading side).\n\n",
-      c.path, c.name, rel);
-  md += fmt::format(
+      "description (from the notch towards the loading side).",
+      c.path, c.name, doc.run_link("")));
+  doc.para(fmt::format(
       "Beam depth D = {:.0f} mm, thickness {:.0f} mm, notch {:.0f} mm; {} elements, {} joints; loading line at x = "
-      "{:+.0f} mm. Run: {} steps of {:.3g} s, {:.1f} s wall time.\n\n",
-      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, r.steps, r.dt, r.wall_s);
-  md += "## Load\n\n";
-  md += fmt::format(
+      "{:+.0f} mm. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
+      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, r.steps, r.dt, r.wall_s));
+  doc.section("Load");
+  doc.para(fmt::format(
       "Peak actuator load {:.3f} kN at t = {:.3f} ms, CMOD {:.4f} mm, load-point deflection {:.4f} mm. "
       "Quasi-static check: kinetic / internal energy at most {:.3f} from half the peak load to the peak, "
-      "{:.3f} at the peak{}.\n\n",
+      "{:.3f} at the peak{}.",
       1e-3 * r.P_peak, 1e3 * r.t_peak, 1e3 * r.cmod_peak, 1e3 * r.defl_peak, r.ke_ratio_max, r.ke_ratio_peak,
-      r.ke_ratio_max > 0.1 ? " (above 0.1: inertia is part of the load; slow the actuator)" : "");
-  md += fmt::format(
-      "![load-CMOD]({0}/images/plots/load_cmod.png)\n![load-deflection]({0}/images/plots/load_deflection.png)\n\n",
-      rel);
-  md += "## Crack path\n\n";
+      r.ke_ratio_max > 0.1 ? " (above 0.1: inertia is part of the load; slow the actuator)" : ""));
+  doc.figures({{"load-CMOD", "images/plots/load_cmod.png"}, {"load-deflection", "images/plots/load_deflection.png"}});
+  doc.section("Crack path");
   if (r.first_crack_frame >= 0) {
-    md += fmt::format(
+    doc.para(fmt::format(
         "The first joints soften at x = {:+.1f} mm, y = {:.1f} mm (the notch tip is at x = 0, y = {:.0f} mm), "
         "joints frame {}. At the end ({:.0f} cm^2 of damaged joints, softening or broken) the mid-plane path reaches y "
-        "= {:.1f} mm at x = {:+.1f} "
-        "mm, "
-        "{} the loading line at x = {:+.0f} mm.\n\n",
+        "= {:.1f} mm at x = {:+.1f} mm, {} the loading line at x = {:+.0f} mm.",
         1e3 * r.start_x, 1e3 * r.start_y, 1e3 * r.notch, r.first_crack_frame, 1e4 * r.crack_area, 1e3 * r.top_y,
-        1e3 * r.top_x, r.top_x * r.load_x > 0 ? "towards" : "away from", 1e3 * r.load_x);
-    md += "| y [mm] | x mid-plane [mm] |\n|---|---|\n";
-    for (const auto& [y, x] : r.path_mid) md += fmt::format("| {:.1f} | {:+.1f} |\n", 1e3 * y, 1e3 * x);
-    md += fmt::format("\nBoth faces: `{}/crack_path.csv`.\n\n![crack path]({}/images/plots/crack_path.png)\n\n", rel,
-                      rel);
+        1e3 * r.top_x, r.top_x * r.load_x > 0 ? "towards" : "away from", 1e3 * r.load_x));
+    std::vector<std::vector<std::string>> path;
+    for (const auto& [y, x] : r.path_mid)
+      path.push_back({fmt::format("{:.1f}", 1e3 * y), fmt::format("{:+.1f}", 1e3 * x)});
+    doc.table({"y [mm]", "x mid-plane [mm]"}, path);
+    doc.para(fmt::format("Both faces: `{}`.", doc.run_link("crack_path.csv")));
+    doc.figure("crack path", "images/plots/crack_path.png");
   } else {
-    md += "No joint broke.\n\n";
+    doc.para("No joint broke.");
   }
-  md += fmt::format("{} fragments; largest mass fractions", r.fragments);
+  std::string fr;
   for (std::size_t i = 0; i < std::min<std::size_t>(3, r.mass_fractions.size()); ++i)
-    md += fmt::format("{} {:.3f}", i ? "," : "", r.mass_fractions[i]);
-  md += ".\n\n";
+    fr += fmt::format("{} {:.3f}", i ? "," : "", r.mass_fractions[i]);
+  doc.para(fmt::format("{} fragments; largest mass fractions{}.", r.fragments, fr));
   if (!a.no_render)
-    for (const char* view : {"cracks", "fragments", "stress"})
-      md += fmt::format("{0}, last frame:\n\n![]({1}/images/{0}/frame_{2:04d}.png)\n\n", view, rel, r.last_frame);
-  md += "## Energy ledger\n\n";
-  md += fmt::format(
-      "Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).\n\n"
-      "![energy]({}/images/plots/energy.png)\n\n",
-      r.balance_max, r.largest_energy, rel);
-  if (a.study) md += "## Speed against error\n\n" + study_md + "\n";
-  write_file_atomic((fs::path(dir) / "report.md").string(), md);
+    for (const std::string view : {"cracks", "fragments", "stress"}) {
+      doc.para(view + ", last frame:");
+      doc.figure("", fmt::format("images/{}/frame_{:04d}.png", view, r.last_frame));
+    }
+  doc.section("Energy ledger");
+  doc.para(fmt::format("Largest balance error over the run {:.2e} of the largest energy term ({:.4g} J).",
+                       r.balance_max, r.largest_energy));
+  doc.figure("energy", "images/plots/energy.png");
+  if (a.study) {
+    doc.section("Speed against error");
+    doc.table({"variant", "knob", "elements", "wall time [s]", "steps", "peak load [kN]", "CMOD at peak [mm]",
+               "crack top x [mm]", "path vs reference: mean / Hausdorff [mm]", "KE/IE max"},
+              study_rows);
+  }
+  doc.write();
   log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
   return 0;
 }
