@@ -6,9 +6,9 @@
 
 #include <filesystem>
 
+#include "io/case_config.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
 #include "scenes/brazilian_disc/stress_check.hpp"
-#include "io/case_config.hpp"
 
 using namespace dspdem;
 namespace fs = std::filesystem;
