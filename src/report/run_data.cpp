@@ -44,12 +44,6 @@ RunData RunData::open(const std::string& dir) {
   return r;
 }
 
-std::size_t RunData::frame_at_or_after(double t) const {
-  for (std::size_t i = 0; i < frames.size(); ++i)
-    if (frames[i].time >= t) return i;
-  return frames.empty() ? 0 : frames.size() - 1;
-}
-
 double value_at(const std::vector<double>& time, const std::vector<double>& values, double t) {
   const std::size_t k = static_cast<std::size_t>(std::lower_bound(time.begin(), time.end(), t - 1e-15) - time.begin());
   return values[std::min(k, values.size() - 1)];

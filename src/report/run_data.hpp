@@ -36,9 +36,6 @@ struct RunData {
 
   /// Opens DIR; throws Error naming what is missing (summary.json, series.csv, run.pvd).
   static RunData open(const std::string& dir);
-
-  /// Index of the first frame at or after time t (the last frame when none).
-  std::size_t frame_at_or_after(double t) const;
 };
 
 /// Series value at time t: the row at or just after t (series are sampled finer than frames).

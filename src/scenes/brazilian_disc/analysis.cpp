@@ -85,10 +85,7 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
   // broken joint (the analytic solution is elastic): when the peak comes late, the last
   // frame before cracking.
   const auto& frames = run.frames;
-  auto load_at = [&](double time) {
-    std::size_t k = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), time - 1e-15) - t.begin());
-    return P[std::min(k, P.size() - 1)];
-  };
+  auto load_at = [&](double time) { return report::value_at(t, P, time); };
   const Real target = profile_load > 0 ? profile_load : kProfileFraction * r.P_peak;
   Real best = INFINITY;
   for (std::size_t i = 0; i < frames.size(); ++i) {
