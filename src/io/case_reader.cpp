@@ -233,6 +233,14 @@ void apply_override(toml::table& root, const std::string& ov) {
     if (!t->contains(p)) t->insert(p, toml::table{});
     cur = t->get(p);
   }
+  if (toml::array* a = cur->as_array()) {  // walls.1={...}: the whole element of an array
+    char* end = nullptr;
+    const long idx = std::strtol(parts.back().c_str(), &end, 10);
+    DSPDEM_CHECK(*end == '\0' && idx >= 0 && static_cast<std::size_t>(idx) < a->size(),
+                 "--set '{}': '{}' is not an index of that array (size {})", ov, parts.back(), a->size());
+    a->replace(a->cbegin() + idx, *value);
+    return;
+  }
   toml::table* t = cur->as_table();
   DSPDEM_CHECK(t != nullptr, "--set '{}': the parent of the key is not a table", ov);
   t->insert_or_assign(parts.back(), *value);

@@ -126,3 +126,26 @@ TEST(CaseReader, RereadKeepsItsOverridesAndAddsMore) {
 }
 
 TEST(CaseReader, MissingFile) { EXPECT_THROW(read_case("/nonexistent/case.toml"), Error); }
+
+TEST(CaseReader, OverrideReplacesAWholeArrayElement) {
+  // --set walls.0={...} swaps one element of an array of tables for another (a study row
+  // that puts flat plates where the case has jaws must drop the jaw's radius, which a box
+  // refuses); an index past the end is refused with the array's size.
+  const std::string walls = std::string(kGood) +
+                            "[contact]\nenabled = true\n[[walls]]\nname = \"j\"\ntype = \"jaw\"\n"
+                            "point = [0.0, -0.5, 0.0]\nnormal = [0.0, 1.0, 0.0]\nradius = 1.5\n";
+  const std::string path = write_case(walls);
+  const CaseConfig c =
+      read_case(path, {"walls.0={name = \"p\", type = \"box\", point = [0.0, 1.1, 0.0], half_size = [0.1, 0.1, 0.1]}"});
+  ASSERT_EQ(c.walls.size(), 1u);
+  EXPECT_EQ(c.walls[0].wall.name, "p");
+  EXPECT_EQ(c.walls[0].wall.type, contact::Wall::Type::Box);
+  EXPECT_DOUBLE_EQ(c.walls[0].wall.centre(1), 1.1);
+  try {
+    read_case(path, {"walls.1={name = \"q\"}"});
+    ADD_FAILURE() << "no error for an index past the end";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--set 'walls.1="), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("(size 1)"), std::string::npos) << e.what();
+  }
+}
