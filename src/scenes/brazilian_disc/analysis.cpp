@@ -11,11 +11,12 @@
 #include <fstream>
 
 #include "core/error.hpp"
-#include "post/brazilian.hpp"
 #include "render/plot.hpp"
 #include "render/series.hpp"
 #include "report/crack_sampling.hpp"
+#include "report/field_sampling.hpp"
 #include "report/run_data.hpp"
+#include "scenes/brazilian_disc/point_load.hpp"
 
 namespace dspdem {
 
@@ -25,18 +26,43 @@ namespace fs = std::filesystem;
 }  // namespace
 
 namespace {
+fs::path joints_frame(const std::string& run_dir, Index frame) {
+  return fs::path(run_dir) / "frames" / fmt::format("joints_{:04d}.vtu", frame);
+}
+
 // Broken joints (state 2) of the joints frame at the split: area-weighted mean |x| of their
-// centroids, and the share of their area within D/4 of a plate (|y| > D/4).
-void crack_path(const std::string& run_dir, DiscResult& r, Index frame) {
-  const fs::path jf = fs::path(run_dir) / "frames" / fmt::format("joints_{:04d}.vtu", frame);
+// centroids (how wide the broken band is), the share of their area within D/4 of a plate
+// (|y| > D/4), and the crack traced along y in element-sized slices (where the band runs:
+// its mean and largest distance from x = 0). A band of crushed facets centred on the
+// diameter has a large mean |x| but a path near x = 0; an inclined crack has both large.
+void crack_path(const std::string& run_dir, Real h, DiscResult& r, Index frame) {
+  const fs::path jf = joints_frame(run_dir, frame);
   if (frame < 0 || !fs::exists(jf)) return;
   double area = 0, ax = 0, near = 0;
-  for (const auto& p : report::broken_joints(jf.string())) {
+  const auto pieces = report::broken_joints(jf.string());
+  for (const auto& p : pieces) {
     area += p.area, ax += p.area * std::abs(p.centroid(0));
     if (std::abs(p.centroid(1)) > 0.25 * r.D) near += p.area;
   }
   r.crack_area = area;
   if (area > 0) r.crack_mean_x = ax / area, r.crack_near_plates = near / area;
+  const int bins = std::max(4, static_cast<int>(std::lround(r.D / h)));
+  const auto path = report::trace_path(pieces, 1, 0, -0.5 * r.D, 0.5 * r.D, bins);
+  if (path.empty()) return;
+  double sum = 0, worst = 0;
+  for (const auto& [y, x] : path) sum += std::abs(x), worst = std::max(worst, std::abs(x));
+  r.crack_path_mean_x = sum / static_cast<double>(path.size()), r.crack_path_max_x = worst;
+  r.crack_path_slices = static_cast<int>(path.size()), r.crack_path_bins = bins;
+}
+
+// The damaged zone (softening or broken joints) at the first frame at or after the peak:
+// area-weighted mean |x| of its centroids.
+void damage_at_peak(const std::string& run_dir, DiscResult& r, Index frame) {
+  const fs::path jf = joints_frame(run_dir, frame);
+  if (frame < 0 || !fs::exists(jf)) return;
+  double area = 0, ax = 0;
+  for (const auto& p : report::broken_joints(jf.string(), 1)) area += p.area, ax += p.area * std::abs(p.centroid(0));
+  if (area > 0) r.peak_damage_mean_x = ax / area, r.peak_frame = frame;
 }
 }  // namespace
 
@@ -60,7 +86,7 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
   for (std::size_t i = 0; i < t.size(); ++i) P[i] = 0.5 * (std::abs(f_top[i]) + std::abs(f_bot[i]));
   const std::size_t ip = static_cast<std::size_t>(std::max_element(P.begin(), P.end()) - P.begin());
   r.P_peak = P[ip], r.t_peak = t[ip];
-  r.split = post::splitting_stress(r.P_peak, r.D, r.L);
+  r.split = disc::splitting_stress(r.P_peak, r.D, r.L);
   r.split_err = r.ft > 0 ? r.split / r.ft - 1 : 0;
   const auto& broken = s["broken_joints"];
   for (std::size_t i = 0; i < t.size(); ++i)
@@ -133,10 +159,10 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
     cen /= static_cast<Real>(nv);
     if (std::abs(cen(0)) > 0.5 * h) continue;
     const double xx = stress->GetComponent(e, 0), yy = stress->GetComponent(e, 1);
-    const auto at_centroid = post::point_load_stress(r.P_profile, r.D, r.L, cen(0), cen(1));
+    const auto at_centroid = disc::point_load_stress(r.P_profile, r.D, r.L, cen(0), cen(1));
     // Tetrahedra get the element mean; other cells (not made by the disc generator) the
     // centroid value.
-    const auto a = nv == 4 ? post::tet_mean_point_load_stress(r.P_profile, r.D, r.L, v) : at_centroid;
+    const auto a = nv == 4 ? disc::tet_mean_point_load_stress(r.P_profile, r.D, r.L, v) : at_centroid;
     if (std::abs(cen(1)) < 0.5 * h) cxx += xx, cyy += yy, caxx += a.xx, cayy += a.yy, ++ccnt;
     if (std::abs(cen(1)) < h && std::abs(cen(2)) > 0.5 * r.L - 0.5 * h) fxx += xx, faxx += a.xx;
     if (std::abs(cen(1)) < h && std::abs(cen(2)) < 0.5 * h) mxx += xx, maxx += a.xx;
@@ -153,8 +179,8 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
     ref_xx.push_back(axx[b] / cnt[b]), ref_yy.push_back(ayy[b] / cnt[b]);
     cen_xx.push_back(cxx_ref[b] / cnt[b]);
   }
-  r.l2_xx = post::relative_l2(num_xx, ref_xx), r.l2_yy = post::relative_l2(num_yy, ref_yy);
-  r.l2_xx_centroid = post::relative_l2(num_xx, cen_xx);
+  r.l2_xx = report::relative_l2(num_xx, ref_xx), r.l2_yy = report::relative_l2(num_yy, ref_yy);
+  r.l2_xx_centroid = report::relative_l2(num_xx, cen_xx);
   if (ccnt > 0 && caxx != 0 && cayy != 0) r.centre_xx = cxx / caxx - 1, r.centre_yy = cyy / cayy - 1;
   if (faxx > 0) r.face_xx = fxx / faxx - 1;
   if (maxx > 0) r.mid_xx = mxx / maxx - 1;
@@ -174,7 +200,12 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
       r.split_frame = static_cast<Index>(i);
       break;
     }
-  crack_path(run_dir, r, r.split_frame);
+  crack_path(run_dir, c.mesh_num.at("size"), r, r.split_frame);
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (frames[i].time >= r.t_peak) {
+      damage_at_peak(run_dir, r, static_cast<Index>(i));
+      break;
+    }
   const RunSummary& sum = run.summary;
   r.fragments = static_cast<int>(sum.fragments);
   for (double m : sum.largest_fragment_masses) r.mass_fractions.push_back(m / sum.total_mass);

@@ -30,6 +30,13 @@ struct DiscResult {
   // the share of broken area within D/4 of a plate (crushing under the plates rather than
   // splitting). Negative when the run has no joints frame.
   Real crack_mean_x = -1, crack_near_plates = -1, crack_area = 0;
+  // The same broken joints traced along y in about D/h slices (area-weighted mean x per
+  // slice): mean and largest |x| of that path over the slices that hold broken joints.
+  Real crack_path_mean_x = -1, crack_path_max_x = -1;
+  int crack_path_slices = 0, crack_path_bins = 0;
+  // Softening or broken joints at the first frame at or after the peak: mean |x|.
+  Real peak_damage_mean_x = -1;
+  Index peak_frame = -1;
   int fragments = 0;
   std::vector<double> mass_fractions;
   double wall_s = 0, dt = 0;

@@ -158,6 +158,16 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
         "of a plate.",
         r.split_frame, 1e4 * r.crack_area, 1e3 * r.crack_mean_x, 1e3 * c.mesh_num.at("size"),
         100 * r.crack_near_plates));
+  if (r.crack_path_mean_x >= 0)
+    doc.para(fmt::format(
+        "Traced along the loaded diameter (area-weighted mean x of the broken joints in each of {} slices of y, {} "
+        "of them cracked), the crack runs {:.1f} mm from x = 0 on average and {:.1f} mm at most.",
+        r.crack_path_bins, r.crack_path_slices, 1e3 * r.crack_path_mean_x, 1e3 * r.crack_path_max_x));
+  if (r.peak_damage_mean_x >= 0)
+    doc.para(
+        fmt::format("At the peak (frame {}) the damaged joints (softening or broken) lie {:.1f} mm from x = 0 "
+                    "on average.",
+                    r.peak_frame, 1e3 * r.peak_damage_mean_x));
   if (!a.no_render) {
     for (const std::string view : {"fragments", "stress"}) {
       doc.para(view + ": start, crack initiation, failure");

@@ -1,12 +1,13 @@
 // Brazilian disc: the point-load solution along the loaded diameter (paper eqs. 24-25,
-// src/scenes/brazilian_disc/REFERENCE.md) and the error measures of the report. Pure functions.
+// src/scenes/brazilian_disc/REFERENCE.md) and its mean over an element. Pure functions.
 #pragma once
 #include <cmath>
 #include <vector>
 
 #include "core/types.hpp"
+#include "report/field_sampling.hpp"
 
-namespace dspdem::post {
+namespace dspdem::disc {
 
 /// Splitting (indirect tensile) strength 2 P / (pi D L) [Pa].
 inline Real splitting_stress(Real P, Real D, Real L) { return 2 * P / (M_PI * D * L); }
@@ -38,28 +39,12 @@ inline PlaneStress point_load_stress(Real P, Real D, Real L, Real x, Real y) {
   return s;
 }
 
-/// Mean of f over the tetrahedron v[0..3]: midpoint (Bey) subdivision `levels` deep, 8
-/// children of volume V/8 per level (4 corner tets, the inner octahedron cut along
-/// m02-m13), f at each child's centroid. Exact for linear f; the error of the centroid rule
-/// on smooth f falls about 4x per level.
-template <class T, class F>
-T tet_mean(const Vec3 v[4], const F& f, int levels) {
-  if (levels == 0) return f(Vec3(0.25 * (v[0] + v[1] + v[2] + v[3])));
-  const Vec3 m01 = 0.5 * (v[0] + v[1]), m02 = 0.5 * (v[0] + v[2]), m03 = 0.5 * (v[0] + v[3]);
-  const Vec3 m12 = 0.5 * (v[1] + v[2]), m13 = 0.5 * (v[1] + v[3]), m23 = 0.5 * (v[2] + v[3]);
-  const Vec3 kids[8][4] = {{v[0], m01, m02, m03}, {m01, v[1], m12, m13}, {m02, m12, v[2], m23}, {m03, m13, m23, v[3]},
-                           {m01, m02, m03, m13},  {m01, m02, m12, m13},  {m02, m03, m13, m23},  {m02, m12, m13, m23}};
-  T s = tet_mean<T>(kids[0], f, levels - 1);
-  for (int k = 1; k < 8; ++k) s += tet_mean<T>(kids[k], f, levels - 1);
-  return s / 8.0;
-}
-
 /// Mean of the two-load field over the tetrahedron v (its x, y; z does not enter). A
 /// constant-stress element approximates the mean of the true field over its volume, not its
 /// value at the centroid; within a few element sizes of a load point the two differ by a few
 /// percent of 2P/(pi D L), from the field's curvature across the element.
 inline PlaneStress tet_mean_point_load_stress(Real P, Real D, Real L, const Vec3 v[4], int levels = 3) {
-  const Vec3 m = tet_mean<Vec3>(
+  const Vec3 m = report::tet_mean<Vec3>(
       v,
       [&](const Vec3& p) {
         const PlaneStress s = point_load_stress(P, D, L, p(0), p(1));
@@ -69,11 +54,4 @@ inline PlaneStress tet_mean_point_load_stress(Real P, Real D, Real L, const Vec3
   return {m(0), m(1), m(2)};
 }
 
-/// Relative L2 error sqrt(sum (a - b)^2 / sum b^2) of samples a against reference b.
-inline Real relative_l2(const std::vector<Real>& a, const std::vector<Real>& b) {
-  Real num = 0, den = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) num += (a[i] - b[i]) * (a[i] - b[i]), den += b[i] * b[i];
-  return den > 0 ? std::sqrt(num / den) : 0.0;
-}
-
-}  // namespace dspdem::post
+}  // namespace dspdem::disc
