@@ -39,6 +39,8 @@ struct BodyConfig {
   std::string name;
   enum class Fracture { None, All, Groups } fracture = Fracture::None;
   std::vector<std::string> fracture_groups;
+  std::vector<std::string> zone_groups;  ///< their joints take zone_material's joint parameters
+  std::string zone_material;
   std::vector<std::string> groups;
   std::string material;
   Kinematics kinematics = Kinematics::Corotational;

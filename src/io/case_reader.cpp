@@ -426,6 +426,19 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
               "fracture_energy_I, cohesion, friction_angle, fracture_energy_II)",
               s.where("fracture"), b.name, b.material);
       }
+      b.zone_groups = s.strings("zone_groups");
+      b.zone_material = s.str("zone_material");
+      if (!b.zone_groups.empty() || !b.zone_material.empty()) {
+        if (b.zone_groups.empty() || b.zone_material.empty())
+          fail("{}: [[bodies]] '{}': zone_groups and zone_material come together", s.where(), b.name);
+        if (b.fracture == BodyConfig::Fracture::None)
+          fail("{}: [[bodies]] '{}' has zone_groups but no joints (fracture = \"none\")", s.where("zone_groups"),
+               b.name);
+        const Index zi = material_index(b.zone_material, s.where("zone_material"));
+        if (!c.joint_materials[zi].given)
+          fail("{}: [[bodies]] '{}': zone_material '{}' has no joint parameters", s.where("zone_material"), b.name,
+               b.zone_material);
+      }
       for (const auto& o : c.bodies)
         DSPDEM_CHECK(o.name != b.name, "{}: body name '{}' used twice", s.where("name"), b.name);
       s.finish();

@@ -171,6 +171,28 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
           }
       }
     }
+    // Joint zones: elements whose joints (with another element of the same zone) take the
+    // zone material's joint parameters.
+    std::vector<Index> zone(ne, -1);
+    for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
+      const BodyConfig& bc = c.bodies[bi];
+      if (bc.zone_groups.empty()) continue;
+      Index zm = 0;
+      while (c.materials[zm].name != bc.zone_material) ++zm;  // checked by the case reader
+      for (const auto& gname : bc.zone_groups) {
+        const Group* g = me.find_group(gname);
+        const std::string where = fmt::format("{}: [[bodies]] '{}' zone_groups", c.path, bc.name);
+        if (!g || g->dim != 3)
+          fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
+        for (std::size_t b = 0; b < g->elements.size(); ++b)
+          for (Index e : g->elements[b]) {
+            const Index gid = block_offset[b] + e;
+            if (cfg_body[gid] != static_cast<Index>(bi))
+              fail("{}: group '{}' holds element {} of another body", where, gname, me.blocks[b].tag[e]);
+            zone[gid] = zm;
+          }
+      }
+    }
     if (any) {
       m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
       // Loads on surfaces whose faces are element faces are spread again by area over the
@@ -203,7 +225,8 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       js.param.resize(js.size());
       for (Index j = 0; j < js.size(); ++j) {
         const Index mat = material[js.ea[j]];
-        const JointMaterial& jm = c.joint_materials[mat];
+        const Index za = zone[js.ea[j]];
+        const JointMaterial& jm = c.joint_materials[za >= 0 && zone[js.eb[j]] == za ? za : mat];
         const Real h = 0.5 * (height(js.ea[j], js.area0[j]) + height(js.eb[j], js.area0[j]));
         joint::CohesiveParams p;
         p.kn = jm.kn > 0 ? jm.kn : jm.penalty * c.materials[mat].E / h;

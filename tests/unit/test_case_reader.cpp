@@ -149,3 +149,16 @@ TEST(CaseReader, OverrideReplacesAWholeArrayElement) {
     EXPECT_NE(std::string(e.what()).find("(size 1)"), std::string::npos) << e.what();
   }
 }
+
+TEST(CaseReader, JointZonesNeedBothKeysAndJointParameters) {
+  const std::string joint =
+      "nu = 0.2\ntensile_strength = 3.0e6\nfracture_energy_I = 10.0\ncohesion = 4.0e6\n"
+      "friction_angle = 45.0\nfracture_energy_II = 100.0";
+  const std::string base =
+      replace(replace(kGood, "nu = 0.2", joint), "material = \"rock\"", "material = \"rock\"\nfracture = \"all\"");
+  expect_error(base, {"zone_groups and zone_material come together"}, {"bodies.0.zone_groups=[\"caps\"]"});
+  expect_error(base, {"'steel'"}, {"bodies.0.zone_groups=[\"caps\"]", "bodies.0.zone_material=\"steel\""});
+  const CaseConfig c =
+      read_case(write_case(base), {"bodies.0.zone_groups=[\"caps\"]", "bodies.0.zone_material=\"rock\""});
+  EXPECT_EQ(c.bodies[0].zone_material, "rock");
+}

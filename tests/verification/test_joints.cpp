@@ -351,3 +351,36 @@ TEST(Joints, FaceQuadratureWeightsAndShapeValues) {
     }
   }
 }
+
+TEST(Joints, ZoneGroupsTakeTheZoneMaterialsJointParameters) {
+  // Three hexes along x; the last two form the zone "end" with a stronger joint material:
+  // the joint inside the zone takes its cohesion, the one across the zone's edge the body's.
+  CaseConfig c = simple_case(30e9, 0.2, 2400);
+  Material strong = c.materials[0];
+  strong.name = "strong";
+  c.materials.push_back(strong);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  c.joint_materials[1].c = 99e6;
+  c.bodies[0].zone_groups = {"end"};
+  c.bodies[0].zone_material = "strong";
+  Mesh mesh = box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1));
+  Group end;
+  end.name = "end";
+  end.dim = 3;
+  end.elements.resize(2);
+  end.elements[1] = {1, 2};
+  mesh.groups.push_back(end);
+  const Model m = build_model(c, mesh);
+  ASSERT_EQ(m.joints.size(), 2);
+  const Index nt = m.mesh.blocks[0].size();
+  for (Index j = 0; j < 2; ++j) {
+    const Index a = std::min(m.joints.ea[j], m.joints.eb[j]) - nt, b = std::max(m.joints.ea[j], m.joints.eb[j]) - nt;
+    const Real coh = m.joints.params[m.joints.param[j]].c;
+    if (a == 0 && b == 1)
+      EXPECT_EQ(coh, 10e6) << "a joint across the zone's edge keeps the body's material";
+    else
+      EXPECT_EQ(coh, 99e6) << "joint " << a << "-" << b << " inside the zone";
+  }
+  c.bodies[0].zone_groups = {"nothing"};
+  EXPECT_THROW(build_model(c, mesh), Error);
+}
