@@ -132,7 +132,8 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
     doc.para(fmt::format(
         "The scene's mesh is sized for the split ({} elements; the paper's has 12335); within 0.2 D of a "
         "plate the point-load field goes as 1/r and changes sign across an element of that size, so sigma_xx there "
-        "is off by the figure above. The check (in `stress_check/`) is the same disc, plates and contact, elastic "
+        "is off by the figure above. The check (in `stress_check/`) is the same disc and contact, loaded through the "
+        "paper's flat plates (the point-load solution is theirs; curved jaws spread the load over an arc), elastic "
         "(no joints: the profile is taken before cracking), meshed at {:.1f} mm with {:.1f} mm at the loaded lines "
         "({} elements), plates 4x faster than the scene (loading to the profile takes {:.1f}x the disc's wave "
         "transit time D / sqrt(E / rho)), {:.1f} s "

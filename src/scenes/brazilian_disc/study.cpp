@@ -11,6 +11,7 @@
 #include "report/study_runner.hpp"
 #include "run/run_case.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
+#include "scenes/brazilian_disc/loading.hpp"
 #include "scenes/brazilian_disc/stress_check.hpp"
 
 namespace dspdem {
@@ -126,19 +127,36 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     // the case's parameters, and the coupled law with c = 2 f_t, G_fII = G_fI (the
     // inter-element choice of cases/README.md). On an unstructured mesh the paper's law and
     // shear parameters make the zigzag crack expensive.
+    // When the case already has the coupled law with those parameters, the second row is
+    // the paper's joints instead: its law with its disc's c = 8.7 f_t, G_fII = 150 G_fI.
     const bool coupled = !base.joint_materials.empty() && base.joint_materials.front().coupled;
-    std::vector<std::string> law, inter;
+    bool inter_element = coupled;
+    std::vector<std::string> law, inter, paper;
     for (std::size_t i = 0; i < base.materials.size(); ++i) {
       const std::string m = "materials." + base.materials[i].name + ".";
       law.push_back(override_of(m + "joint_law", std::string(coupled ? "paper" : "coupled")));
-      if (!base.joint_materials[i].given) continue;
-      inter.push_back(override_of(m + "joint_law", std::string("coupled")));
-      inter.push_back(override_of(m + "cohesion", 2 * base.joint_materials[i].ft));
-      inter.push_back(override_of(m + "fracture_energy_II", base.joint_materials[i].GfI));
+      const JointMaterial& jm = base.joint_materials[i];
+      if (!jm.given) continue;
+      paper.insert(paper.end(),
+                   {override_of(m + "joint_law", std::string("paper")), override_of(m + "cohesion", 8.7 * jm.ft),
+                    override_of(m + "fracture_energy_II", 150 * jm.GfI)});
+      // The bodies' own materials decide; a zone's material (e.g. the bearing zones') keeps its
+      // parameters in the inter-element row.
+      bool of_a_body = false;
+      for (const auto& b : base.bodies) of_a_body = of_a_body || b.material == base.materials[i].name;
+      if (!of_a_body) continue;
+      inter_element = inter_element && std::abs(jm.c - 2 * jm.ft) <= 1e-6 * jm.ft && jm.GfII == jm.GfI;
+      inter.insert(inter.end(),
+                   {override_of(m + "joint_law", std::string("coupled")), override_of(m + "cohesion", 2 * jm.ft),
+                    override_of(m + "fracture_energy_II", jm.GfI)});
     }
     add(coupled ? "paper_law" : "coupled_law",
         coupled ? "the paper's joint law (reference: coupled)" : "the coupled joint law (reference: the paper's)", law);
-    add("coupled_2ft", "coupled law, c = 2 f_t, G_fII = G_fI (inter-element shear parameters)", inter);
+    if (inter_element)
+      add("paper_joints", "the paper's joints: its law, c = 8.7 f_t, G_fII = 150 G_fI (reference: inter-element)",
+          paper);
+    else
+      add("coupled_2ft", "coupled law, c = 2 f_t, G_fII = G_fI (inter-element shear parameters)", inter);
   }
   {
     // Bearing zones: joints there too (reference: none within cap_height of the loads).
@@ -149,19 +167,34 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     if (!sets.empty()) add("joints_at_loads", "joints in the bearing zones too (reference: none there)", sets);
   }
   {
-    // Curved jaws (ISRM: radius 1.5 R, arc +-30 deg) in place of the flat plates, moving as
-    // they do: the load spreads over an arc instead of one element.
-    const Real R = 0.5 * base.mesh_num.at("diameter"), Rj = 1.5 * R;
-    std::vector<std::string> sets;
-    for (std::size_t i = 0; i < base.walls.size(); ++i) {
-      const Real side = base.walls[i].wall.centre(1) > 0 ? 1.0 : -1.0;
-      const std::string w = fmt::format("walls.{}.", i);
-      sets.insert(sets.end(),
-                  {override_of(w + "type", std::string("jaw")), override_of(w + "point", Vec3(0, side * (R - Rj), 0)),
-                   override_of(w + "normal", Vec3(0, side, 0)), override_of(w + "radius", Rj),
-                   override_of(w + "half_size", Vec3(0, 0, 0))});
+    // Bearing zones with their own joint material (the paper's shear parameters): the core's
+    // inter-element joints there too, or no joints there at all.
+    std::vector<std::string> inter, none;
+    for (std::size_t i = 0; i < base.bodies.size(); ++i) {
+      const BodyConfig& b = base.bodies[i];
+      if (b.zone_groups.empty()) continue;
+      const std::string k = fmt::format("bodies.{}.", i);
+      inter.insert(inter.end(), {k + "zone_groups=[]", override_of(k + "zone_material", std::string(""))});
+      none.insert(none.end(), {k + "zone_groups=[]", override_of(k + "zone_material", std::string("")),
+                               override_of(k + "fracture", std::string("groups"))});
+      none.push_back(k + "fracture_groups=[\"disc_core\"]");  // the generator's volume group beside disc_caps
     }
-    if (!sets.empty()) add("curved_jaws", "curved jaws, radius 1.5 R (reference: flat plates)", sets);
+    if (!inter.empty()) {
+      add("bearing_inter", "the core's joint parameters in the bearing zones too (reference: the paper's there)",
+          inter);
+      add("bearing_joint_free", "no joints in the bearing zones (reference: the paper's parameters there)", none);
+    }
+  }
+  {
+    // Curved jaws in place of the flat plates (the load spreads over an arc instead of one
+    // element), or the paper's flat plates where the case has jaws.
+    const bool jaws = loads_through_jaws(base);
+    const std::vector<std::string> sets = jaws ? flat_plate_overrides(base) : curved_jaw_overrides(base);
+    if (!sets.empty())
+      add(jaws ? "flat_plates" : "curved_jaws",
+          jaws ? "the paper's flat plates, 60 mm wide (reference: curved jaws, radius 1.5 R)"
+               : "curved jaws, radius 1.5 R (reference: flat plates)",
+          sets);
   }
   return v;
 }
@@ -203,17 +236,23 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
   render::plot_csv(csv, s, (fs::path(image_dir) / "plots" / "study.png").string());
   study_md +=
       "| variant | knob | elements | wall time [s] | steps | dt [s] | 2P/(pi D L) [MPa] | vs f_t | L2 sigma_xx | "
-      "L2 sigma_yy |\n|---|---|---|---|---|---|---|---|---|---|\n";
+      "L2 sigma_yy | two largest pieces | crack path, mean abs(x) [mm] "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& [v, r] = rows[i];
     if (!failed[i].empty()) {
-      study_md += fmt::format("| {} | {} | failed: {} | | | | | | | |\n", v.name, v.knob, failed[i]);
+      study_md += fmt::format("| {} | {} | failed: {} | | | | | | | | | |\n", v.name, v.knob, failed[i]);
       continue;
     }
     const std::string strength =
         v.elastic ? std::string("no joints | ") : fmt::format("{:.3f} | {}", 1e-6 * r.split, pct(r.split_err));
-    study_md += fmt::format("| {} | {} | {} | {:.1f} | {} | {:.3g} | {} | {:.1f} % | {:.1f} % |\n", v.name, v.knob,
-                            r.elements, r.wall_s, r.steps, r.dt, strength, 100 * r.l2_xx, 100 * r.l2_yy);
+    const std::string pieces = r.mass_fractions.size() >= 2
+                                   ? fmt::format("{:.2f} / {:.2f}", r.mass_fractions[0], r.mass_fractions[1])
+                                   : std::string("-");
+    const std::string path = r.crack_path_mean_x >= 0 ? fmt::format("{:.1f}", 1e3 * r.crack_path_mean_x) : "-";
+    study_md +=
+        fmt::format("| {} | {} | {} | {:.1f} | {} | {:.3g} | {} | {:.1f} % | {:.1f} % | {} | {} |\n", v.name, v.knob,
+                    r.elements, r.wall_s, r.steps, r.dt, strength, 100 * r.l2_xx, 100 * r.l2_yy, pieces, path);
   }
   // Which to use: the most accurate in strength among runs that cracked (a run stopped
   // before its peak reports its last load), and the cheapest whose strength is within 5 %
