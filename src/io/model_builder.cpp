@@ -142,6 +142,23 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     if (c.boundaries[i].type == BoundaryConfig::Type::Force)
       force_weights[i] = load_weights(me, need_group(me, c.boundaries[i].group, c.boundaries[i].where));
 
+  // Calls fn(element) for every element of the named volume groups of body bi; a name that is
+  // not a volume group, or a group reaching into another body, is an error naming the key.
+  auto for_body_groups = [&](std::size_t bi, const std::vector<std::string>& names, const char* key, auto&& fn) {
+    const std::string where = fmt::format("{}: [[bodies]] '{}' {}", c.path, c.bodies[bi].name, key);
+    for (const auto& gname : names) {
+      const Group* g = me.find_group(gname);
+      if (!g || g->dim != 3)
+        fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
+      for (std::size_t b = 0; b < g->elements.size(); ++b)
+        for (Index e : g->elements[b]) {
+          const Index gid = block_offset[b] + e;
+          if (cfg_body[gid] != static_cast<Index>(bi))
+            fail("{}: group '{}' holds element {} of another body", where, gname, me.blocks[b].tag[e]);
+          fn(gid);
+        }
+    }
+  };
   // Cohesive joints on the faces of fracturable bodies (node duplication).
   {
     joint::InsertionInput in;
@@ -157,19 +174,7 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
           if (cfg_body[g] == static_cast<Index>(bi)) in.fracturable[g] = 1;
         continue;
       }
-      for (const auto& gname : bc.fracture_groups) {
-        const Group* g = me.find_group(gname);
-        const std::string where = fmt::format("{}: [[bodies]] '{}' fracture_groups", c.path, bc.name);
-        if (!g || g->dim != 3)
-          fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
-        for (std::size_t b = 0; b < g->elements.size(); ++b)
-          for (Index e : g->elements[b]) {
-            const Index gid = block_offset[b] + e;
-            if (cfg_body[gid] != static_cast<Index>(bi))
-              fail("{}: group '{}' holds element {} of another body", where, gname, me.blocks[b].tag[e]);
-            in.fracturable[gid] = 1;
-          }
-      }
+      for_body_groups(bi, bc.fracture_groups, "fracture_groups", [&](Index gid) { in.fracturable[gid] = 1; });
     }
     // Joint zones: elements whose joints (with another element of the same zone) take the
     // zone material's joint parameters.
@@ -179,19 +184,7 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       if (bc.zone_groups.empty()) continue;
       Index zm = 0;
       while (c.materials[zm].name != bc.zone_material) ++zm;  // checked by the case reader
-      for (const auto& gname : bc.zone_groups) {
-        const Group* g = me.find_group(gname);
-        const std::string where = fmt::format("{}: [[bodies]] '{}' zone_groups", c.path, bc.name);
-        if (!g || g->dim != 3)
-          fail("{}: '{}' is not a volume group of mesh '{}' (groups: {})", where, gname, me.source, me.group_names());
-        for (std::size_t b = 0; b < g->elements.size(); ++b)
-          for (Index e : g->elements[b]) {
-            const Index gid = block_offset[b] + e;
-            if (cfg_body[gid] != static_cast<Index>(bi))
-              fail("{}: group '{}' holds element {} of another body", where, gname, me.blocks[b].tag[e]);
-            zone[gid] = zm;
-          }
-      }
+      for_body_groups(bi, bc.zone_groups, "zone_groups", [&](Index gid) { zone[gid] = zm; });
     }
     if (any) {
       m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
