@@ -197,6 +197,10 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
       wlo = whi = bp.v[0];
       for (int k = 1; k < 8; ++k) wlo = wlo.cwiseMin(bp.v[k]), whi = whi.cwiseMax(bp.v[k]);
       wlo.array() -= 0.5 * skin_, whi.array() += 0.5 * skin_;
+    } else if (wl.type == Wall::Type::Cylinder) {
+      const Poly ap = wl.axis_poly();
+      wlo = ap.v[0].cwiseMin(ap.v[1]).array() - (wl.radius + 0.5 * skin_);
+      whi = ap.v[0].cwiseMax(ap.v[1]).array() + (wl.radius + 0.5 * skin_);
     }
     const Vec3 n = wl.plane_normal();
     for (Index i = 0; i < ns; ++i) {
@@ -256,7 +260,7 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
 
 void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x,
                           const Real* v, Real dt, Real* f, Real offset) {
-  const Real ra = radius_[ea], rb = wall ? 0.0 : radius_[eb];
+  const Real ra = radius_[ea], rb = wall ? (wall->type == Wall::Type::Cylinder ? wall->radius : 0.0) : radius_[eb];
   const Real overlap = ra + rb - t.d - offset;
   if (overlap <= 0) return;
   totals_.max_overlap = std::max(totals_.max_overlap, overlap / (ra + rb));
@@ -375,6 +379,8 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
     else if (wl.type == Wall::Type::Jaw)
       find_jaw_touches(A, radius_[e], wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle,
                        touches_);
+    else if (wl.type == Wall::Type::Cylinder)
+      find_touches(A, radius_[e], wl.axis_poly(), wl.radius, touches_);
     else
       find_touches(A, radius_[e], wl.box_poly(), 0.0, touches_);
     for (const Touch& t : touches_) apply(e, -1, &wl, static_cast<int>(w), t, x, v, dt, f);

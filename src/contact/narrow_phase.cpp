@@ -157,7 +157,7 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
     Real deepest = -INFINITY;  // for a vertex inside Q: the face it is least deep behind
     int deep_face = -1;
     TriProj dp{-1, -1, -1, 0, Vec3::UnitZ()};
-    bool outside = false;
+    bool outside = tq.tris.empty();  // a segment (no faces) has no inside
     for (std::size_t k = 0; k < tq.tris.size(); ++k) {
       const TriProj pr = project(p, fq[k]);
       outside |= pr.d > 0;

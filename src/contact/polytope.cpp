@@ -39,11 +39,21 @@ Topology make(CellType t) {
   }
   return tp;
 }
+
+Topology make_segment() {
+  Topology tp;
+  tp.nv = 2;
+  tp.edges = {{0, 1}};
+  tp.edge_faces = {{-1, -1}};
+  tp.neighbours = {{1}, {0}};
+  tp.vertex_faces.resize(2);
+  return tp;
+}
 }  // namespace
 
 const Topology& topology(Shape s) {
-  static const Topology tet = make(CellType::Tet4), hex = make(CellType::Hex8);
-  return s == Shape::Tet ? tet : hex;
+  static const Topology tet = make(CellType::Tet4), hex = make(CellType::Hex8), seg = make_segment();
+  return s == Shape::Tet ? tet : s == Shape::Hex ? hex : seg;
 }
 
 Vec3 Poly::centre() const {

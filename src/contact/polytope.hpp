@@ -24,7 +24,9 @@ struct Topology {
   std::vector<std::vector<int>> vertex_faces;  ///< per vertex: faces that contain it
 };
 
-enum class Shape { Tet, Hex };
+// Segment: two vertices joined by one edge, no faces: the skeleton of a spherocylinder
+// (a rigid cylinder wall is the segment of its axis dilated by its radius).
+enum class Shape { Tet, Hex, Segment };
 const Topology& topology(Shape s);
 
 /// A convex polytope in its current position: at most 8 vertices.

@@ -13,6 +13,14 @@ Poly Wall::box_poly() const {
   return p;
 }
 
+Poly Wall::axis_poly() const {
+  Poly p;
+  p.topo = &topology(Shape::Segment);
+  const Vec3 a = half_length * (q * axis0);
+  p.v[0] = centre - a, p.v[1] = centre + a;
+  return p;
+}
+
 Real Wall::kinetic_energy() const {
   if (!free) return 0;
   return 0.5 * mass * velocity.squaredNorm() + 0.5 * omega.dot(momentum_angular);

@@ -14,7 +14,10 @@ struct Wall {
   // Jaw: the concave cylindrical face of a loading jaw (ISRM Brazilian test: radius 1.5 R),
   // the solid being outside a cylinder of radius `radius` about the axis through `centre`
   // along the body z axis, within `half_angle` of the body normal0 direction seen from it.
-  enum class Type { Plane, Box, Jaw } type = Type::Plane;
+  // Cylinder: a rigid roller or impactor, the segment of its axis (through `centre` along
+  // axis0 rotated, of length 2 half_length) dilated by `radius`: a spherocylinder, equal to
+  // the cylinder wherever the contact is on its side (its ends are hemispheres).
+  enum class Type { Plane, Box, Jaw, Cylinder } type = Type::Plane;
   std::string name;
   // Pose: centre (plane: a point on it) and orientation; the plane's outward normal is
   // the body z axis rotated, the box's half sizes are along the body axes.
@@ -25,6 +28,7 @@ struct Wall {
   Vec3 axis0 = Vec3::UnitZ();    ///< jaw: cylinder axis in the reference pose
   Real radius = 0;               ///< jaw: cylinder radius [m]
   Real cos_half_angle = 0;       ///< jaw: cos of the arc's half opening angle
+  Real half_length = 0;          ///< cylinder: half the length of its axis segment [m]
   // Motion.
   bool free = false;
   Vec3 velocity = Vec3::Zero(), omega = Vec3::Zero();
@@ -43,6 +47,8 @@ struct Wall {
   Vec3 jaw_axis() const { return q * axis0; }
   /// Box as a polytope (hexahedron topology, corners in gmsh order).
   Poly box_poly() const;
+  /// Cylinder: its axis segment (segment topology), to be dilated by `radius`.
+  Poly axis_poly() const;
   Vec3 velocity_at(const Vec3& x) const { return velocity + omega.cross(x - centre); }
   Real kinetic_energy() const;
   /// Updates omega from the angular momentum (free walls).

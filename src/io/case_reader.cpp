@@ -498,9 +498,10 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       for (const auto& o : c.walls)
         DSPDEM_CHECK(o.wall.name != w.name, "{}: wall name '{}' used twice", s.where("name"), w.name);
       const std::string type = s.str("type");
-      w.type = type == "box"   ? contact::Wall::Type::Box
-               : type == "jaw" ? contact::Wall::Type::Jaw
-                               : contact::Wall::Type::Plane;
+      w.type = type == "box"        ? contact::Wall::Type::Box
+               : type == "jaw"      ? contact::Wall::Type::Jaw
+               : type == "cylinder" ? contact::Wall::Type::Cylinder
+                                    : contact::Wall::Type::Plane;
       w.centre = s.vec3("point");
       const Vec3 nrm = s.vec3("normal");
       if (w.type != contact::Wall::Type::Box && !(nrm.norm() > 0))
@@ -509,7 +510,16 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       w.half = s.vec3("half_size");
       if (w.type == contact::Wall::Type::Box && !(w.half.minCoeff() > 0))
         fail("{}: [[walls]] '{}' is a box: half_size needs three positive extents", s.where("half_size"), w.name);
-      if (w.type == contact::Wall::Type::Jaw) {
+      if (w.type == contact::Wall::Type::Cylinder) {
+        if (!s.has("radius") || !s.has("length"))
+          fail("{}: [[walls]] '{}' is a cylinder: give its radius and length", s.where(), w.name);
+        w.radius = s.real("radius");
+        w.half_length = 0.5 * s.real("length");
+        const Vec3 ax = s.vec3("axis");
+        if (!(ax.norm() > 0)) fail("{}: [[walls]] '{}' key 'axis' must not be zero", s.where("axis"), w.name);
+        w.axis0 = ax.normalized();
+        s.real("half_angle");
+      } else if (w.type == contact::Wall::Type::Jaw) {
         if (!s.has("radius")) fail("{}: [[walls]] '{}' is a jaw: give its radius", s.where(), w.name);
         w.radius = s.real("radius");
         const Vec3 ax = s.vec3("axis");
@@ -520,23 +530,37 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
                s.where("normal"), w.name);
         w.cos_half_angle = std::cos(s.real("half_angle") * M_PI / 180.0);
       } else {
-        if (s.has("radius")) fail("{}: [[walls]] '{}': key 'radius' is for jaws only", s.where("radius"), w.name);
+        if (s.has("radius"))
+          fail("{}: [[walls]] '{}': key 'radius' is for jaws and cylinders only", s.where("radius"), w.name);
         s.vec3("axis"), s.real("half_angle");  // defaults written to case.resolved.toml; unused
       }
+      if (w.type != contact::Wall::Type::Cylinder && s.has("length"))
+        fail("{}: [[walls]] '{}': key 'length' is for cylinders only", s.where("length"), w.name);
+      {}
       w.velocity_target = s.vec3("velocity");
       w.ramp = s.real("ramp");
       w.free = s.boolean("free");
       if (w.free) {
-        if (w.type != contact::Wall::Type::Box)
-          fail("{}: [[walls]] '{}': only boxes can be free (a plane has no mass)", s.where("free"), w.name);
+        if (w.type != contact::Wall::Type::Box && w.type != contact::Wall::Type::Cylinder)
+          fail("{}: [[walls]] '{}': only boxes and cylinders can be free (planes and jaws have no mass)",
+               s.where("free"), w.name);
         if (!s.has("density")) fail("{}: [[walls]] '{}' is free: give its density", s.where("free"), w.name);
         const Real rho = s.real("density");
-        const Vec3 d = 2 * w.half;
-        w.mass = rho * d.prod();
         w.inertia_body = Mat3::Zero();
-        w.inertia_body(0, 0) = w.mass * (d(1) * d(1) + d(2) * d(2)) / 12;
-        w.inertia_body(1, 1) = w.mass * (d(0) * d(0) + d(2) * d(2)) / 12;
-        w.inertia_body(2, 2) = w.mass * (d(0) * d(0) + d(1) * d(1)) / 12;
+        if (w.type == contact::Wall::Type::Cylinder) {
+          // A solid cylinder of the wall's radius and length (its contact ends are rounded).
+          const Real R = w.radius, L = 2 * w.half_length;
+          w.mass = rho * M_PI * R * R * L;
+          const Real ia = 0.5 * w.mass * R * R, it = w.mass * (3 * R * R + L * L) / 12;
+          const Mat3 aa = w.axis0 * w.axis0.transpose();
+          w.inertia_body = it * (Mat3::Identity() - aa) + ia * aa;
+        } else {
+          const Vec3 d = 2 * w.half;
+          w.mass = rho * d.prod();
+          w.inertia_body(0, 0) = w.mass * (d(1) * d(1) + d(2) * d(2)) / 12;
+          w.inertia_body(1, 1) = w.mass * (d(0) * d(0) + d(2) * d(2)) / 12;
+          w.inertia_body(2, 2) = w.mass * (d(0) * d(0) + d(1) * d(1)) / 12;
+        }
         w.velocity = w.velocity_target;
       } else if (s.has("density")) {
         s.real("density");

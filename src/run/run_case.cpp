@@ -44,7 +44,11 @@ class Series {
           "crack_area";
     if (m.contact.enabled()) f_ << ",contact_elastic,friction,contact_damping,contacts";
     f_ << ",balance_error";  // monitors follow this column (dspdem render plots each)
-    for (const auto& w : m.contact.walls()) f_ << ',' << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
+    for (const auto& w : m.contact.walls()) {
+      f_ << ',' << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
+      if (w.free)  // a free wall's motion: its centre and velocity
+        for (const char* q : {"_x", "_y", "_z", "_vx", "_vy", "_vz"}) f_ << ',' << w.name << q;
+    }
     for (const auto& ms : m.monitors) f_ << ',' << ms.cfg.name;
     f_ << '\n';
   }
@@ -57,8 +61,12 @@ class Series {
       f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{}", e.contact_elastic, e.friction, e.contact_damping,
                         m.contact.totals().contacts);
     f_ << fmt::format(",{:.4g}", e.balance_error());
-    for (const auto& w : m.contact.walls())
+    for (const auto& w : m.contact.walls()) {
       f_ << fmt::format(",{:.10g},{:.10g},{:.10g}", w.force(0), w.force(1), w.force(2));
+      if (w.free)
+        f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}", w.centre(0), w.centre(1), w.centre(2),
+                          w.velocity(0), w.velocity(1), w.velocity(2));
+    }
     for (const auto& ms : m.monitors) f_ << fmt::format(",{:.10g}", it.monitor(ms));
     f_ << '\n';
     f_.flush();

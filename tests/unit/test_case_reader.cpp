@@ -162,3 +162,24 @@ TEST(CaseReader, JointZonesNeedBothKeysAndJointParameters) {
       read_case(write_case(base), {"bodies.0.zone_groups=[\"caps\"]", "bodies.0.zone_material=\"rock\""});
   EXPECT_EQ(c.bodies[0].zone_material, "rock");
 }
+
+TEST(CaseReader, CylinderWallsNeedRadiusAndLengthAndMayBeFree) {
+  const std::string walls = std::string(kGood) +
+                            "[contact]\nenabled = true\n[[walls]]\nname = \"roller\"\ntype = \"cylinder\"\n"
+                            "point = [0.0, 0.0, 0.1]\naxis = [0.0, 2.0, 0.0]\n";
+  expect_error(walls, {"'roller'", "cylinder", "radius and length"});
+  expect_error(walls + "radius = 0.016\n", {"radius and length"});
+  const CaseConfig c = read_case(write_case(walls + "radius = 0.016\nlength = 0.1\nfree = true\ndensity = 7800.0\n"));
+  const contact::Wall& w = c.walls[0].wall;
+  EXPECT_EQ(w.type, contact::Wall::Type::Cylinder);
+  EXPECT_DOUBLE_EQ(w.half_length, 0.05);
+  EXPECT_TRUE(w.axis0.isApprox(Vec3::UnitY()));
+  const Real m = 7800 * M_PI * 0.016 * 0.016 * 0.1;
+  EXPECT_NEAR(w.mass, m, 1e-12 * m);
+  EXPECT_NEAR(w.inertia_body(1, 1), 0.5 * m * 0.016 * 0.016, 1e-12 * m);                   // about the axis
+  EXPECT_NEAR(w.inertia_body(0, 0), m * (3 * 0.016 * 0.016 + 0.1 * 0.1) / 12, 1e-12 * m);  // across it
+  // length is for cylinders only
+  expect_error(
+      std::string(kGood) + "[contact]\nenabled = true\n[[walls]]\nname = \"p\"\ntype = \"plane\"\nlength = 1.0\n",
+      {"'length'", "cylinders only"});
+}
