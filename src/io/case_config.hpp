@@ -21,6 +21,7 @@ struct JointMaterial {
   Real penalty = 100, kn = 0, ks = 0;  ///< kn, ks = 0: from the penalty factor
   bool nodal_quadrature = false;       ///< joint_quadrature = "nodal"
   bool coupled = false;                ///< joint_law = "coupled"
+  bool mode_i = false;                 ///< joint_law = "mode_I": no shear failure
 };
 
 /// [contact] and [[walls]].

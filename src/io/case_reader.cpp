@@ -348,17 +348,41 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
         s.real("damping_frequency");
       }
       JointMaterial jm;
+      const std::string law = s.str("joint_law");
+      jm.coupled = law == "coupled", jm.mode_i = law == "mode_I";
+      if (jm.mode_i) {
+        // Opening only: the shear stays elastic until the joint breaks, so a cohesion or a
+        // mode-II energy would be ignored; say so instead of ignoring it.
+        for (const char* k : {"cohesion", "fracture_energy_II"})
+          if (s.has(k))
+            fail(
+                "{}: [materials.{}] joint_law = \"mode_I\" fails joints in opening only (the shear stays elastic "
+                "until they break): '{}' does not apply, remove it",
+                s.where(k), mname, k);
+        int given = 0;
+        for (const char* k : {"tensile_strength", "fracture_energy_I", "friction_angle"}) given += s.has(k);
+        if (given > 0 && given < 3)
+          fail(
+              "{}: [materials.{}] joint parameters come together: with joint_law = \"mode_I\" give "
+              "tensile_strength, fracture_energy_I and friction_angle (friction of broken faces)",
+              s.where(), mname);
+        if (given == 3) {
+          jm.given = true;
+          jm.ft = s.real("tensile_strength");
+          jm.GfI = s.real("fracture_energy_I");
+          jm.phi_deg = s.real("friction_angle");
+        }
+      }
       const char* jkeys[] = {"tensile_strength", "fracture_energy_I", "cohesion", "friction_angle",
                              "fracture_energy_II"};
       int present = 0;
       for (const char* k : jkeys) present += s.has(k);
-      if (present > 0 && present < 5)
+      if (!jm.mode_i && present > 0 && present < 5)
         fail(
             "{}: [materials.{}] joint parameters come together: give all of tensile_strength, fracture_energy_I, "
             "cohesion, friction_angle, fracture_energy_II",
             s.where(), mname);
-      jm.coupled = s.str("joint_law") == "coupled";
-      if (present == 5) {
+      if (!jm.mode_i && present == 5) {
         jm.given = true;
         jm.ft = s.real("tensile_strength");
         jm.GfI = s.real("fracture_energy_I");

@@ -149,7 +149,9 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
       const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft;
       const Real fs = joint::shear_strength(p, s.sn), w_fs = fs / p.ks, w_GII = 2 * p.GfII / fs;
       const Real a = std::max<Real>(0, s.dn_max - w_ft) / w_GI, b = std::max<Real>(0, s.ds_max - w_fs) / w_GII;
-      const Real dg = p.law == joint::JointLaw::Coupled ? s.damage : std::min<Real>(1.0, std::sqrt(a * a + b * b));
+      const Real dg = p.law == joint::JointLaw::Coupled ? s.damage
+                      : p.law == joint::JointLaw::ModeI ? std::min<Real>(1.0, a)
+                                                        : std::min<Real>(1.0, std::sqrt(a * a + b * b));
       d = std::max(d, s.status == joint::JointStatus::Broken ? 1.0 : dg);
       dn += s.dn / ng, ds += s.ds / ng;
     }

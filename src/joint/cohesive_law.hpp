@@ -32,9 +32,11 @@
 namespace dspdem::joint {
 
 /// Which law a joint follows: the paper's (eqs. 3-6: normal and shear soften independently,
-/// coupled only by the break test) or the coupled mixed-mode law of coupled_law.hpp (one
-/// damage variable softens both together).
-enum class JointLaw : char { Paper = 0, Coupled = 1 };
+/// coupled only by the break test), the coupled mixed-mode law of coupled_law.hpp (one
+/// damage variable softens both together), or mode I only (the paper's normal law; the
+/// shear stays elastic until the joint breaks in opening, as the paper's impact beam with
+/// its "shear strength set high enough").
+enum class JointLaw : char { Paper = 0, Coupled = 1, ModeI = 2 };
 
 struct CohesiveParams {
   Real kn = 0, ks = 0;     ///< penalty stiffness [Pa/m]
@@ -119,17 +121,19 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   if (s.status == JointStatus::Broken) {
     ss = residual_friction(p, sn, ds, s);
   } else {
-    const Real fs = shear_strength(p, sn);
-    const Real w_fs = fs / p.ks, w_GII = 2.0 * p.GfII / fs;
     s.ds_max = std::max(s.ds_max, ds);
     const Real m = s.ds_max;
+    const bool mode_i = p.law == JointLaw::ModeI;
+    const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
+    const Real w_fs = fs / p.ks, w_GII = mode_i ? 1.0 : 2.0 * p.GfII / fs;
     if (m > w_fs) {
       const Real k = std::max<Real>(0.0, fs * (1.0 - (m - w_fs) / w_GII)) / m;
       s.ks_secant = s.ks_secant < 0 ? std::min(k, p.ks) : std::min(s.ks_secant, k);
     }
     ss = (s.ks_secant < 0 ? p.ks : s.ks_secant) * ds;
-    // Mixed-mode failure (eq. 6).
-    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI, b = std::max<Real>(0.0, m - w_fs) / w_GII;
+    // Mixed-mode failure (eq. 6); mode I only: b = 0.
+    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI,
+               b = mode_i ? 0.0 : std::max<Real>(0.0, m - w_fs) / w_GII;
     if (a * a + b * b >= 1.0) {
       s.status = JointStatus::Broken;
       s.ds_plastic = ds;

@@ -183,3 +183,16 @@ TEST(CaseReader, CylinderWallsNeedRadiusAndLengthAndMayBeFree) {
       std::string(kGood) + "[contact]\nenabled = true\n[[walls]]\nname = \"p\"\ntype = \"plane\"\nlength = 1.0\n",
       {"'length'", "cylinders only"});
 }
+
+TEST(CaseReader, ModeIJointsTakeNoShearParameters) {
+  // joint_law = "mode_I" is a clear setting, not large shear numbers: it needs f_t, G_fI and
+  // the friction angle of broken faces, and refuses a cohesion or a G_fII it would ignore.
+  const std::string mode_i =
+      "nu = 0.2\njoint_law = \"mode_I\"\ntensile_strength = 3.0e6\nfracture_energy_I = 10.0\nfriction_angle = 30.0";
+  const CaseConfig c = read_case(write_case(replace(kGood, "nu = 0.2", mode_i)));
+  EXPECT_TRUE(c.joint_materials[0].given);
+  EXPECT_TRUE(c.joint_materials[0].mode_i);
+  expect_error(replace(kGood, "nu = 0.2", mode_i + "\ncohesion = 20.0e6"), {":13:", "'cohesion'", "mode_I"});
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\njoint_law = \"mode_I\"\ntensile_strength = 3.0e6"),
+               {"come together", "friction_angle"});
+}

@@ -173,3 +173,29 @@ TEST(CohesiveLaw, ResidualFrictionResistsReversal) {
   // Sliding back by `back` (less the elastic reversal 2 cap / k_s) dissipates cap x that.
   EXPECT_NEAR((s.dissipated_II(p) - forward) / (cap * (back - 2 * cap / p.ks)), 1.0, 1e-3);
 }
+
+TEST(CohesiveLaw, ModeIOnlyKeepsTheShearElasticAndBreaksInOpening) {
+  // joint_law = "mode_I" (the paper's impact beam): a slip 100x the paper law's elastic
+  // limit c / k_s leaves the point intact, its shear traction k_s ds and nothing
+  // dissipated; an opening then breaks it with G_fI (+ the elastic ramp) dissipated, as
+  // the paper's law does; broken, it slides with friction tan(phi) under compression.
+  CohesiveParams p = disc_params();
+  p.law = JointLaw::ModeI;
+  p.c = 0, p.GfII = 0;  // not used (the reader refuses them)
+  CohesiveState s;
+  const Real ds_big = 100 * 20e6 / p.ks;
+  for (int i = 1; i <= 1000; ++i) cohesive_update(p, 0.0, ds_big * i / 1000, s);
+  EXPECT_EQ(s.status, JointStatus::Intact);
+  EXPECT_NEAR(s.ss, p.ks * ds_big, 1e-9 * p.ks * ds_big);
+  EXPECT_NEAR(s.dissipated_II(p), 0.0, 1e-9 * s.elastic_energy(p));
+  // Unload the slip, then open to failure.
+  for (int i = 999; i >= 0; --i) cohesive_update(p, 0.0, ds_big * i / 1000, s);
+  const Real df = p.ft / p.kn + 2 * p.GfI / p.ft;
+  for (int i = 1; i <= 20000; ++i) cohesive_update(p, 1.2 * df * i / 20000, 0.0, s);
+  EXPECT_EQ(s.status, JointStatus::Broken);
+  EXPECT_NEAR(s.dissipated_I(p) / (p.GfI + p.ft * p.ft / (2 * p.kn)), 1.0, 1e-4);
+  // Closed and pressed at 1 MPa, then slid: the traction caps at tan(phi) x 1 MPa.
+  const Real dn = -1e6 / p.kn;
+  for (int i = 1; i <= 1000; ++i) cohesive_update(p, dn, 1e-5 * i / 1000, s);
+  EXPECT_NEAR(s.ss, 1e6, 1e-6 * 1e6);
+}
