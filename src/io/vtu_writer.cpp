@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "fem/linear_elastic.hpp"
 #include "io/staging.hpp"
+#include "joint/coupled_law.hpp"
 #include "joint/joint_forces.hpp"
 #include "joint/joint_set.hpp"
 
@@ -146,13 +147,7 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
     Real d = 0, dn = 0, ds = 0;
     for (int g = 0; g < ng; ++g) {
       const joint::CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];
-      const Real w_ft = p.ft / p.kn, w_GI = 2 * p.GfI / p.ft;
-      const Real fs = joint::shear_strength(p, s.sn), w_fs = fs / p.ks, w_GII = 2 * p.GfII / fs;
-      const Real a = std::max<Real>(0, s.dn_max - w_ft) / w_GI, b = std::max<Real>(0, s.ds_max - w_fs) / w_GII;
-      const Real dg = p.law == joint::JointLaw::Coupled ? s.damage
-                      : p.law == joint::JointLaw::ModeI ? std::min<Real>(1.0, a)
-                                                        : std::min<Real>(1.0, std::sqrt(a * a + b * b));
-      d = std::max(d, s.status == joint::JointStatus::Broken ? 1.0 : dg);
+      d = std::max(d, joint::damage_index(p, s));
       dn += s.dn / ng, ds += s.ds / ng;
     }
     state->InsertNextValue(static_cast<int>(js.status[j]));
