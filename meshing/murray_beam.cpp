@@ -40,12 +40,17 @@ void build_murray_beam(const Params& p) {
   gmsh::vectorpair out;
   std::vector<gmsh::vectorpair> map;
   occ::fragment({boxes.front()}, gmsh::vectorpair(boxes.begin() + 1, boxes.end()), out, map);
-  // Cylinders along z, touching the beam: impactors on top, supports below.
+  // Cylinders along z, touching the beam: impactors on top, supports below. Meshed only
+  // when asked for: the case strikes the beam with analytic rigid cylinders ([[walls]]).
+  const bool cylinders = p["cylinders"] != 0;
   const double cl = W;
-  const int imp_l = occ::addCylinder(-gap / 2, H / 2 + r, -cl / 2, 0, 0, cl, r);
-  const int imp_r = occ::addCylinder(gap / 2, H / 2 + r, -cl / 2, 0, 0, cl, r);
-  const int sup_l = occ::addCylinder(-span / 2, -H / 2 - r, -cl / 2, 0, 0, cl, r);
-  const int sup_r = occ::addCylinder(span / 2, -H / 2 - r, -cl / 2, 0, 0, cl, r);
+  int imp_l = -1, imp_r = -1, sup_l = -1, sup_r = -1;
+  if (cylinders) {
+    imp_l = occ::addCylinder(-gap / 2, H / 2 + r, -cl / 2, 0, 0, cl, r);
+    imp_r = occ::addCylinder(gap / 2, H / 2 + r, -cl / 2, 0, 0, cl, r);
+    sup_l = occ::addCylinder(-span / 2, -H / 2 - r, -cl / 2, 0, 0, cl, r);
+    sup_r = occ::addCylinder(span / 2, -H / 2 - r, -cl / 2, 0, 0, cl, r);
+  }
   occ::synchronize();
 
   const std::vector<int> beam = entities_in_box(3, -L / 2, -H / 2, -W / 2, L / 2, H / 2, W / 2);
@@ -81,14 +86,25 @@ void build_murray_beam(const Params& p) {
     }
     gmsh::model::mesh::setTransfiniteVolume(v);
   }
-  set_volume_size({imp_l, imp_r, sup_l, sup_r}, p["cylinder_size"]);
+  if (cylinders) set_volume_size({imp_l, imp_r, sup_l, sup_r}, p["cylinder_size"]);
   gmsh::model::mesh::generate(3);
 
   add_group(3, beam, "beam");
-  add_group(3, {imp_l}, "impactor_left");
-  add_group(3, {imp_r}, "impactor_right");
-  add_group(3, {sup_l}, "support_left");
-  add_group(3, {sup_r}, "support_right");
+  // The beam between the supports (where the paper's joints matter) and its two overhangs.
+  add_group(3, entities_in_box(3, -span / 2, -H / 2, -W / 2, span / 2, H / 2, W / 2), "beam_span");
+  add_group(3, entities_in_box(3, -L / 2, -H / 2, -W / 2, -span / 2, H / 2, W / 2), "overhang_left");
+  add_group(3, entities_in_box(3, span / 2, -H / 2, -W / 2, L / 2, H / 2, W / 2), "overhang_right");
+  if (cylinders) {
+    add_group(3, {imp_l}, "impactor_left");
+    add_group(3, {imp_r}, "impactor_right");
+    add_group(3, {sup_l}, "support_left");
+    add_group(3, {sup_r}, "support_right");
+  }
+  // Lines across the width where the cylinders touch: impactor lines on top, support lines below.
+  add_group(1, entities_in_box(1, -gap / 2, H / 2, -W / 2, -gap / 2, H / 2, W / 2), "impact_line_left");
+  add_group(1, entities_in_box(1, gap / 2, H / 2, -W / 2, gap / 2, H / 2, W / 2), "impact_line_right");
+  add_group(1, entities_in_box(1, -span / 2, -H / 2, -W / 2, -span / 2, -H / 2, W / 2), "support_line_left");
+  add_group(1, entities_in_box(1, span / 2, -H / 2, -W / 2, span / 2, -H / 2, W / 2), "support_line_right");
   add_group(1, entities_in_box(1, 0, -H / 2, -W / 2, 0, -H / 2, W / 2), "midspan_bottom");
   add_group(2, entities_in_box(2, -L / 2, -H / 2, -W / 2, L / 2, -H / 2, W / 2), "beam_bottom");
   add_group(2, entities_in_box(2, -L / 2, H / 2, -W / 2, L / 2, H / 2, W / 2), "beam_top");
@@ -107,6 +123,7 @@ const std::vector<schema::Key>& murray_beam_keys() {
     {"mesh.murray_beam", "span", T::Real, "1.4224", 0, inf, true, false, "m", nullptr, "Support span. [NF]: 1/3 of the FHWA full-scale span 4267.2 mm, the tests being 1/3-scale."},
     {"mesh.murray_beam", "impactor_spacing", T::Real, "0.2032", 0, inf, true, false, "m", nullptr, "Distance between the two impactor lines. [NF]: 1/3 of the full-scale 609.6 mm."},
     {"mesh.murray_beam", "cylinder_radius", T::Real, "0.016", 0, inf, true, false, "m", nullptr, "Radius of the impactor and support cylinders [S]."},
+    {"mesh.murray_beam", "cylinders", T::Int, "0", 0, 1, false, false, "", nullptr, "1: mesh the two impactor and two support cylinders as volumes (impactor_left/right, support_left/right); 0: the beam alone, struck through analytic cylinder [[walls]]."},
     {"mesh.murray_beam", "cylinder_size", T::Real, "0.006", 0, inf, true, false, "m", nullptr, "Element size in the cylinders."},
     {"mesh.murray_beam", "nx", T::Int, "68", 2, 100000, false, false, "", nullptr, "Hexahedra along the length (68 x 6 x 10 = 4080, the paper's count)."},
     {"mesh.murray_beam", "ny", T::Int, "6", 1, 100000, false, false, "", nullptr, "Hexahedra through the depth."},

@@ -568,8 +568,12 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
         if (w.type != contact::Wall::Type::Box && w.type != contact::Wall::Type::Cylinder)
           fail("{}: [[walls]] '{}': only boxes and cylinders can be free (planes and jaws have no mass)",
                s.where("free"), w.name);
-        if (!s.has("density")) fail("{}: [[walls]] '{}' is free: give its density", s.where("free"), w.name);
-        const Real rho = s.real("density");
+        if (s.has("density") == s.has("mass"))
+          fail("{}: [[walls]] '{}' is free: give its density or its mass (one of the two)", s.where("free"), w.name);
+        const Real volume = w.type == contact::Wall::Type::Cylinder ? M_PI * w.radius * w.radius * 2 * w.half_length
+                                                                    : (2 * w.half).prod();
+        // A given mass is spread uniformly over the solid (inertia of a uniform cylinder or box).
+        const Real rho = s.has("mass") ? s.real("mass") / volume : s.real("density");
         w.inertia_body = Mat3::Zero();
         if (w.type == contact::Wall::Type::Cylinder) {
           // A solid cylinder of the wall's radius and length (its contact ends are rounded).
@@ -586,8 +590,9 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
           w.inertia_body(2, 2) = w.mass * (d(0) * d(0) + d(1) * d(1)) / 12;
         }
         w.velocity = w.velocity_target;
-      } else if (s.has("density")) {
-        s.real("density");
+      } else if (s.has("density") || s.has("mass")) {
+        fail("{}: [[walls]] '{}': key '{}' is for free walls only (set free = true)",
+             s.where(s.has("mass") ? "mass" : "density"), w.name, s.has("mass") ? "mass" : "density");
       }
       if (s.has("friction")) w.mu = s.real("friction");
       if (s.has("kn")) w.kn = s.real("kn");

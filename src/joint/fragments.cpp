@@ -45,4 +45,32 @@ Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector
   return fr;
 }
 
+std::vector<FragmentInfo> describe_fragments(const Mesh& mesh, const Fragments& fr, const Real* x,
+                                             const std::vector<Real>& elem_mass) {
+  std::map<Index, FragmentInfo> by_id;  // ordered by id: the sums below run in a fixed order
+  Index g = 0;
+  for (const auto& b : mesh.blocks)
+    for (Index e = 0; e < b.size(); ++e, ++g) {
+      Vec3 c = Vec3::Zero();
+      for (int i = 0; i < b.npe(); ++i) {
+        const Index n = b.conn[static_cast<std::size_t>(e) * b.npe() + i];
+        c += Vec3(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
+      }
+      FragmentInfo& f = by_id[fr.id[g]];
+      f.id = fr.id[g];
+      f.mass += elem_mass[g];
+      f.centroid += elem_mass[g] * c / b.npe();
+      ++f.elements;
+    }
+  std::vector<FragmentInfo> out;
+  out.reserve(by_id.size());
+  for (auto& [id, f] : by_id) {
+    if (f.mass > 0) f.centroid /= f.mass;
+    out.push_back(f);
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const FragmentInfo& a, const FragmentInfo& b) { return a.mass > b.mass; });
+  return out;
+}
+
 }  // namespace dspdem::joint

@@ -18,4 +18,17 @@ struct Fragments {
 /// `elem_mass` per global element.
 Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector<Real>& elem_mass);
 
+/// One fragment described for output: where it is and how heavy.
+struct FragmentInfo {
+  Index id = 0;  ///< as in Fragments::id (smallest element id in it)
+  Real mass = 0;
+  Index elements = 0;
+  Vec3 centroid = Vec3::Zero();  ///< mass-weighted mean of its elements' node averages at `x`
+};
+
+/// The fragments of `fr`, largest mass first (ties: smaller id first), at positions `x`
+/// (3 per node, as Mesh::x).
+std::vector<FragmentInfo> describe_fragments(const Mesh& mesh, const Fragments& fr, const Real* x,
+                                             const std::vector<Real>& elem_mass);
+
 }  // namespace dspdem::joint

@@ -36,9 +36,23 @@ std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_sta
     p.centroid = Vec3::Zero();
     for (const auto& q : v) p.centroid += q;
     p.centroid /= static_cast<Real>(nv);
-    for (vtkIdType k = 1; k + 1 < nv; ++k) p.area += 0.5 * (v[k] - v[0]).cross(v[k + 1] - v[0]).norm();
+    Vec3 n = Vec3::Zero();
+    for (vtkIdType k = 1; k + 1 < nv; ++k) {
+      const Vec3 c = (v[k] - v[0]).cross(v[k + 1] - v[0]);
+      p.area += 0.5 * c.norm(), n += c;
+    }
+    if (n.norm() > 0) p.normal = n.normalized();
     out.push_back(p);
   }
+  return out;
+}
+
+std::vector<int> joint_states(const std::string& joints_vtu) {
+  auto g = render::read_frame(joints_vtu);
+  vtkDataArray* state = g->GetCellData()->GetArray("state");
+  DSPDEM_CHECK(state, "'{}' has no cell array 'state' (not a joints frame)", joints_vtu);
+  std::vector<int> out(static_cast<std::size_t>(g->GetNumberOfCells()));
+  for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) out[e] = static_cast<int>(state->GetComponent(e, 0));
   return out;
 }
 

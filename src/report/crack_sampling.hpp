@@ -11,12 +11,18 @@ namespace dspdem::report {
 
 struct CrackPiece {
   Vec3 centroid;
-  double area = 0;  ///< mid-surface area [m^2]
+  double area = 0;              ///< mid-surface area [m^2]
+  Vec3 normal = Vec3::UnitZ();  ///< unit normal of the mid-surface (sign arbitrary)
 };
 
 /// Joints of a joints_NNNN.vtu frame whose state is at least `min_state` (2: broken, the
 /// default; 1: softening or broken, the whole damaged zone). Empty when the file has none.
 std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_state = 2);
+
+/// The state of every joint of a joints frame, in cell order (0 intact, 1 softening, 2
+/// broken). The cells are the same joints in every frame of a run, so this indexes the
+/// pieces of the first frame (`broken_joints(first, 0)`: every joint where it started).
+std::vector<int> joint_states(const std::string& joints_vtu);
 
 /// A crack traced along `along` (0, 1, 2 = x, y, z): the pieces with lo < p(along) < hi and
 /// `keep` true, binned into `bins` equal slices; per non-empty slice the area-weighted mean

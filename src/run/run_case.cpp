@@ -162,6 +162,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     for (Index e = 0; e < b.size(); ++e)
       elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
   joint::Fragments frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+  // fragments.csv: per frame the count and the largest pieces (mass, size, where), so that
+  // any scene's report can follow the break-up without reading the frames back.
+  std::ofstream frag_csv(fs::path(stage.path()) / "fragments.csv");
+  DSPDEM_CHECK(frag_csv.good(), "cannot write '{}'", (fs::path(stage.path()) / "fragments.csv").string());
+  frag_csv << "frame,time,count,rank,id,mass,elements,x,y,z\n";  // id: the frames' fragment field
+  constexpr std::size_t kFragmentRows = 20;
   std::vector<std::pair<double, std::string>> joint_frames;
   const std::string joints_pvd = (fs::path(stage.path()) / "joints.pvd").string();
   auto write_frame = [&]() {
@@ -175,6 +181,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     fd.body = fem.elem_body.data();
     frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
     fd.fragment = frag.id.data();
+    {
+      const auto info = joint::describe_fragments(model.mesh, frag, it.x().data(), elem_mass);
+      for (std::size_t k = 0; k < std::min(kFragmentRows, info.size()); ++k)
+        frag_csv << fmt::format("{},{:.10g},{},{},{},{:.10g},{},{:.8g},{:.8g},{:.8g}\n", frames.size(), it.time(),
+                                frag.count, k + 1, info[k].id, info[k].mass, info[k].elements, info[k].centroid(0),
+                                info[k].centroid(1), info[k].centroid(2));
+      frag_csv.flush();
+    }
     fd.material = fem.elem_material.data();
     fd.fields = c.fields;
     fd.compress = c.compress;

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "scenes/brazilian_disc/scene.hpp"
 #include "scenes/galvez_beam/scene.hpp"
+#include "scenes/murray_beam/scene.hpp"
 
 namespace dspdem::scenes {
 
@@ -11,6 +12,7 @@ const std::vector<Scene>& all() {
       {"brazilian_disc", "brazilian_disc", "Brazilian disc split between two plates (paper 2.2)",
        brazilian_disc_report},
       {"galvez_beam", "galvez_beam", "Galvez mixed-mode notched beam (paper 2.3)", galvez_beam_report},
+      {"murray_beam", "murray_beam", "plain concrete beam struck by two impactors (paper 2.4)", murray_beam_report},
   };
   return s;
 }

@@ -178,6 +178,15 @@ TEST(CaseReader, CylinderWallsNeedRadiusAndLengthAndMayBeFree) {
   EXPECT_NEAR(w.mass, m, 1e-12 * m);
   EXPECT_NEAR(w.inertia_body(1, 1), 0.5 * m * 0.016 * 0.016, 1e-12 * m);                   // about the axis
   EXPECT_NEAR(w.inertia_body(0, 0), m * (3 * 0.016 * 0.016 + 0.1 * 0.1) / 12, 1e-12 * m);  // across it
+  // A mass instead of the density: the same body; both, or neither, or a fixed wall with a mass, are refused.
+  const CaseConfig cm = read_case(
+      write_case(walls + "radius = 0.016\nlength = 0.1\nfree = true\nmass = " + fmt::format("{:.17g}", m) + "\n"));
+  EXPECT_NEAR(cm.walls[0].wall.mass, m, 1e-12 * m);
+  EXPECT_NEAR(cm.walls[0].wall.inertia_body(1, 1), w.inertia_body(1, 1), 1e-12 * m);
+  expect_error(walls + "radius = 0.016\nlength = 0.1\nfree = true\n", {"'roller'", "density or its mass"});
+  expect_error(walls + "radius = 0.016\nlength = 0.1\nfree = true\nmass = 2.0\ndensity = 7800.0\n",
+               {"density or its mass"});
+  expect_error(walls + "radius = 0.016\nlength = 0.1\nmass = 2.0\n", {"'mass'", "free walls only"});
   // length is for cylinders only
   expect_error(
       std::string(kGood) + "[contact]\nenabled = true\n[[walls]]\nname = \"p\"\ntype = \"plane\"\nlength = 1.0\n",

@@ -196,18 +196,26 @@ TEST(Generators, ElementCountTarget) {
 }
 
 TEST(Generators, MurrayBeamHexahedra) {
-  const Mesh m = meshing::generate(params("murray_beam"));
-  expect_groups(m, {"beam", "impactor_left", "impactor_right", "support_left", "support_right", "midspan_bottom",
-                    "beam_bottom", "beam_top"});
+  const Mesh m = meshing::generate(params("murray_beam", {"cylinders=1"}));
+  expect_groups(
+      m, {"beam", "impactor_left", "impactor_right", "support_left", "support_right", "midspan_bottom", "beam_bottom",
+          "beam_top", "beam_span", "overhang_left", "overhang_right", "impact_line_left", "support_line_right"});
   EXPECT_EQ(count(m, "beam"), 4080);  // paper: 4080 hexahedra
   EXPECT_EQ(m.find_group("beam")->elements[1].size(), 4080u) << "beam must be hexahedra";
   EXPECT_NEAR(group_volume(m, "beam") / (1.524 * 0.1143 * 0.1), 1.0, 1e-12);  // a box: exact
   const double cyl = M_PI * 0.016 * 0.016 * 0.1;
   EXPECT_NEAR(group_volume(m, "impactor_left") / cyl, 1.0, 0.03);
-  const Mesh fine = meshing::generate(params("murray_beam", {"cylinder_size=0.003"}));
+  const Mesh fine = meshing::generate(params("murray_beam", {"cylinders=1", "cylinder_size=0.003"}));
   EXPECT_NEAR(group_volume(fine, "impactor_left") / cyl, 1.0, 0.01);
   // The mid-span bottom line is a mesh line across the width: nz + 1 nodes.
   EXPECT_EQ(m.find_group("midspan_bottom")->nodes.size(), 11u);
+  // The span between the supports and the overhangs partition the beam.
+  EXPECT_EQ(count(m, "beam_span") + count(m, "overhang_left") + count(m, "overhang_right"), 4080);
+  EXPECT_EQ(m.find_group("impact_line_left")->nodes.size(), 11u);
+  // Without cylinders (the default: analytic cylinder walls strike the beam) only the beam is meshed.
+  const Mesh b = meshing::generate(params("murray_beam"));
+  EXPECT_EQ(b.n_elements(), 4080);
+  EXPECT_EQ(b.find_group("impactor_left"), nullptr);
 }
 
 TEST(Generators, GalvezBeam) {

@@ -4,6 +4,7 @@
 // test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "contact/narrow_phase.hpp"
@@ -593,4 +594,40 @@ TEST(Contact, FreeCylinderRollsDownAnInclineWithoutSlipping) {
   EXPECT_NEAR(a / expected, 1.0, 0.02);
   EXPECT_NEAR(cyl.omega(1) * R / cyl.velocity(0), 1.0, 0.02);
   EXPECT_LT(cyl.centre(0), 0.38) << "rolled off the block";
+}
+
+TEST(Fragments, DescribedLargestFirstWithMassAndCentroid) {
+  // A 3 x 1 x 1 hex bar with joints, the joint between the first two cells broken by hand:
+  // two fragments, the first cell alone and the other two. With element masses 1, 2, 3 kg
+  // (by x) the pair comes first (5 kg, centroid x = (2 x 0.15 + 3 x 0.25) / 5 = 0.21 m),
+  // then the single cell (1 kg at x = 0.05 m); ids are the fragments' smallest element.
+  CaseConfig c = contact_case(0.0);
+  make_fracturable(c, 1e5, 1.0, 1e6, 30, 10.0);
+  Model m = build_model(c, box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1)));
+  ASSERT_EQ(m.joints.size(), 2);
+  ASSERT_EQ(m.mesh.n_elements(), 3);
+  const auto& b = *std::find_if(m.mesh.blocks.begin(), m.mesh.blocks.end(), [](const auto& k) { return k.size() > 0; });
+  auto cx = [&](Index e) {  // centroid x of element e (the hexahedra are the only block with elements)
+    Real s = 0;
+    for (int i = 0; i < b.npe(); ++i) s += m.fem.x0[3 * b.conn[static_cast<std::size_t>(e) * b.npe() + i]];
+    return s / b.npe();
+  };
+  std::vector<Real> emass(3);
+  Index first = 0;
+  for (Index e = 0; e < 3; ++e) {
+    emass[e] = cx(e) < 0.1 ? 1.0 : cx(e) < 0.2 ? 2.0 : 3.0;
+    if (cx(e) < 0.1) first = e;
+  }
+  for (Index j = 0; j < m.joints.size(); ++j)
+    if (m.joints.ea[j] == first || m.joints.eb[j] == first) m.joints.status[j] = joint::JointStatus::Broken;
+  const joint::Fragments fr = joint::find_fragments(m.mesh, m.joints, emass);
+  const auto info = joint::describe_fragments(m.mesh, fr, m.fem.x0.data(), emass);
+  ASSERT_EQ(info.size(), 2u);
+  EXPECT_DOUBLE_EQ(info[0].mass, 5.0);
+  EXPECT_EQ(info[0].elements, 2);
+  EXPECT_NEAR(info[0].centroid(0), 0.21, 1e-12);
+  EXPECT_NEAR(info[0].centroid(1), 0.05, 1e-12);
+  EXPECT_DOUBLE_EQ(info[1].mass, 1.0);
+  EXPECT_EQ(info[1].id, first);
+  EXPECT_NEAR(info[1].centroid(0), 0.05, 1e-12);
 }
