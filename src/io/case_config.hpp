@@ -119,6 +119,10 @@ struct CaseConfig {
 /// syntax; bare words are taken as strings). Throws Error with file, line and key.
 CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides = {});
 
+/// A numeric parameter of the case's mesh generator ([mesh.<generator>] key, defaults
+/// resolved); throws Error naming the case and the key when it has none.
+Real mesh_param(const CaseConfig& c, const std::string& key);
+
 /// One "section.key=value" override for read_case, numbers written to round-trip.
 std::string override_of(const std::string& key, Real v);
 std::string override_of(const std::string& key, const Vec3& v);

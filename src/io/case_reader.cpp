@@ -703,6 +703,13 @@ std::string case_schema_markdown() {
   return out;
 }
 
+Real mesh_param(const CaseConfig& c, const std::string& key) {
+  const auto it = c.mesh_num.find(key);
+  if (it == c.mesh_num.end())
+    fail("{}: [mesh.{}] has no numeric parameter '{}'", c.path, c.mesh_generator.empty() ? "?" : c.mesh_generator, key);
+  return it->second;
+}
+
 std::string override_of(const std::string& key, Real v) { return fmt::format("{}={:.17g}", key, v); }
 std::string override_of(const std::string& key, const Vec3& v) {
   return fmt::format("{}=[{:.17g},{:.17g},{:.17g}]", key, v(0), v(1), v(2));

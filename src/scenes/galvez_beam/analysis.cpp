@@ -14,12 +14,6 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 
-Real mesh_param(const CaseConfig& c, const char* key) {
-  const auto it = c.mesh_num.find(key);
-  DSPDEM_CHECK(it != c.mesh_num.end(), "{}: [mesh.galvez_beam] has no '{}'", c.path, key);
-  return it->second;
-}
-
 struct Slab {
   double zlo, zhi;
 };

@@ -15,12 +15,6 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 
-double mesh_param(const CaseConfig& c, const char* key) {
-  const auto it = c.mesh_num.find(key);
-  DSPDEM_CHECK(it != c.mesh_num.end(), "{}: [mesh.murray_beam] has no '{}'", c.path, key);
-  return it->second;
-}
-
 struct PlaneCrack {
   double x = 0, area = 0, y = 0;  // area-weighted mean x and y of its broken joints
 };
