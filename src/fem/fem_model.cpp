@@ -26,7 +26,7 @@ FemModel build_fem_model(const Mesh& mesh, const std::vector<Material>& material
   std::size_t slot = 0;
   for (const auto& mblk : mesh.blocks) {
     const int npe = mblk.npe();
-    for (Kinematics kin : {Kinematics::Corotational, Kinematics::SmallStrain}) {
+    for (Kinematics kin : {Kinematics::Corotational, Kinematics::SmallStrain, Kinematics::Rigid}) {
       FemBlock fb;
       fb.type = mblk.type;
       fb.kin = kin;
@@ -106,6 +106,12 @@ FemModel build_fem_model(const Mesh& mesh, const std::vector<Material>& material
 ForceStatus internal_forces(FemModel& m, const Real* x, const Real* v, Real* f, Real* stress) {
   ForceStatus st;
   for (const auto& b : m.blocks) {
+    if (b.kin == Kinematics::Rigid) {  // no strain: its slots stay zero, its stress is zero
+      if (stress)
+        for (Index g : b.elem)
+          std::fill(stress + 6 * static_cast<std::size_t>(g), stress + 6 * (g + std::size_t{1}), 0.0);
+      continue;
+    }
     const ForceStatus s = b.type == CellType::Tet4 ? tet4_forces(m, b, x, v, stress) : hex8_forces(m, b, x, v, stress);
     if (s.inverted_element >= 0 && (st.inverted_element < 0 || s.min_detF < st.min_detF)) st = s;
   }

@@ -15,8 +15,9 @@ namespace dspdem {
 
 /// How an element measures strain. Corotational: strain in the frame of the polar rotation
 /// R of F (objective, exact for rigid rotation). SmallStrain: sym(grad u), cheaper, only
-/// valid while rotations stay small.
-enum class Kinematics { Corotational, SmallStrain };
+/// valid while rotations stay small. Rigid: no strain at all; the element only carries mass
+/// and a contact skeleton, and its body moves as one rigid motion (time/rigid_body.hpp).
+enum class Kinematics { Corotational, SmallStrain, Rigid };
 
 /// Bulk material of a set of elements.
 struct Material {

@@ -35,6 +35,7 @@ StableStep element_stable_step(const FemModel& m, const std::vector<Material>& m
                                std::vector<Real>* per_element) {
   std::vector<Real> dt(m.n_elements, std::numeric_limits<Real>::infinity());
   for (const auto& b : m.blocks) {
+    if (b.kin == Kinematics::Rigid) continue;  // rigid elements have no stiffness to limit the step
     const Index n = b.size();
 #pragma omp parallel for schedule(dynamic, 256)
     for (Index e = 0; e < n; ++e) {

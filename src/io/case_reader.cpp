@@ -433,7 +433,10 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       DSPDEM_CHECK(!b.groups.empty(), "{}: [[bodies]] '{}' lists no groups", s.where("groups"), b.name);
       b.material = s.str("material");
       material_index(b.material, s.where("material"));
-      b.kinematics = s.str("kinematics") == "small_strain" ? Kinematics::SmallStrain : Kinematics::Corotational;
+      const std::string kin = s.str("kinematics");
+      b.kinematics = kin == "small_strain" ? Kinematics::SmallStrain
+                     : kin == "rigid"      ? Kinematics::Rigid
+                                           : Kinematics::Corotational;
       b.split_components = s.boolean("split_components");
       const std::string fr = s.str("fracture");
       b.fracture = fr == "all"      ? BodyConfig::Fracture::All
@@ -442,6 +445,9 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       b.fracture_groups = s.strings("fracture_groups");
       if (b.fracture == BodyConfig::Fracture::Groups && b.fracture_groups.empty())
         fail("{}: [[bodies]] '{}' has fracture = \"groups\" but no fracture_groups", s.where("fracture"), b.name);
+      if (b.fracture != BodyConfig::Fracture::None && b.kinematics == Kinematics::Rigid)
+        fail("{}: [[bodies]] '{}' is rigid and cannot fracture (remove fracture, or make it deformable)",
+             s.where("fracture"), b.name);
       if (b.fracture != BodyConfig::Fracture::None) {
         const Index mi = material_index(b.material, s.where("material"));
         if (!c.joint_materials[mi].given)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "core/error.hpp"
 
@@ -40,6 +41,44 @@ std::vector<std::pair<Index, Real>> load_weights(const Mesh& mesh, const Group& 
     for (Index n : g.nodes) out.emplace_back(n, 1.0 / static_cast<Real>(g.nodes.size()));
   }
   return out;
+}
+}  // namespace
+
+namespace {
+// One rigid motion per body with kinematics = "rigid" (per part when the body is split into
+// its connected components). A node may be shared with a deformable body (the two are then
+// bonded there) but not with another rigid body, and no boundary condition may hold it: a
+// rigid body moves freely (hold one with a fixed [[walls]] instead).
+void build_rigid_bodies(const CaseConfig& c, Model& m) {
+  std::map<Index, std::set<Index>> nodes_of;
+  for (const auto& b : m.fem.blocks)
+    if (b.kin == Kinematics::Rigid)
+      for (Index e = 0; e < b.size(); ++e)
+        for (int i = 0; i < b.npe(); ++i)
+          nodes_of[m.fem.elem_body[b.elem[e]]].insert(b.conn[static_cast<std::size_t>(e) * b.npe() + i]);
+  if (nodes_of.empty()) return;
+  std::vector<Index> owner(m.fem.n_nodes, -1);
+  for (const auto& [bi, ns] : nodes_of)
+    for (Index n : ns) {
+      if (owner[n] >= 0)
+        fail("{}: rigid bodies '{}' and '{}' share node {}: give them separate meshes", c.path, m.body_names[owner[n]],
+             m.body_names[bi], m.mesh.node_tag[n]);
+      owner[n] = bi;
+    }
+  for (const auto& bc : c.boundaries) {
+    if (bc.type == BoundaryConfig::Type::Force) continue;
+    for (Index n : need_group(m.mesh, bc.group, bc.where).nodes)
+      if (owner[n] >= 0)
+        fail(
+            "{}: [[boundary]] on group '{}' holds node {} of rigid body '{}'; a rigid body moves freely (hold it with "
+            "a fixed [[walls]], or make it deformable)",
+            bc.where, bc.group, m.mesh.node_tag[n], m.body_names[owner[n]]);
+  }
+  for (const auto& [bi, ns] : nodes_of) {
+    m.rigid.push_back(
+        make_rigid_body(m.body_names[bi], std::vector<Index>(ns.begin(), ns.end()), m.fem.x0, m.fem.mass, m.v0));
+    rigid_set_velocities(m.rigid.back(), m.fem.x0.data(), m.v0.data());
+  }
 }
 }  // namespace
 
@@ -273,6 +312,7 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       for (int d = 0; d < 3; ++d) m.v0[3 * n + d] = v(d);
     }
   }
+  build_rigid_bodies(c, m);
   for (const auto& mc : c.monitors) {
     MonitorSet ms;
     ms.cfg = mc;

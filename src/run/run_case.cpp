@@ -122,13 +122,15 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         "edge or a vertex, or across a tet/hex interface): the pieces there are not tied together",
         model.joint_report.split_without_joint);
   const StableStep crit = stable_step(model);
-  const std::size_t lim_tag = fem.elem_tag[crit.element];
+  if (crit.element < 0 && !(c.dt > 0))
+    fail("{}: nothing limits the time step (only rigid bodies, and no contact): set [time] dt", c.path);
+  const std::size_t lim_tag = crit.element >= 0 ? fem.elem_tag[crit.element] : 0;
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
   log::info("  critical step {:.4g} s, limited by {} {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
             crit.limiter == "joint"     ? "a joint of element"
             : crit.limiter == "contact" ? "the contact springs of element"
                                         : "element",
-            lim_tag, model.body_names[fem.elem_body[crit.element]], dt,
+            lim_tag, crit.element >= 0 ? model.body_names[fem.elem_body[crit.element]] : "-", dt,
             c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
   if (model.contact.enabled())
     log::info("  contact: on, {} wall(s); candidates: elements with a free face, refreshed as joints fail",

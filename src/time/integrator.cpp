@@ -34,6 +34,7 @@ Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
     constrained_[c.dof] = 1;
     v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
   }
+  for (const RigidBody& b : m.rigid) rigid_set_velocities(b, x_.data(), v_.data());
   if (m.contact.enabled()) m.contact.kick_walls(0.0, 0.0, m.gravity);  // prescribed wall velocities at t = 0
   compute_forces(v_, 0.0);
   const Energy e = energy();
@@ -83,6 +84,7 @@ void Integrator::kick(Real h, Real t_target) {
   const Real* im = inv_mass_.data();
   for (std::size_t k = 0; k < nd; ++k) v_[k] += h * f_[k] * im[k / 3];
   for (const auto& c : m_.constraints) v_[c.dof] = c.value * ramp_factor(t_target, c.ramp);
+  for (RigidBody& b : m_.rigid) rigid_kick(b, f_.data(), x_.data(), h, v_.data());  // their nodes: one motion
   if (m_.contact.enabled()) m_.contact.kick_walls(h, t_target, m_.gravity);
 }
 
@@ -96,6 +98,7 @@ void Integrator::step() {
     x_[k] += dx;
     w += 0.5 * f_ext_[k] * dx;
   }
+  for (RigidBody& b : m_.rigid) w += 0.5 * rigid_drift(b, h, f_ext_.data(), x_.data(), v_.data());
   const bool contact = m_.contact.enabled();
   const Real wall_power0 = contact ? m_.contact.wall_power() : 0.0;
   if (contact) m_.contact.drift_walls(h, m_.gravity);

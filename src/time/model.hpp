@@ -10,6 +10,7 @@
 #include "joint/joint_set.hpp"
 #include "mesh/mesh.hpp"
 #include "time/monitor.hpp"
+#include "time/rigid_body.hpp"
 
 namespace dspdem {
 
@@ -46,6 +47,7 @@ struct Model {
   joint::JointSet joints;
   joint::InsertionReport joint_report;
   contact::ContactSystem contact;  ///< disabled unless [contact] enabled
+  std::vector<RigidBody> rigid;    ///< bodies with kinematics = "rigid"
 };
 
 /// Ramp factor of a boundary value at time t: min(1, t / ramp), or 1 without a ramp.

@@ -193,6 +193,13 @@ TEST(CaseReader, CylinderWallsNeedRadiusAndLengthAndMayBeFree) {
       {"'length'", "cylinders only"});
 }
 
+TEST(CaseReader, RigidBodiesDoNotFracture) {
+  const CaseConfig c = read_case(write_case(kGood), {"bodies.0.kinematics=\"rigid\""});
+  EXPECT_EQ(c.bodies[0].kinematics, Kinematics::Rigid);
+  expect_error(kGood, {"rigid and cannot fracture"}, {"bodies.0.kinematics=\"rigid\"", "bodies.0.fracture=\"all\""});
+  expect_error(kGood, {"'kinematics'"}, {"bodies.0.kinematics=\"stiff\""});
+}
+
 TEST(CaseReader, ModeIJointsTakeNoShearParameters) {
   // joint_law = "mode_I" is a clear setting, not large shear numbers: it needs f_t, G_fI and
   // the friction angle of broken faces, and refuses a cohesion or a G_fII it would ignore.
