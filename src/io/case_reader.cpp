@@ -642,11 +642,13 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
                : type == "displacement"            ? MT::Displacement
                : type == "displacement_difference" ? MT::DisplacementDifference
                : type == "velocity"                ? MT::Velocity
+               : type == "momentum"                ? MT::Momentum
                                                    : MT::MaxDisplacement;
       if (s.has("group"))
         m.group = s.str("group");
       else
-        DSPDEM_CHECK(m.type == MT::MaxDisplacement, "{}: [[monitors]] '{}' needs a group", s.where(), m.name);
+        DSPDEM_CHECK(m.type == MT::MaxDisplacement || m.type == MT::Momentum, "{}: [[monitors]] '{}' needs a group",
+                     s.where(), m.name);
       if (s.has("group2"))
         m.group2 = s.str("group2");
       else

@@ -198,6 +198,11 @@ Real Integrator::monitor(const MonitorSet& ms) const {
       return pick(mean_of(ms.nodes, true));
     case T::Velocity:
       return pick(mean_of(ms.nodes, false));
+    case T::Momentum: {
+      Vec3 p = Vec3::Zero();
+      for (Index n : ms.nodes) p += m_.fem.mass[n] * Vec3(v_[3 * n], v_[3 * n + 1], v_[3 * n + 2]);
+      return pick(p);
+    }
     case T::DisplacementDifference:
       return pick(Vec3(mean_of(ms.nodes2, true) - mean_of(ms.nodes, true)));
     case T::MaxDisplacement: {

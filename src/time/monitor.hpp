@@ -6,7 +6,7 @@
 namespace dspdem {
 
 struct MonitorConfig {
-  enum class Type { Reaction, Displacement, DisplacementDifference, MaxDisplacement, Velocity } type;
+  enum class Type { Reaction, Displacement, DisplacementDifference, MaxDisplacement, Velocity, Momentum } type;
   std::string name, group, group2;
   int component = 3;  ///< 0,1,2 = x,y,z; 3 = magnitude
   std::string where;

@@ -57,6 +57,12 @@ TEST(MurrayBeam, CracksUnderTheImpactorsFirstAndBreaksSymmetrically) {
     EXPECT_TRUE(mirrored) << "piece of " << p.mass << " kg at x = " << p.x << " m has no mirror image";
   }
   EXPECT_LT(m.balance_max, 0.01);
+  // Beam + impactors change momentum only by the supports' impulse: every other force
+  // (joints, contact between pieces and with the impactors) is internal to the three. The
+  // check reads series.csv, which holds 10 significant digits: 1e-9 is that file's round-off.
+  ASSERT_GE(m.momentum_error, 0) << "no beam_momentum monitor";
+  EXPECT_LT(m.momentum_error, 1e-9);
+  RecordProperty("momentum_error", fmt::format("{:.2e}", m.momentum_error));
   RecordProperty("main_pieces", m.main_pieces);
   RecordProperty("fragments", m.fragments);
 

@@ -74,6 +74,23 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
   for (const char* k : {"kinetic", "internal", "external_work", "joint_elastic", "fracture_I", "contact_elastic"})
     for (double v : s[k]) r.largest_energy = std::max(r.largest_energy, std::abs(v));
   r.fracture_energy = s["fracture_I"][n - 1];
+  if (s.has("beam_momentum")) {
+    double m_l = 0, m_r = 0;
+    for (const auto& w : c.walls)
+      if (w.wall.name == "impactor_left")
+        m_l = w.wall.mass;
+      else if (w.wall.name == "impactor_right")
+        m_r = w.wall.mass;
+    const auto& pb = s["beam_momentum"];
+    auto p = [&](std::size_t i) { return pb[i] + m_l * vl[i] + m_r * vr[i]; };
+    r.momentum_error = 0;
+    double J = 0;  // impulse of the supports on the beam: minus the force on them, trapezoidal
+    for (std::size_t i = 1; i < n; ++i) {
+      J -= 0.5 * (t[i] - t[i - 1]) * (sl[i] + sr[i] + sl[i - 1] + sr[i - 1]);
+      r.momentum_error = std::max(r.momentum_error, std::abs(p(i) - p(0) - J) / std::abs(p(0)));
+    }
+    r.support_impulse = J;
+  }
   r.kinetic_start = s["kinetic"][0], r.kinetic_end = s["kinetic"][n - 1];
   if (write_files) {
     std::ofstream f(fs::path(run_dir) / "murray_series.csv");

@@ -41,6 +41,11 @@ struct MurrayResult {
   double impact_force_peak = 0, support_force_peak = 0;  ///< largest |fy| over both impactors / supports [N]
   double v_impactor_end = 0;                             ///< mean of the two impactors' vy at the end [m/s]
   double balance_max = 0, largest_energy = 0;
+  /// Momentum check (y): largest |p(t) - p(0) + support impulse(t)| over the run, p the beam's
+  /// (monitor beam_momentum) plus the free impactors' m v, relative to |p(0)|; -1 without
+  /// the monitor. Every other force is internal to beam + impactors.
+  double momentum_error = -1;
+  double support_impulse = 0;  ///< the supports' impulse on the beam over the run [N s]
   double fracture_energy = 0, kinetic_start = 0, kinetic_end = 0;
   Index last_frame = -1;
   double wall_s = 0, dt = 0;

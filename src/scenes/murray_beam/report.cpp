@@ -69,7 +69,8 @@ std::vector<std::string> study_row(const report::Variant& v, const MurrayResult&
           fmt::format("{:.1f}", 1e3 * q.max_deflection),
           fmt::format("{:.0f}", 1e-3 * q.impact_force_peak),
           fmt::format("{:.1f}", q.fracture_energy),
-          fmt::format("{:.1e}", q.balance_max)};
+          fmt::format("{:.1e}", q.balance_max),
+          q.momentum_error < 0 ? "-" : fmt::format("{:.1e}", q.momentum_error)};
 }
 }  // namespace
 
@@ -177,12 +178,17 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       "Impact energy {:.1f} J; at the end {:.1f} J kinetic, {:.2f} J dissipated by the joints. Largest balance error "
       "over the run {:.2e} of the largest energy term ({:.4g} J).",
       r.kinetic_start, r.kinetic_end, r.fracture_energy, r.balance_max, r.largest_energy));
+  if (r.momentum_error >= 0)
+    doc.para(fmt::format(
+        "Momentum (y) of the beam and the two impactors: it changes only by the supports' impulse ({:.4g} N s over "
+        "the run); the largest difference from that, sampled every series row, is {:.1e} of the initial momentum.",
+        r.support_impulse, r.momentum_error));
   doc.figure("energy", "images/plots/energy.png");
   if (a.study) {
     doc.section("Speed against error, and the hard cases");
     doc.table(
         {"variant", "knob", "elements", "wall time [s]", "steps", "fragments", "main pieces", "5 main pieces at [ms]",
-         "max deflection [mm]", "impactor force peak [kN]", "joint dissipation [J]", "balance max"},
+         "max deflection [mm]", "impactor force peak [kN]", "joint dissipation [J]", "balance max", "momentum error"},
         study_rows);
   }
   doc.write();
