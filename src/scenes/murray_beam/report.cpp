@@ -109,9 +109,11 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       rows[i] = analyse_murray_run(report::run_variant_case(c, variants[i], rd), rd, false);
     });
     for (std::size_t i = 0; i < variants.size(); ++i) {
-      if (!out[i].error.empty())
-        study_rows.push_back({variants[i].name, variants[i].knob, "failed: " + out[i].error});
-      else
+      if (!out[i].error.empty()) {
+        std::vector<std::string> row(study_row(variants[i], MurrayResult{}).size());  // the table's width
+        row[0] = variants[i].name, row[1] = variants[i].knob, row[2] = "failed: " + out[i].error;
+        study_rows.push_back(row);
+      } else
         study_rows.push_back(study_row(variants[i], rows[i]));
     }
   }
