@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 
 struct PlaneCrack {
   double x = 0, area = 0, y = 0;  // area-weighted mean x and y of its broken joints
+  double y_lo = 1e300, y_hi = -1e300;
 };
 
 // Broken joints facing along x (|n_x| > 0.9), grouped into planes: sorted by x, a new plane
@@ -34,6 +35,7 @@ std::vector<PlaneCrack> crack_planes(const std::vector<report::CrackPiece>& piec
     last = p->centroid(0);
     PlaneCrack& c = out.back();
     c.area += p->area, c.x += p->area * p->centroid(0), c.y += p->area * p->centroid(1);
+    c.y_lo = std::min(c.y_lo, p->centroid(1)), c.y_hi = std::max(c.y_hi, p->centroid(1));
   }
   for (auto& c : out) c.x /= c.area, c.y /= c.area;
   return out;
@@ -148,7 +150,7 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
       auto it = std::find_if(r.cracks.begin(), r.cracks.end(),
                              [&](const BeamCrack& k) { return std::abs(k.x - p.x) < 0.5 * hx; });
       if (it == r.cracks.end()) {
-        r.cracks.push_back({p.x, ti, p.y, -1, 0});
+        r.cracks.push_back({p.x, ti, p.y, p.y_lo, p.y_hi, -1, 0});
         it = r.cracks.end() - 1;
       }
       it->final_fraction = p.area / section;
@@ -160,10 +162,11 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
   });
   if (write_files) {
     std::ofstream f(fs::path(run_dir) / "cracks.csv");
-    f << "x_mm,first_ms,y_first_mm,through_ms,final_fraction\n";
+    f << "x_mm,first_ms,y_first_mm,y_lo_mm,y_hi_mm,through_ms,final_fraction\n";
     for (const auto& k : r.cracks)
-      f << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.4f}\n", 1e3 * k.x, 1e3 * k.t_first, 1e3 * k.y_first,
-                       k.t_through < 0 ? -1.0 : 1e3 * k.t_through, k.final_fraction);
+      f << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4f}\n", 1e3 * k.x, 1e3 * k.t_first,
+                       1e3 * k.y_first, 1e3 * k.y_lo, 1e3 * k.y_hi, k.t_through < 0 ? -1.0 : 1e3 * k.t_through,
+                       k.final_fraction);
   }
   r.last_frame = static_cast<Index>(run.frames.size()) - 1;
   r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.elements = sum.elements, r.joints = sum.joints;

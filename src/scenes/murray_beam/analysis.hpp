@@ -16,6 +16,7 @@ struct BeamCrack {
   double x = 0;               ///< plane position [m]
   double t_first = -1;        ///< time of the first joints frame with a broken joint on it [s]
   double y_first = 0;         ///< mean height of those first broken joints [m] (beam centre y = 0)
+  double y_lo = 0, y_hi = 0;  ///< lowest and highest of those first broken joints' centres [m]
   double t_through = -1;      ///< first frame with at least `through_fraction` of the section broken [s]
   double final_fraction = 0;  ///< broken fraction of the section at the end
 };

@@ -146,7 +146,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   doc.section("Cracks");
   doc.para(fmt::format(
       "Planes of broken joints across the beam, in the order they appear (joints frames every {:.2f} ms): where, "
-      "when the first joint broke there and at what height (the bottom face is y = {:.1f} mm, the top y = {:+.1f} "
+      "when the first joint broke there and over what heights (the bottom face is y = {:.1f} mm, the top y = {:+.1f} "
       "mm), when {:.0f} % of the section had broken. The impactors strike at x = {:+.1f} mm, the supports carry at "
       "x = {:+.1f} mm, the quarter points of the beam are at x = {:+.1f} mm.",
       1e3 * c.frame_interval, -0.5e3 * r.H, 0.5e3 * r.H, 100 * MurrayResult::through_fraction, 0.5e3 * r.gap,
@@ -154,10 +154,12 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   std::vector<std::vector<std::string>> cracks;
   for (const auto& k : r.cracks)
     cracks.push_back({fmt::format("{:+.1f}", 1e3 * k.x), fmt::format("{:.2f}", 1e3 * k.t_first),
-                      fmt::format("{:+.1f}", 1e3 * k.y_first),
+                      fmt::format("{:+.1f} .. {:+.1f}", 1e3 * k.y_lo, 1e3 * k.y_hi),
                       k.t_through < 0 ? "not through" : fmt::format("{:.2f}", 1e3 * k.t_through),
                       fmt::format("{:.2f}", k.final_fraction)});
-  doc.table({"x [mm]", "first broken [ms]", "at y [mm]", "through [ms]", "section broken at the end"}, cracks);
+  doc.table({"x [mm]", "first broken [ms]", "then broken from y to y [mm] (element centres)", "through [ms]",
+             "section broken at the end"},
+            cracks);
   doc.para(fmt::format("All crack planes: `{}`.", doc.run_link("cracks.csv")));
   doc.section("Deflection, impactors, supports");
   doc.para(fmt::format(
