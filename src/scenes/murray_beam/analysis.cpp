@@ -169,6 +169,13 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
                        k.final_fraction);
   }
   r.last_frame = static_cast<Index>(run.frames.size()) - 1;
+  auto frame_at = [&](double t) -> Index {  // the first frame at or after t
+    for (std::size_t i = 0; i < run.frames.size(); ++i)
+      if (run.frames[i].time >= t - 1e-12) return static_cast<Index>(i);
+    return -1;
+  };
+  if (!r.cracks.empty()) r.first_crack_frame = frame_at(r.cracks.front().t_first);
+  if (r.t_main5 >= 0) r.main5_frame = frame_at(r.t_main5);
   r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.elements = sum.elements, r.joints = sum.joints;
   return r;
 }

@@ -49,6 +49,7 @@ struct MurrayResult {
   double support_impulse = 0;  ///< the supports' impulse on the beam over the run [N s]
   double fracture_energy = 0, kinetic_start = 0, kinetic_end = 0;
   Index last_frame = -1;
+  Index first_crack_frame = -1, main5_frame = -1;  ///< frames at the first broken joint and at 5 main pieces
   double wall_s = 0, dt = 0;
   long steps = 0, elements = 0, joints = 0;
 };

@@ -172,11 +172,18 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   doc.figures({{"deflection", "images/plots/deflection.png"},
                {"impactor velocity", "images/plots/impactor_velocity.png"},
                {"forces", "images/plots/forces.png"}});
-  if (!a.no_render)
-    for (const std::string view : {"fragments", "cracks", "stress"}) {
-      doc.para(view + ", last frame:");
-      doc.figure("", fmt::format("images/{}/frame_{:04d}.png", view, r.last_frame));
-    }
+  if (!a.no_render) {
+    // The break-up as the paper's Fig. 18 shows it: the first crack, five pieces, the end.
+    std::vector<std::pair<std::string, Index>> moments;
+    if (r.first_crack_frame >= 0) moments.emplace_back("first broken joints", r.first_crack_frame);
+    if (r.main5_frame >= 0) moments.emplace_back("five main pieces", r.main5_frame);
+    moments.emplace_back("end", r.last_frame);
+    for (const std::string view : {"fragments", "cracks", "stress"})
+      for (const auto& [what, f] : moments) {
+        doc.para(fmt::format("{}, {} (frame {}):", view, what, f));
+        doc.figure("", fmt::format("images/{}/frame_{:04d}.png", view, f));
+      }
+  }
   doc.section("Energy ledger");
   doc.para(fmt::format(
       "Impact energy {:.1f} J; at the end {:.1f} J kinetic, {:.2f} J dissipated by the joints. Largest balance error "
