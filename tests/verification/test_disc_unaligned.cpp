@@ -5,7 +5,7 @@
 // must show: the splitting strength within 15 % of f_t (the CI tolerance; this mesh
 // measured -7.1 %, 10 to 7.6 mm between +4.9 and +9.9 %), two halves, and a crack that runs
 // along the loaded diameter: the traced path's mean |x| within one element of x = 0
-// (measured 6.6 mm here).
+// (measured 6.6 mm here). Its last frame is also the disc's golden fragments image.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +14,8 @@
 #include "io/case_config.hpp"
 #include "run/run_case.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
+#include "support/cli.hpp"
+#include "support/golden.hpp"
 
 using namespace dspdem;
 namespace fs = std::filesystem;
@@ -41,4 +43,15 @@ TEST(DiscUnaligned, SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength) {
   EXPECT_GT(r.mass_fractions[1], 0.35);
   ASSERT_GT(r.crack_path_slices, r.crack_path_bins / 2) << "the crack does not cross the disc";
   EXPECT_LT(r.crack_path_mean_x, h);
+
+  // Regression: the fragments view of the last frame (the split disc) against the stored
+  // image; a change that moves the crack off the loaded diameter or breaks the disc
+  // differently changes far more than 0.2 % of the pixels.
+  const auto rr = testsupport::shell("env -u DISPLAY " + std::string(DSPDEM_BIN) + " -q render " + dir.string() +
+                                     " --frames last --view fragments");
+  ASSERT_EQ(rr.code, 0) << rr.out;
+  fs::path img;
+  for (const auto& e : fs::directory_iterator(dir / "images" / "fragments")) img = std::max(img, e.path());
+  if (testsupport::regenerate_golden(img, "brazilian_disc_fragments.png")) GTEST_SKIP() << "baseline regenerated";
+  testsupport::expect_golden(img, "brazilian_disc_fragments.png", "brazilian_disc");
 }

@@ -25,6 +25,7 @@
 #include "report/crack_sampling.hpp"
 #include "scenes/galvez_beam/analysis.hpp"
 #include "support/cli.hpp"
+#include "support/golden.hpp"
 
 namespace fs = std::filesystem;
 using namespace dspdem;
@@ -62,18 +63,11 @@ TEST(Galvez, CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas) {
 
   const fs::path img = out / "run/images/cracks" / fmt::format("frame_{:04d}.png", g.last_frame);
   ASSERT_TRUE(fs::exists(img)) << img;
-  const fs::path base = fs::path(DSPDEM_SOURCE_DIR) / "tests/regression/images/galvez_beam_cracks.png";
-  if (std::getenv("DSPDEM_REGEN_IMAGES")) {
-    fs::copy_file(img, base, fs::copy_options::overwrite_existing);
+  if (testsupport::regenerate_golden(img, "galvez_beam_cracks.png")) {
     std::ifstream src(out / "run/crack_mid.csv");
     std::ofstream dst(fs::path(DSPDEM_SOURCE_DIR) / "tests/data/galvez_crack_mid.csv");
     dst << src.rdbuf();
     GTEST_SKIP() << "baseline image and path regenerated";
   }
-  const fs::path fails = fs::path(DSPDEM_BUILD_DIR) / "tests/image_failures";
-  fs::create_directories(fails);
-  const auto cmp = testsupport::shell(std::string(DSPDEM_BIN) + " imgdiff " + img.string() + " " + base.string() +
-                                      " --threshold 0.002 --diff " + (fails / "galvez_beam.diff.png").string());
-  if (cmp.code != 0) fs::copy_file(img, fails / "galvez_beam.png", fs::copy_options::overwrite_existing);
-  EXPECT_EQ(cmp.code, 0) << cmp.out << "\nnew image and difference kept in " << fails;
+  testsupport::expect_golden(img, "galvez_beam_cracks.png", "galvez_beam");
 }

@@ -22,6 +22,7 @@
 
 #include "scenes/murray_beam/analysis.hpp"
 #include "support/cli.hpp"
+#include "support/golden.hpp"
 
 namespace fs = std::filesystem;
 using namespace dspdem;
@@ -69,18 +70,8 @@ TEST(MurrayBeam, CracksUnderTheImpactorsFirstAndBreaksSymmetrically) {
   RecordProperty("fragments", m.fragments);
 
   const fs::path img = out / "run/images/fragments" / fmt::format("frame_{:04d}.png", m.last_frame);
-  ASSERT_TRUE(fs::exists(img)) << img;
-  const fs::path base = fs::path(DSPDEM_SOURCE_DIR) / "tests/regression/images/murray_beam_fragments.png";
-  if (std::getenv("DSPDEM_REGEN_IMAGES")) {
-    fs::copy_file(img, base, fs::copy_options::overwrite_existing);
-    GTEST_SKIP() << "baseline image regenerated";
-  }
-  const fs::path fails = fs::path(DSPDEM_BUILD_DIR) / "tests/image_failures";
-  fs::create_directories(fails);
-  const auto cmp = testsupport::shell(std::string(DSPDEM_BIN) + " imgdiff " + img.string() + " " + base.string() +
-                                      " --threshold 0.002 --diff " + (fails / "murray_beam.diff.png").string());
-  if (cmp.code != 0) fs::copy_file(img, fails / "murray_beam.png", fs::copy_options::overwrite_existing);
-  EXPECT_EQ(cmp.code, 0) << cmp.out << "\nnew image and difference kept in " << fails;
+  if (testsupport::regenerate_golden(img, "murray_beam_fragments.png")) GTEST_SKIP() << "baseline image regenerated";
+  testsupport::expect_golden(img, "murray_beam_fragments.png", "murray_beam");
 }
 
 TEST(MurrayBeam, HardCaseFourTimesTheSpeedStaysBounded) {
