@@ -210,11 +210,12 @@ TEST(Joints, AddedComplianceWithTheDefaultPenalty) {
 namespace {
 // Hex bar of n cells along x, fixed at x = 0 and pulled at x = L until it breaks.
 // Returns fracture energy / (G_fI x broken area), and the broken area.
-std::pair<Real, Real> break_bar(int n, joint::Quadrature rule) {
+std::pair<Real, Real> break_bar(int n, joint::Quadrature rule, bool mode_i = false) {
   const Real GfI = 100;
   CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
   make_fracturable(c, 3e6, GfI, 10e6, 30, 1000);
   c.joint_materials[0].nodal_quadrature = rule == joint::Quadrature::Nodal;
+  c.joint_materials[0].mode_i = mode_i;
   c.boundaries.push_back(fixed("xmin"));
   BoundaryConfig pull;
   pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax",
@@ -227,7 +228,8 @@ std::pair<Real, Real> break_bar(int n, joint::Quadrature rule) {
   while (it.energy().broken_joints == 0 && it.time() < 0.05) it.step();
   const Energy e = it.energy();
   ::testing::Test::RecordProperty(
-      fmt::format("cells_{}_{}_breakdown", n, rule == joint::Quadrature::Nodal ? "nodal" : "gauss"),
+      fmt::format("cells_{}_{}{}_breakdown", n, rule == joint::Quadrature::Nodal ? "nodal" : "gauss",
+                  mode_i ? "_mode_I" : ""),
       fmt::format("I={:.5g} II={:.5g} area={:.5g} t={:.4g}", e.fracture_I, e.fracture_II, e.crack_area, it.time()));
   EXPECT_EQ(e.broken_joints, 1);
   return {(e.fracture_I + e.fracture_II) / (GfI * e.crack_area), e.crack_area};
@@ -246,6 +248,14 @@ TEST(Joints, BarBreaksDissipatingGfTimesAreaForAnyResolution) {
       EXPECT_NEAR(area, 0.02 * 0.02, 1e-12) << n << " " << name;
       EXPECT_NEAR(ratio, 1.0, 0.02) << n << " cells, " << name;
     }
+  // The same with joint_law = "mode_I" (the impact beam's quadrilateral joints): the bar
+  // opens in pure mode I, so the law must dissipate G_fI x area alike.
+  for (int n : {4, 8}) {
+    const auto [ratio, area] = break_bar(n, joint::Quadrature::Gauss, true);
+    RecordProperty(fmt::format("cells_{}_mode_I", n), fmt::format("{:.5f}", ratio));
+    EXPECT_NEAR(area, 0.02 * 0.02, 1e-12) << n;
+    EXPECT_NEAR(ratio, 1.0, 0.02) << n << " cells, mode_I";
+  }
 }
 
 TEST(Joints, NodalQuadratureRemovesTractionOscillations) {
