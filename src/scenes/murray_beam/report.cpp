@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/log.hpp"
@@ -22,10 +23,13 @@ std::vector<report::Variant> murray_variants(const CaseConfig& base) {
   std::vector<report::Variant> v;
   v.push_back({"reference", "the case", {}, true});
   const std::string m = "mesh.murray_beam.";
-  v.push_back({"mesh_x2",
-               "element size halved (8x the hexahedra)",
-               {override_of(m + "nx", 2 * base.mesh_num.at("nx")), override_of(m + "ny", 2 * base.mesh_num.at("ny")),
-                override_of(m + "nz", 2 * base.mesh_num.at("nz"))}});
+  // To 2 ms only: the reference is in its final pieces by 1.4 ms, and after the break-up
+  // the contact search over 8x the elements costs some 0.3 s a step on this machine.
+  v.push_back(
+      {"mesh_x2",
+       "element size halved (8x the hexahedra), run to 2 ms",
+       {override_of(m + "nx", 2 * base.mesh_num.at("nx")), override_of(m + "ny", 2 * base.mesh_num.at("ny")),
+        override_of(m + "nz", 2 * base.mesh_num.at("nz")), override_of("time.end", std::min(base.t_end, 2e-3))}});
   std::vector<std::string> pen, ss, span;
   for (std::size_t i = 0; i < base.materials.size(); ++i)
     if (base.joint_materials[i].given)
