@@ -187,6 +187,12 @@ TEST(Generators, SpherePlate) {
   const double err_fine = std::abs(group_volume(fine, "sphere") / exact - 1);
   EXPECT_LT(err_fine, 0.01);
   EXPECT_LT(err_fine, err);
+  // plate = 0 (the shipped case: a rigid [[walls]] plane instead): the sphere alone, still
+  // about the paper's count (gmsh meshes it a little differently without the plate beside it).
+  const Mesh alone = meshing::generate(params("sphere_plate", {"plate=0"}));
+  EXPECT_EQ(alone.find_group("plate"), nullptr);
+  EXPECT_EQ(alone.n_elements(), count(alone, "sphere"));
+  EXPECT_NEAR(count(alone, "sphere") / 4539.0, 1.0, 0.10);
 }
 
 TEST(Generators, ElementCountTarget) {
