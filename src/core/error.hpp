@@ -24,6 +24,13 @@ class NumericalError : public Error {
   double time;
 };
 
+/// A run stopped by SIGINT/SIGTERM: numerical state intact, the user asked to stop. Whatever
+/// runs several cases (a study) stops too instead of starting the next one.
+class Interrupted : public NumericalError {
+ public:
+  using NumericalError::NumericalError;
+};
+
 template <typename... Args>
 [[noreturn]] void fail(fmt::format_string<Args...> f, Args&&... args) {
   throw Error(fmt::format(f, std::forward<Args>(args)...));

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/error.hpp"
 #include "core/log.hpp"
 #include "run/run_case.hpp"
 
@@ -19,6 +20,8 @@ std::vector<VariantOutcome> run_variants(const std::vector<Variant>& variants, c
     out[i].run_dir = (fs::path(dir) / "study" / v.name).string();
     try {
       run(i, out[i].run_dir);
+    } catch (const Interrupted&) {
+      throw;  // the user stopped the run: stop the study, rather than start the next variant
     } catch (const std::exception& e) {
       log::warn("study: {} failed: {}", v.name, e.what());
       out[i].error = e.what();

@@ -270,7 +270,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         while (next_frame <= t + 1e-12 * c.t_end) next_frame += c.frame_interval;
       }
       if (g_interrupted)
-        throw NumericalError(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
+        throw Interrupted(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
       if (last) break;
       if (tty_progress && loop.seconds() - last_report > 0.5) {
         last_report = loop.seconds();
