@@ -49,6 +49,12 @@ void read_csv(const std::string& path, std::vector<std::string>& names, std::vec
 }
 
 namespace {
+// Tableau's first five, then black for references.
+const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40}, {44, 160, 44}, {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
+// A sweep may have more curves than the five: more distinct hues for those.
+const unsigned char many_colors[10][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
+                                          {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+
 std::size_t column(const std::vector<std::string>& names, const std::string& name, const std::string& file) {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return i;
@@ -79,8 +85,6 @@ void add_lines(vtkChartXY* chart, const std::string& csv, const PlotSpec& spec, 
     for (std::size_t k = 0; k < yi.size(); ++k)
       t->SetValue(static_cast<vtkIdType>(r), static_cast<vtkIdType>(k + 1), cols[yi[k]][r]);
   }
-  static const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40},   {44, 160, 44},
-                                             {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
   for (std::size_t k = 0; k < yi.size(); ++k) {
     vtkPlot* p = chart->AddPlot(vtkChart::LINE);
     p->SetInputData(t, 0, static_cast<vtkIdType>(k + 1));
@@ -111,6 +115,53 @@ void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& p
   chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(spec.x);
   chart->GetAxis(vtkAxis::LEFT)->SetTitle(spec.y.size() == 1 ? spec.y[0] : "");
   chart->SetTitle(spec.title.empty() ? csv : spec.title);
+  win.write_png(png);
+}
+
+void plot_curves(const std::vector<Curve>& curves, const std::string& x_title, const std::string& y_title,
+                 const std::string& title, const std::string& png, bool log_x, int width, int height) {
+  DSPDEM_CHECK(!curves.empty(), "plot '{}': no curve given", png);
+  OffscreenWindow win(width, height);
+  vtkNew<vtkRenderer> ren;
+  ren->SetBackground(1, 1, 1);
+  win.add_renderer(ren);
+  vtkNew<vtkChartXY> chart;
+  vtkNew<vtkContextScene> scene;
+  vtkNew<vtkContextActor> actor;
+  scene->AddItem(chart);
+  actor->SetScene(scene);
+  ren->AddActor(actor);
+  scene->SetRenderer(ren);
+  std::vector<vtkSmartPointer<vtkTable>> tables;  // a table per curve: each has its own x
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    const Curve& c = curves[k];
+    DSPDEM_CHECK(c.x.size() == c.y.size(), "plot '{}': curve '{}' has {} x and {} y values", png, c.name, c.x.size(),
+                 c.y.size());
+    if (c.x.empty()) continue;
+    auto t = vtkSmartPointer<vtkTable>::New();
+    vtkNew<vtkDoubleArray> xa, ya;
+    xa->SetName((c.name + " x").c_str());
+    ya->SetName(c.name.c_str());
+    t->AddColumn(xa);
+    t->AddColumn(ya);
+    t->SetNumberOfRows(static_cast<vtkIdType>(c.x.size()));
+    for (std::size_t r = 0; r < c.x.size(); ++r) {
+      DSPDEM_CHECK(!log_x || c.x[r] > 0, "plot '{}': curve '{}' has x = {} on a log axis", png, c.name, c.x[r]);
+      t->SetValue(static_cast<vtkIdType>(r), 0, c.x[r]);
+      t->SetValue(static_cast<vtkIdType>(r), 1, c.y[r]);
+    }
+    vtkPlot* p = chart->AddPlot(vtkChart::LINE);
+    p->SetInputData(t, 0, 1);
+    const unsigned char* col = many_colors[k % 10];
+    p->SetColor(col[0], col[1], col[2], 255);
+    p->SetWidth(2.0);
+    tables.push_back(t);
+  }
+  chart->SetShowLegend(true);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(x_title);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(y_title);
+  if (log_x) chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
+  chart->SetTitle(title);
   win.write_png(png);
 }
 

@@ -16,6 +16,18 @@ struct PlotSpec {
 /// Plots from `csv` into `png`; throws Error naming the file and column if one is missing.
 void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& png);
 
+/// One curve of its own x values (curves of one plot need not share their x).
+struct Curve {
+  std::string name;
+  std::vector<double> x, y;
+};
+
+/// Several curves in one chart, e.g. a distribution per run of a sweep; `log_x` draws the
+/// x axis on a log scale (x must then be positive). Throws Error for an empty curve list.
+void plot_curves(const std::vector<Curve>& curves, const std::string& x_title, const std::string& y_title,
+                 const std::string& title, const std::string& png, bool log_x = false, int width = 1000,
+                 int height = 600);
+
 /// Reads a numeric CSV with a header row: returns the column names and the columns.
 void read_csv(const std::string& path, std::vector<std::string>& names, std::vector<std::vector<double>>& cols);
 

@@ -308,7 +308,8 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
   } else {
     s.mapper->SetInputConnection(surf->GetOutputPort());
   }
-  s.time_text->SetInput(fmt::format("t = {:.4g} ms", time * 1e3).c_str());
+  const std::string t = fmt::format("t = {:.4g} ms", time * 1e3);
+  s.time_text->SetInput((o.label.empty() ? t : o.label + "   " + t).c_str());
   return s.win.capture();
 }
 

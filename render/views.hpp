@@ -29,6 +29,7 @@ struct ViewOptions {
   int width = 1280, height = 720;
   std::array<double, 3> background = {1.0, 1.0, 1.0};
   double bounds[6] = {0, 1, 0, 1, 0, 1};  ///< framing (first frame's bounds)
+  std::string label;                      ///< written before the time in the corner (a montage panel's run)
 };
 
 /// Fields the stress view can draw.

@@ -14,6 +14,7 @@
 #include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "render/image_compare.hpp"
+#include "run/montage.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
 #include "scenes/registry.hpp"
@@ -52,7 +53,19 @@ int main(int argc, char** argv) {
   auto* rend = app.add_subcommand(
       "render", "Draw a run's frames off-screen: DIR/images/<view>/frame_NNNN.png, animations, plots");
   RenderArgs ra;
-  rend->add_option("run_dir", ra.run_dir, "Output folder of a run (holds run.pvd)")->required();
+  MontageArgs ma;
+  std::vector<std::string> render_dirs;
+  rend->add_option("run_dir", render_dirs, "Output folder of a run (holds run.pvd); several with --montage")
+      ->required()
+      ->expected(1, -1);
+  rend->add_option("--montage", ma.out,
+                   "Write one image OUT.png of the given runs side by side (a column per run, a row per --rows "
+                   "entry) at --time");
+  rend->add_option("--time", ma.time, "--montage: simulated time of the frames [s] (default: each run's last frame)");
+  rend->add_option("--label", ma.labels, "--montage: a label per run, in order (default: the folders' names)");
+  rend->add_option("--rows", ma.rows,
+                   "--montage: rows as view or view:cut, e.g. fragments:z fragments cracks (default: fragments)")
+      ->delimiter(',');
   rend->add_option("--view", ra.views, "View: stress, fragments, cracks (repeatable; default from the case)");
   rend->add_option("--field", ra.field, "Field of the stress view");
   rend->add_option("--frames", ra.frames, "all (default), last, every:K, or indices i,j,k");
@@ -60,7 +73,7 @@ int main(int argc, char** argv) {
   rend->add_option("--cut", ra.cut, "none, x, y, z: cut at the mid-plane");
   rend->add_option("--magnify", ra.magnify, "Displacement magnification");
   rend->add_option("--range", ra.range, "Colour range MIN:MAX");
-  rend->add_option("--size", ra.size, "Image size WIDTHxHEIGHT");
+  rend->add_option("--size", ra.size, "Image size WIDTHxHEIGHT (with --montage: of one panel)");
   rend->add_option("-j,--jobs", ra.jobs, "Render processes (default: one per core)");
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
@@ -77,6 +90,12 @@ int main(int argc, char** argv) {
   rep->add_flag("--study", rpa.study, "Also run the sweep over mesh sizes and accuracy knobs");
   rep->add_flag("--no-render", rpa.no_render, "Skip the frame images and animations");
   rep->add_option("--from-run", rpa.from_run, "Analyse this finished run of the case instead of running it again");
+  rep->add_option("--speeds", rpa.speeds, "Impact speeds of a scene's velocity sweep [m/s] (the sphere impact)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  rep->add_option("-j,--jobs", rpa.jobs,
+                  "Runs of a sweep or study at once, each a process with -t 1 (default: one per core)")
+      ->check(CLI::Range(1, 256));
   rep->add_flag("--no-stress-check", rpa.no_stress_check,
                 "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
 
@@ -112,7 +131,23 @@ int main(int argc, char** argv) {
       fmt::print("{}", case_schema_markdown());
       return 0;
     }
-    if (*rend) return render_command(ra);
+    if (*rend) {
+      if (!ma.out.empty()) {
+        ma.run_dirs = render_dirs;
+        ma.camera = ra.camera, ma.field = ra.field, ma.range = ra.range;
+        if (!ra.size.empty())
+          DSPDEM_CHECK(std::sscanf(ra.size.c_str(), "%dx%d", &ma.width, &ma.height) == 2,
+                       "--size {}: expected WIDTHxHEIGHT", ra.size);
+        write_montage(ma);
+        return 0;
+      }
+      DSPDEM_CHECK(render_dirs.size() == 1,
+                   "render: {} run folders given; several are drawn together only with --montage OUT.png",
+                   render_dirs.size());
+      DSPDEM_CHECK(ma.labels.empty() && ma.time < 0, "render: --time and --label go with --montage");
+      ra.run_dir = render_dirs[0];
+      return render_command(ra);
+    }
     if (*rep) return report_command(rpa);
     if (*scn) {
       for (const auto& sc : scenes::all())

@@ -12,6 +12,8 @@ struct ReportArgs {
   bool no_render = false;        ///< skip images (numbers and plots only)
   std::string from_run;          ///< analyse this finished run of the same case instead of running it
   bool no_stress_check = false;  ///< skip a scene's extra verification runs (the disc's stress check)
+  std::vector<double> speeds;    ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
+  int jobs = 0;                  ///< runs of a sweep or study in parallel processes (0: one per core)
 };
 
 }  // namespace dspdem::report

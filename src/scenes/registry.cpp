@@ -4,6 +4,7 @@
 #include "scenes/brazilian_disc/scene.hpp"
 #include "scenes/galvez_beam/scene.hpp"
 #include "scenes/murray_beam/scene.hpp"
+#include "scenes/sphere_impact/scene.hpp"
 
 namespace dspdem::scenes {
 
@@ -13,6 +14,8 @@ const std::vector<Scene>& all() {
        brazilian_disc_report},
       {"galvez_beam", "galvez_beam", "Galvez mixed-mode notched beam (paper 2.3)", galvez_beam_report},
       {"murray_beam", "murray_beam", "plain concrete beam struck by two impactors (paper 2.4)", murray_beam_report},
+      {"sphere_impact", "sphere_plate", "rock sphere striking a rigid plate, a sweep over speeds (paper 2.5)",
+       sphere_impact_report},
   };
   return s;
 }

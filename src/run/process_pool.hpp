@@ -1,0 +1,20 @@
+// Runs of a sweep as separate dspdem processes, at most `jobs` at a time: each variant is
+// its own process with its own run folder and log, so a crash or a numerical failure in
+// one cannot take the others down, and `-t 1` per process uses the cores without OpenMP
+// threads waiting on each other.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace dspdem {
+
+struct Job {
+  std::vector<std::string> args;  ///< arguments after the program (this same dspdem binary)
+  std::string log;                ///< file for the process's stdout and stderr
+};
+
+/// Starts the jobs in order, keeping at most `jobs` (>= 1) running; returns each one's exit
+/// status (the code, or 128 + the signal that ended it; -1 if it could not be started).
+std::vector<int> run_processes(const std::vector<Job>& list, int jobs);
+
+}  // namespace dspdem

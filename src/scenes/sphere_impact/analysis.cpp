@@ -1,0 +1,99 @@
+#include "scenes/sphere_impact/analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "report/run_data.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+}  // namespace
+
+SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
+                                      bool write_files) {
+  DSPDEM_CHECK(c.mesh_generator == "sphere_plate", "{}: the sphere impact scene needs the sphere_plate generator",
+               c.path);
+  DSPDEM_CHECK(!c.initial.empty(), "{}: the sphere impact scene needs the sphere's [[initial]] velocity", c.path);
+  SphereImpactResult r;
+  r.run_dir = run_dir;
+  r.speed = c.initial.front().velocity.norm();
+  r.diameter = mesh_param(c, "diameter");
+  const report::RunData run = report::RunData::open(run_dir);
+  const report::Series& s = run.series;
+  for (const char* col : {"plate_fy", "sphere_momentum"})
+    DSPDEM_CHECK(s.has(col),
+                 "{}: the sphere impact scene needs series column '{}' (a [[walls]] plane named plate and a "
+                 "momentum monitor sphere_momentum over the sphere, as in cases/sphere_impact.toml)",
+                 run_dir, col);
+  const RunSummary& sum = run.summary;
+  r.mass = sum.total_mass;
+  const auto& t = s["time"];
+  const std::size_t n = t.size();
+  const auto &fy = s["plate_fy"], &p = s["sphere_momentum"], &broken = s["broken_joints"], &area = s["crack_area"];
+  for (std::size_t i = 0; i < n && r.t_contact < 0; ++i)
+    if (fy[i] != 0.0) r.t_contact = t[i];
+  DSPDEM_CHECK(r.t_contact >= 0, "{}: the sphere never touched the plate (run to t = {:.4g} s)", run_dir, t[n - 1]);
+  // The frame nearest the compared time after contact (frames are coarser than series rows).
+  const double want = r.t_contact + after_contact;
+  DSPDEM_CHECK(run.frames.back().time >= want - 0.5 * c.frame_interval,
+               "{}: the run ends at t = {:.4g} s, before the compared time {:.4g} s after the first contact at {:.4g} s",
+               run_dir, run.frames.back().time, after_contact, r.t_contact);
+  r.frame = 0;
+  for (std::size_t i = 1; i < run.frames.size(); ++i)
+    if (std::abs(run.frames[i].time - want) < std::abs(run.frames[static_cast<std::size_t>(r.frame)].time - want))
+      r.frame = static_cast<Index>(i);
+  r.t_compare = run.frames[static_cast<std::size_t>(r.frame)].time;
+  std::size_t k = 0;  // the series row at (or just after) the compared frame
+  while (k + 1 < n && t[k] < r.t_compare - 1e-12) ++k;
+  for (std::size_t i = 0; i <= k; ++i) {
+    if (std::abs(fy[i]) > r.plate_force_peak) r.plate_force_peak = std::abs(fy[i]), r.t_plate_force_peak = t[i];
+    if (r.t_first_broken < 0 && broken[i] > 0) r.t_first_broken = t[i];
+  }
+  // Velocity of the centre of mass; the sphere falls in -y, so + is the rebound.
+  r.rebound_vy = p[k] / r.mass;
+  r.restitution = r.speed > 0 ? r.rebound_vy / r.speed : 0.0;
+  r.broken_joints = static_cast<long>(broken[k]);
+  r.crack_area = area[k];
+  r.joints = sum.joints;
+  const auto& bal = s["balance_error"];
+  r.balance_max = *std::max_element(bal.begin(), bal.end());
+  auto at_k = [&](const char* key) { return s.has(key) ? s[key][k] : 0.0; };
+  r.kinetic_start = s["kinetic"][0];
+  r.kinetic_end = at_k("kinetic");
+  r.elastic_end = at_k("internal") + at_k("joint_elastic") + at_k("contact_elastic");
+  r.fracture = at_k("fracture_I") + at_k("fracture_II");
+  r.friction = at_k("friction");
+  r.damping = at_k("damping") + at_k("contact_damping");
+
+  std::vector<double> density;
+  for (const auto& m : c.materials) density.push_back(m.density);
+  r.fragments = report::fragment_stats(run.frames[static_cast<std::size_t>(r.frame)].file, density);
+  r.pieces_1pct = r.fragments.count_at_least(0.01);
+  r.pieces_10pct = r.fragments.count_at_least(0.10);
+  r.second_fraction = r.fragments.count() > 1 ? r.fragments.masses[1] / r.fragments.total_mass : 0.0;
+  r.through_crack = r.second_fraction >= SphereImpactResult::through_piece_fraction ||
+                    r.fragments.largest_fraction() < SphereImpactResult::intact_fraction;
+
+  if (write_files) {
+    std::ofstream f(fs::path(run_dir) / "sphere_series.csv");
+    DSPDEM_CHECK(f.good(), "cannot write '{}/sphere_series.csv'", run_dir);
+    f << "time_ms,broken_joints,crack_area_cm2,plate_force_kN,vy_centre,kinetic,elastic,fracture,friction,damping\n";
+    auto at = [&](const char* k, std::size_t i) { return s.has(k) ? s[k][i] : 0.0; };
+    for (std::size_t i = 0; i < n; ++i)
+      f << fmt::format("{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", 1e3 * t[i],
+                       static_cast<long>(broken[i]), 1e4 * area[i], 1e-3 * std::abs(fy[i]), p[i] / r.mass,
+                       at("kinetic", i), at("internal", i) + at("joint_elastic", i) + at("contact_elastic", i),
+                       at("fracture_I", i) + at("fracture_II", i), at("friction", i),
+                       at("damping", i) + at("contact_damping", i));
+    report::write_mass_distribution_csv((fs::path(run_dir) / "fragment_masses.csv").string(), r.fragments);
+  }
+  r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.elements = sum.elements;
+  return r;
+}
+
+}  // namespace dspdem

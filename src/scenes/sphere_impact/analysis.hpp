@@ -1,0 +1,54 @@
+// The sphere impact's numbers from one finished run (paper section 2.5): cracks over time,
+// fragments and their mass distribution at the compared time, rebound, contact force on
+// the plate and where the impact energy went. Used by `dspdem report` for this scene, once
+// per speed of the sweep and per row of the study.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "io/case_config.hpp"
+#include "report/fragment_stats.hpp"
+
+namespace dspdem {
+
+struct SphereImpactResult {
+  std::string run_dir;
+  double speed = 0;  ///< impact speed [m/s] (the [[initial]] velocity's magnitude)
+  double diameter = 0, mass = 0;
+  double t_contact = -1;  ///< first series row with a force on the plate [s]
+  double t_compare = 0;   ///< time of the analysed frame [s]: the frame nearest t_contact + the compared time
+  Index frame = -1;
+  report::FragmentStats fragments;  ///< at that frame
+  /// A crack is "through" when it has cut off a piece of at least this fraction of the mass
+  /// (below it, what comes off is crushed material at the contact, not a split sphere), or
+  /// when the largest piece holds less than `intact_fraction` (the sphere is crushed).
+  static constexpr double through_piece_fraction = 0.01, intact_fraction = 0.9;
+  int pieces_1pct = 0, pieces_10pct = 0;  ///< fragments holding at least 1 % / 10 % of the mass
+  bool through_crack = false;             ///< a second piece of at least through_piece_fraction
+  double second_fraction = 0;             ///< second largest piece over the mass
+  long broken_joints = 0, joints = 0;
+  double crack_area = 0;             ///< broken joints' area at the compared time [m^2]
+  double t_first_broken = -1;        ///< first series row with a broken joint [s]
+  double plate_force_peak = 0;       ///< largest |f_y| on the plate [N]
+  double t_plate_force_peak = 0;     ///< when [s]
+  double rebound_vy = 0;             ///< centre-of-mass velocity (y) at the compared time [m/s], + = away from the plate
+  double restitution = 0;            ///< rebound_vy / speed
+  double kinetic_start = 0;          ///< impact energy [J]
+  /// Where the impact energy is at the compared time [J]: kinetic (of all pieces), elastic (elements,
+  /// intact joints, contact springs), dissipated in fracture (mode I + II), friction,
+  /// damping (mass/stiffness and contact damping).
+  double kinetic_end = 0, elastic_end = 0, fracture = 0, friction = 0, damping = 0;
+  double balance_max = 0;
+  double wall_s = 0, dt = 0;
+  long steps = 0, elements = 0;
+};
+
+/// Analyses the run in `run_dir` of case `c` at `after_contact` seconds after the sphere
+/// first touched the plate (the frame nearest that time; Error if the run ends before it or
+/// never touches); with `write_files`, writes sphere_series.csv (time in ms, broken joints,
+/// crack area in cm^2, plate force in kN, centre-of-mass vy, energies) and
+/// fragment_masses.csv (the cumulative mass distribution at that frame) there.
+SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
+                                      bool write_files);
+
+}  // namespace dspdem

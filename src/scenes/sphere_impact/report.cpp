@@ -1,0 +1,353 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "render/plot.hpp"
+#include "report/document.hpp"
+#include "report/run_data.hpp"
+#include "run/montage.hpp"
+#include "run/process_pool.hpp"
+#include "run/render_run.hpp"
+#include "scenes/sphere_impact/analysis.hpp"
+#include "scenes/sphere_impact/scene.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+
+// The sweep; the paper shows 5, 7.5 and 20 m/s.
+const std::vector<double> kDefaultSpeeds = {2.5, 5.0, 7.5, 10.0, 20.0, 30.0, 50.0};
+
+std::string speed_name(double v) { return fmt::format("v{:g}", v); }
+
+// The case's [time] end is the compared time after the first contact (the paper's 0.75 ms).
+// The sphere's lowest node lies above the plate by at most the gap between the plate and
+// the true sphere plus the sag of a facet of the element size h, h^2 / (8 R); each speed
+// runs that distance over v longer (with 0.1 mm to spare).
+double max_gap(const CaseConfig& c) {
+  const double D = mesh_param(c, "diameter"), h = mesh_param(c, "size");
+  double gap = 0;
+  for (const auto& w : c.walls)
+    if (w.wall.name == "plate") gap = std::max(0.0, w.wall.normal0.dot(Vec3(0, -0.5 * D, 0) - w.wall.centre));
+  return gap + h * h / (4 * D) + 1e-4;
+}
+
+std::vector<std::string> speed_overrides(const CaseConfig& c, double v) {
+  // Along the case's own direction of approach, at speed v.
+  const Vec3 d = c.initial.front().velocity.normalized();
+  return {override_of("initial.0.velocity", Vec3(v * d)), override_of("time.end", c.t_end + max_gap(c) / v)};
+}
+
+struct Planned {
+  std::string name, knob, dir;
+  std::vector<std::string> sets;  // on top of the case's own overrides
+  double speed = 0;
+};
+
+// Each planned run is read in-process first (a bad override fails here, with its message,
+// before any process starts), then run as its own `dspdem -t 1 run` process.
+std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Planned>& plan, int jobs) {
+  std::vector<Job> list;
+  for (const auto& p : plan) {
+    const CaseConfig v = reread_with(c, p.sets);
+    (void)v;
+    Job j;
+    j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--out", p.dir};
+    for (const auto& s : c.overrides) j.args.insert(j.args.end(), {"--set", s});
+    for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
+    j.log = p.dir + ".log";
+    list.push_back(j);
+  }
+  log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
+  const auto status = run_processes(list, jobs);
+  std::vector<std::string> err(plan.size());
+  for (std::size_t i = 0; i < plan.size(); ++i)
+    if (status[i] != 0) {
+      err[i] = fmt::format("exit status {} (see {})", status[i], list[i].log);
+      log::warn("sphere impact: run {} failed: {}", plan[i].name, err[i]);
+    }
+  return err;
+}
+
+std::string pct(double f) { return fmt::format("{:.1f}", 100 * f); }
+
+std::vector<std::string> sweep_row(const SphereImpactResult& r) {
+  const auto& f = r.fragments;
+  return {fmt::format("{:g}", r.speed),
+          fmt::format("{:.0f}", r.kinetic_start),
+          r.t_first_broken < 0 ? "-" : fmt::format("{:.3f}", 1e3 * r.t_first_broken),
+          fmt::format("{} ({:.1f} %)", r.broken_joints, r.joints ? 100.0 * r.broken_joints / r.joints : 0.0),
+          fmt::format("{:.0f}", 1e4 * r.crack_area),
+          std::to_string(f.count()),
+          std::to_string(f.single_element()),
+          std::to_string(r.pieces_1pct),
+          std::to_string(r.pieces_10pct),
+          fmt::format("{:.3f}", f.largest_fraction()),
+          fmt::format("{:.3f}", r.second_fraction),
+          r.through_crack ? "yes" : "no",
+          fmt::format("{:.0f}", 1e-3 * r.plate_force_peak),
+          fmt::format("{:+.2f}", r.rebound_vy),
+          fmt::format("{:.1e}", r.balance_max),
+          fmt::format("{:.0f}", r.wall_s)};
+}
+
+std::vector<std::string> energy_row(const SphereImpactResult& r) {
+  const double e0 = r.kinetic_start > 0 ? r.kinetic_start : 1.0;
+  return {fmt::format("{:g}", r.speed),       fmt::format("{:.1f}", r.kinetic_start), pct(r.kinetic_end / e0),
+          pct(r.elastic_end / e0),            pct(r.fracture / e0),                    pct(r.friction / e0),
+          pct(r.damping / e0),                fmt::format("{:.2f}", r.fracture)};
+}
+
+// The paper's description, speed by speed: what dspdem should show.
+std::string expected_pattern(double v) {
+  if (v <= 5.0 + 1e-9) return "no through crack";
+  if (v < 20.0 - 1e-9) return "a few large pieces";
+  return "crushed base, many small pieces";
+}
+
+bool pattern_met(const SphereImpactResult& r) {
+  if (r.speed <= 5.0 + 1e-9) return !r.through_crack;
+  if (r.speed < 20.0 - 1e-9) return r.through_crack && r.pieces_10pct >= 2 && r.pieces_10pct <= 6;
+  return r.fragments.largest_fraction() < 0.9 && r.fragments.single_element() >= 20;
+}
+
+// Where a sequence is not monotonic: the speeds at which it turns.
+std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(const SphereImpactResult&), int sign) {
+  std::string breaks;
+  for (std::size_t i = 1; i < rs.size(); ++i)
+    if (sign * (key(rs[i]) - key(rs[i - 1])) < 0)
+      breaks += fmt::format("{}{:g} -> {:g} m/s", breaks.empty() ? "" : ", ", rs[i - 1].speed, rs[i].speed);
+  return breaks;
+}
+}  // namespace
+
+int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
+  Timer total;
+  const std::string dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+  fs::create_directories(dir);
+  std::vector<double> speeds = a.speeds.empty() ? kDefaultSpeeds : a.speeds;
+  std::sort(speeds.begin(), speeds.end());
+  speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
+  const int jobs =
+      a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // --from-run: an earlier report's folder, whose speeds/ runs are analysed again.
+  const std::string sweep_root = a.from_run.empty() ? dir : a.from_run;
+
+  std::vector<Planned> plan;
+  for (double v : speeds)
+    plan.push_back({speed_name(v), fmt::format("{:g} m/s", v), (fs::path(sweep_root) / "speeds" / speed_name(v)).string(),
+                    speed_overrides(c, v), v});
+  // The study: at 7.5 and 20 m/s, each knob moved alone from the case.
+  if (a.study) {
+    const double n_paper = 4539;  // [S] tetrahedra in the sphere
+    std::vector<std::string> pen, law, ss;
+    for (std::size_t i = 0; i < c.materials.size(); ++i)
+      if (c.joint_materials[i].given) {
+        const auto& m = c.materials[i].name;
+        pen.push_back(override_of("materials." + m + ".joint_penalty", c.joint_materials[i].penalty >= 100 ? 30.0 : 100.0));
+        law.push_back(override_of("materials." + m + ".joint_law", std::string("coupled")));
+      }
+    for (std::size_t i = 0; i < c.bodies.size(); ++i)
+      ss.push_back(override_of(fmt::format("bodies.{}.kinematics", i), std::string("small_strain")));
+    for (double v : {7.5, 20.0}) {
+      const std::vector<std::string> vo = speed_overrides(c, v);
+      auto add = [&](const std::string& name, const std::string& knob, std::vector<std::string> sets) {
+        sets.insert(sets.begin(), vo.begin(), vo.end());
+        plan.push_back({fmt::format("{}_{}", speed_name(v), name), knob,
+                        (fs::path(dir) / "study" / fmt::format("{}_{}", speed_name(v), name)).string(), sets, v});
+      };
+      add("mesh_x2", "2x the paper's elements", {override_of("mesh.sphere_plate.target_elements", 2 * n_paper)});
+      add("mesh_x4", "4x the paper's elements", {override_of("mesh.sphere_plate.target_elements", 4 * n_paper)});
+      add("penalty", "joint penalty 100 <-> 30", pen);
+      add("coupled_law", "joint_law = coupled (same strengths)", law);
+      add("small_strain", "small-strain kinematics (reference: co-rotational)", ss);
+    }
+  }
+  std::vector<std::string> errors(plan.size());
+  if (a.from_run.empty()) {
+    errors = run_planned(c, plan, jobs);
+  } else {
+    for (std::size_t i = 0; i < speeds.size(); ++i)
+      DSPDEM_CHECK(fs::exists(fs::path(plan[i].dir) / "summary.json"),
+                   "--from-run {}: no finished run at {} (the sweep's speeds/ folders of an earlier report)", a.from_run,
+                   plan[i].dir);
+    if (a.study) {
+      std::vector<Planned> study(plan.begin() + static_cast<long>(speeds.size()), plan.end());
+      const auto e = run_planned(c, study, jobs);
+      std::copy(e.begin(), e.end(), errors.begin() + static_cast<long>(speeds.size()));
+    }
+  }
+  std::vector<SphereImpactResult> res(plan.size());
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    if (!errors[i].empty()) continue;
+    try {
+      res[i] = analyse_sphere_run(reread_with(c, plan[i].sets), plan[i].dir, c.t_end, true);
+    } catch (const std::exception& e) {
+      errors[i] = e.what();
+    }
+  }
+  std::vector<SphereImpactResult> sweep;
+  std::vector<std::string> sweep_failed;
+  for (std::size_t i = 0; i < speeds.size(); ++i) {
+    if (errors[i].empty())
+      sweep.push_back(res[i]);
+    else
+      sweep_failed.push_back(fmt::format("{:g} m/s: {}", speeds[i], errors[i]));
+  }
+  DSPDEM_CHECK(!sweep.empty(), "sphere impact: every run of the sweep failed: {}", sweep_failed.front());
+
+  // Plots over all speeds: cumulative mass distribution, broken joints and plate force.
+  const fs::path img = fs::path(dir) / "images";
+  fs::create_directories(img);
+  std::vector<render::Curve> dist, cracks, force;
+  std::ofstream all(fs::path(dir) / "fragment_masses.csv");
+  all << "speed,mass_kg,cumulative\n";
+  for (const auto& r : sweep) {
+    render::Curve d{fmt::format("{:g} m/s", r.speed), {}, {}};
+    for (const auto& [m, f] : report::cumulative_mass_distribution(r.fragments)) {
+      d.x.push_back(m), d.y.push_back(f);
+      all << fmt::format("{:g},{:.8g},{:.8g}\n", r.speed, m, f);
+    }
+    dist.push_back(d);
+    const report::Series s((fs::path(r.run_dir) / "sphere_series.csv").string());
+    cracks.push_back({d.name, s["time_ms"], s["crack_area_cm2"]});
+    force.push_back({d.name, s["time_ms"], s["plate_force_kN"]});
+  }
+  all.close();
+  render::plot_curves(dist, "fragment mass [kg]", "mass fraction in fragments of at most this mass",
+                      "cumulative fragment mass distribution at the compared time", (img / "fragment_masses.png").string(),
+                      true);
+  render::plot_curves(cracks, "time [ms]", "broken joints' area [cm^2]", "crack area against time",
+                      (img / "crack_area.png").string());
+  render::plot_curves(force, "time [ms]", "|f_y| on the plate [kN]", "contact force on the plate against time",
+                      (img / "plate_force.png").string());
+  std::vector<std::string> labels, runs;
+  for (const auto& r : sweep) labels.push_back(fmt::format("{:g} m/s", r.speed)), runs.push_back(r.run_dir);
+  const double t_cmp = c.t_end;
+  if (!a.no_render) {
+    MontageArgs m;
+    m.run_dirs = runs, m.labels = labels;
+    for (const auto& r : sweep) m.times.push_back(r.t_compare);  // each run's compared frame
+    m.rows = {"fragments:z", "fragments"};
+    m.camera = "front";
+    m.width = 480, m.height = 400;
+    m.out = (img / "montage_fragments.png").string();
+    write_montage(m);
+    m.rows = {"cracks"};
+    m.out = (img / "montage_cracks.png").string();
+    write_montage(m);
+    for (const auto& r : sweep) {  // each speed's own frames and animations
+      RenderArgs ra;
+      ra.run_dir = r.run_dir;
+      render_command(ra);
+    }
+  }
+
+  report::Document doc(dir, dir);
+  doc.title("Sphere impact (paper section 2.5): report");
+  doc.para(fmt::format(
+      "Case `{}` ({}): a sphere of diameter {:.0f} mm ({:.2f} kg, {} tetrahedra, {} joints) strikes a rigid plate; "
+      "one run per speed, each a separate process in its own folder under `speeds/` with its case.resolved.toml. "
+      "Compared {:.3g} ms after the first contact (the paper's Fig. 22). Reference data and sources: "
+      "src/scenes/sphere_impact/REFERENCE.md in dspdem.",
+      c.path, c.name, 1e3 * sweep.front().diameter, sweep.front().mass, sweep.front().elements, sweep.front().joints,
+      1e3 * t_cmp));
+  doc.para(
+      "The paper's pattern: no crack through the sphere at 2.5 and 5 m/s, a few large pieces at 7.5 m/s, a crushed "
+      "base with many small pieces at 20 m/s and more. Here a crack is *through* when a second piece holds at least "
+      "1 % of the mass (smaller pieces are material crushed off at the contact), *large pieces* hold at least 10 %, "
+      "and single-element fragments are the crushed material the mesh cannot resolve further.");
+  if (!sweep_failed.empty()) {
+    std::string f;
+    for (const auto& e : sweep_failed) f += "\n- " + e;
+    doc.para("Runs that failed:" + f);
+  }
+  doc.section("Fragments and cracks by speed");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : sweep) rows.push_back(sweep_row(r));
+  doc.table({"speed [m/s]", "impact energy [J]", "first broken joint [ms]", "broken joints", "crack area [cm^2]",
+             "fragments", "of one element", "pieces >= 1 %", "pieces >= 10 %", "largest", "second", "through crack",
+             "plate force peak [kN]", "rebound v_y [m/s]", "balance max", "wall [s]"},
+            rows);
+  std::vector<std::vector<std::string>> pat;
+  for (const auto& r : sweep)
+    pat.push_back({fmt::format("{:g}", r.speed), expected_pattern(r.speed),
+                   fmt::format("{} fragments, {} >= 10 %, largest {:.2f}, {} of one element{}", r.fragments.count(),
+                               r.pieces_10pct, r.fragments.largest_fraction(), r.fragments.single_element(),
+                               r.through_crack ? ", through crack" : ", no through crack"),
+                   pattern_met(r) ? "yes" : "no"});
+  doc.subsection("Against the paper's description");
+  doc.table({"speed [m/s]", "paper", "dspdem", "matches"}, pat);
+  {
+    const std::string nb = monotonic(sweep, [](const SphereImpactResult& r) { return double(r.fragments.count()); }, 1);
+    const std::string lb = monotonic(sweep, [](const SphereImpactResult& r) { return r.fragments.largest_fraction(); }, -1);
+    doc.para(fmt::format("Fragment count with speed: {}. Largest-fragment fraction with speed: {}.",
+                         nb.empty() ? "never falls" : "falls between " + nb,
+                         lb.empty() ? "never rises" : "rises between " + lb));
+  }
+  if (!a.no_render) {
+    doc.subsection("All speeds at the compared time");
+    doc.para("Fragments (a colour per piece), cut on the mid-plane z = 0 (top row) and from outside (bottom row):");
+    doc.figure("fragments montage", "images/montage_fragments.png");
+    doc.para("Broken joints (red) over the translucent sphere:");
+    doc.figure("cracks montage", "images/montage_cracks.png");
+  }
+  doc.section("Fragment size distribution");
+  doc.para(fmt::format("Per speed: `speeds/<v>/fragment_masses.csv`; all speeds in `{}`.", "fragment_masses.csv"));
+  doc.figure("cumulative fragment mass distribution", "images/fragment_masses.png");
+  doc.section("Cracks and contact force over time");
+  doc.figures({{"crack area", "images/crack_area.png"}, {"plate force", "images/plate_force.png"}});
+  doc.section("Where the impact energy went");
+  std::vector<std::vector<std::string>> en;
+  for (const auto& r : sweep) en.push_back(energy_row(r));
+  doc.para("At the end of each run, as a percentage of the impact energy:");
+  doc.table({"speed [m/s]", "impact energy [J]", "kinetic [%]", "elastic [%]", "fracture [%]", "friction [%]",
+             "damping [%]", "fracture [J]"},
+            en);
+  if (a.study) {
+    doc.section("Speed against error (7.5 and 20 m/s)");
+    std::vector<std::vector<std::string>> st;
+    auto row = [&](const std::string& name, const std::string& knob, const SphereImpactResult& r) {
+      return std::vector<std::string>{name,
+                                      knob,
+                                      std::to_string(r.elements),
+                                      fmt::format("{:.0f}", r.wall_s),
+                                      std::to_string(r.steps),
+                                      std::to_string(r.fragments.count()),
+                                      std::to_string(r.pieces_10pct),
+                                      fmt::format("{:.3f}", r.fragments.largest_fraction()),
+                                      fmt::format("{:.1f}", r.joints ? 100.0 * r.broken_joints / r.joints : 0.0),
+                                      fmt::format("{:.2f}", r.fracture),
+                                      fmt::format("{:.1e}", r.balance_max)};
+    };
+    for (double v : {7.5, 20.0}) {
+      for (const auto& r : sweep)
+        if (std::abs(r.speed - v) < 1e-9) st.push_back(row(speed_name(v) + "_reference", "the case", r));
+      for (std::size_t i = speeds.size(); i < plan.size(); ++i) {
+        if (std::abs(plan[i].speed - v) > 1e-9) continue;
+        if (errors[i].empty())
+          st.push_back(row(plan[i].name, plan[i].knob, res[i]));
+        else {
+          std::vector<std::string> failed(11);
+          failed[0] = plan[i].name, failed[1] = plan[i].knob, failed[2] = "failed: " + errors[i];
+          st.push_back(failed);
+        }
+      }
+    }
+    doc.table({"run", "knob", "elements", "wall [s]", "steps", "fragments", "pieces >= 10 %", "largest",
+               "joints broken [%]", "fracture [J]", "balance max"},
+              st);
+  }
+  doc.write();
+  log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
+  return 0;
+}
+
+}  // namespace dspdem
