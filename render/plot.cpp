@@ -50,10 +50,12 @@ void read_csv(const std::string& path, std::vector<std::string>& names, std::vec
 
 namespace {
 // Tableau's first five, then black for references.
-const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40}, {44, 160, 44}, {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
+const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40},   {44, 160, 44},
+                                    {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
 // A sweep may have more curves than the five: more distinct hues for those.
-const unsigned char many_colors[10][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
-                                          {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+const unsigned char many_colors[10][3] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
+                                          {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {127, 127, 127},
+                                          {188, 189, 34},  {23, 190, 207}};
 
 std::size_t column(const std::vector<std::string>& names, const std::string& name, const std::string& file) {
   for (std::size_t i = 0; i < names.size(); ++i)

@@ -24,9 +24,7 @@ int FragmentStats::count_at_least(double fraction) const {
       std::count_if(masses.begin(), masses.end(), [&](double m) { return m >= fraction * total_mass; }));
 }
 
-int FragmentStats::single_element() const {
-  return static_cast<int>(std::count(elements.begin(), elements.end(), 1));
-}
+int FragmentStats::single_element() const { return static_cast<int>(std::count(elements.begin(), elements.end(), 1)); }
 
 FragmentStats fragment_stats(const std::string& frame_vtu, const std::vector<double>& density_by_material) {
   vtkSmartPointer<vtkUnstructuredGrid> g = render::read_frame(frame_vtu);
@@ -34,9 +32,8 @@ FragmentStats fragment_stats(const std::string& frame_vtu, const std::vector<dou
   vtkDataArray* mat = g->GetCellData()->GetArray("material");
   vtkDataArray* disp = g->GetPointData()->GetArray("displacement");
   DSPDEM_CHECK(frag, "frame '{}' has no 'fragment' cell field: fragment statistics need a run with joints", frame_vtu);
-  DSPDEM_CHECK(mat && disp,
-               "frame '{}' lacks the '{}' field that fragment statistics need (add it to [output] fields)", frame_vtu,
-               mat ? "displacement" : "material");
+  DSPDEM_CHECK(mat && disp, "frame '{}' lacks the '{}' field that fragment statistics need (add it to [output] fields)",
+               frame_vtu, mat ? "displacement" : "material");
   // Volumes in the reference configuration: mass does not change as elements deform.
   vtkNew<vtkPoints> ref;
   ref->SetDataTypeToDouble();

@@ -90,15 +90,15 @@ MontageFrames write_montage(const MontageArgs& a) {
     if (want >= 0 && frames.size() > 1) {
       const double spacing = frames.back().time / static_cast<double>(frames.size() - 1);
       if (std::abs(frames[i].time - want) > 0.51 * spacing)
-        log::warn("montage: run '{}' has no frame near t = {:.4g} s; its panel shows t = {:.4g} s", a.run_dirs[r],
-                  want, frames[i].time);
+        log::warn("montage: run '{}' has no frame near t = {:.4g} s; its panel shows t = {:.4g} s", a.run_dirs[r], want,
+                  frames[i].time);
     }
   }
   if (std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.view == "stress"; })) {
     if (!a.range.empty()) {
-      DSPDEM_CHECK(std::sscanf(a.range.c_str(), "%lf:%lf", &base.range[0], &base.range[1]) == 2 &&
-                       base.range[1] > base.range[0],
-                   "--range {}: expected MIN:MAX with MIN < MAX", a.range);
+      DSPDEM_CHECK(
+          std::sscanf(a.range.c_str(), "%lf:%lf", &base.range[0], &base.range[1]) == 2 && base.range[1] > base.range[0],
+          "--range {}: expected MIN:MAX with MIN < MAX", a.range);
     } else {  // one colour range over every panel, 0.5th to 99.5th percentile
       std::vector<double> v;
       for (std::size_t r = 0; r < grids.size(); ++r) {
@@ -108,7 +108,8 @@ MontageFrames write_montage(const MontageArgs& a) {
       std::sort(v.begin(), v.end());
       base.range[0] = v[static_cast<std::size_t>(0.005 * static_cast<double>(v.size() - 1))];
       base.range[1] = v[static_cast<std::size_t>(0.995 * static_cast<double>(v.size() - 1))];
-      if (!(base.range[1] > base.range[0])) base.range[1] = base.range[0] + 1e-6 * std::max(1.0, std::abs(base.range[0]));
+      if (!(base.range[1] > base.range[0]))
+        base.range[1] = base.range[0] + 1e-6 * std::max(1.0, std::abs(base.range[0]));
     }
   }
 

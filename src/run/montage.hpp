@@ -14,9 +14,9 @@ struct MontageArgs {
   std::vector<double> times;          ///< per run instead of `time` (e.g. a time after each run's first contact)
   /// One row per entry: "view" or "view:cut" (view: stress, fragments, cracks; cut: none, x, y, z).
   std::vector<std::string> rows = {"fragments"};
-  std::string camera;  ///< default: the first run's case
-  std::string field;   ///< stress rows: default the first run's case
-  std::string range;   ///< stress rows: MIN:MAX (default: 0.5-99.5 percentiles over the panels)
+  std::string camera;             ///< default: the first run's case
+  std::string field;              ///< stress rows: default the first run's case
+  std::string range;              ///< stress rows: MIN:MAX (default: 0.5-99.5 percentiles over the panels)
   int width = 640, height = 480;  ///< of one panel
   std::string out;                ///< PNG to write (through a temporary name)
 };

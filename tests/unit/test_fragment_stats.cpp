@@ -26,8 +26,9 @@ namespace {
 // u = (0.5 x, 0, 0): the volumes read must be the reference ones all the same.
 fs::path write_frame(bool with_displacement = true) {
   vtkNew<vtkPoints> pts;
-  const double X[][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1},                         // tets
-                         {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}, {2, 0, 1}, {3, 0, 1}, {3, 1, 1}, {2, 1, 1}};  // cube
+  const double X[][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1},  // tets
+                         {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}, {2, 0, 1},
+                         {3, 0, 1}, {3, 1, 1}, {2, 1, 1}};  // cube
   vtkNew<vtkDoubleArray> u;
   u->SetName("displacement");
   u->SetNumberOfComponents(3);

@@ -52,7 +52,8 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
   }
   for (std::size_t i = 0; i < 2; ++i) EXPECT_LT(r[i].balance_max, 0.01) << r[i].speed << " m/s";
   // The compared frame is 0.75 ms after the first contact, within half a frame interval.
-  for (const auto& q : r) EXPECT_LE(std::abs(q.t_compare - q.t_contact - base.t_end), 0.5 * base.frame_interval + 1e-12);
+  for (const auto& q : r)
+    EXPECT_LE(std::abs(q.t_compare - q.t_contact - base.t_end), 0.5 * base.frame_interval + 1e-12);
 
   const fs::path img = out / "images/montage_fragments.png";
   if (testsupport::regenerate_golden(img, "sphere_impact_montage.png")) GTEST_SKIP() << "baseline image regenerated";

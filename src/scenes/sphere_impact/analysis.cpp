@@ -40,9 +40,10 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   DSPDEM_CHECK(r.t_contact >= 0, "{}: the sphere never touched the plate (run to t = {:.4g} s)", run_dir, t[n - 1]);
   // The frame nearest the compared time after contact (frames are coarser than series rows).
   const double want = r.t_contact + after_contact;
-  DSPDEM_CHECK(run.frames.back().time >= want - 0.5 * c.frame_interval,
-               "{}: the run ends at t = {:.4g} s, before the compared time {:.4g} s after the first contact at {:.4g} s",
-               run_dir, run.frames.back().time, after_contact, r.t_contact);
+  DSPDEM_CHECK(
+      run.frames.back().time >= want - 0.5 * c.frame_interval,
+      "{}: the run ends at t = {:.4g} s, before the compared time {:.4g} s after the first contact at {:.4g} s",
+      run_dir, run.frames.back().time, after_contact, r.t_contact);
   r.frame = 0;
   for (std::size_t i = 1; i < run.frames.size(); ++i)
     if (std::abs(run.frames[i].time - want) < std::abs(run.frames[static_cast<std::size_t>(r.frame)].time - want))

@@ -27,13 +27,13 @@ struct SphereImpactResult {
   bool through_crack = false;             ///< a second piece of at least through_piece_fraction
   double second_fraction = 0;             ///< second largest piece over the mass
   long broken_joints = 0, joints = 0;
-  double crack_area = 0;             ///< broken joints' area at the compared time [m^2]
-  double t_first_broken = -1;        ///< first series row with a broken joint [s]
-  double plate_force_peak = 0;       ///< largest |f_y| on the plate [N]
-  double t_plate_force_peak = 0;     ///< when [s]
-  double rebound_vy = 0;             ///< centre-of-mass velocity (y) at the compared time [m/s], + = away from the plate
-  double restitution = 0;            ///< rebound_vy / speed
-  double kinetic_start = 0;          ///< impact energy [J]
+  double crack_area = 0;          ///< broken joints' area at the compared time [m^2]
+  double t_first_broken = -1;     ///< first series row with a broken joint [s]
+  double plate_force_peak = 0;    ///< largest |f_y| on the plate [N]
+  double t_plate_force_peak = 0;  ///< when [s]
+  double rebound_vy = 0;          ///< centre-of-mass velocity (y) at the compared time [m/s], + = away from the plate
+  double restitution = 0;         ///< rebound_vy / speed
+  double kinetic_start = 0;       ///< impact energy [J]
   /// Where the impact energy is at the compared time [J]: kinetic (of all pieces), elastic (elements,
   /// intact joints, contact springs), dissipated in fracture (mode I + II), friction,
   /// damping (mass/stiffness and contact damping).

@@ -100,9 +100,10 @@ std::vector<std::string> sweep_row(const SphereImpactResult& r) {
 
 std::vector<std::string> energy_row(const SphereImpactResult& r) {
   const double e0 = r.kinetic_start > 0 ? r.kinetic_start : 1.0;
-  return {fmt::format("{:g}", r.speed),       fmt::format("{:.1f}", r.kinetic_start), pct(r.kinetic_end / e0),
-          pct(r.elastic_end / e0),            pct(r.fracture / e0),                    pct(r.friction / e0),
-          pct(r.damping / e0),                fmt::format("{:.2f}", r.fracture)};
+  return {fmt::format("{:g}", r.speed), fmt::format("{:.1f}", r.kinetic_start),
+          pct(r.kinetic_end / e0),      pct(r.elastic_end / e0),
+          pct(r.fracture / e0),         pct(r.friction / e0),
+          pct(r.damping / e0),          fmt::format("{:.2f}", r.fracture)};
 }
 
 // The paper's description, speed by speed: what dspdem should show.
@@ -135,15 +136,14 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   std::vector<double> speeds = a.speeds.empty() ? kDefaultSpeeds : a.speeds;
   std::sort(speeds.begin(), speeds.end());
   speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
-  const int jobs =
-      a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // --from-run: an earlier report's folder, whose speeds/ runs are analysed again.
   const std::string sweep_root = a.from_run.empty() ? dir : a.from_run;
 
   std::vector<Planned> plan;
   for (double v : speeds)
-    plan.push_back({speed_name(v), fmt::format("{:g} m/s", v), (fs::path(sweep_root) / "speeds" / speed_name(v)).string(),
-                    speed_overrides(c, v), v});
+    plan.push_back({speed_name(v), fmt::format("{:g} m/s", v),
+                    (fs::path(sweep_root) / "speeds" / speed_name(v)).string(), speed_overrides(c, v), v});
   // The study: at 7.5 and 20 m/s, each knob moved alone from the case.
   if (a.study) {
     const double n_paper = 4539;  // [S] tetrahedra in the sphere
@@ -151,7 +151,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     for (std::size_t i = 0; i < c.materials.size(); ++i)
       if (c.joint_materials[i].given) {
         const auto& m = c.materials[i].name;
-        pen.push_back(override_of("materials." + m + ".joint_penalty", c.joint_materials[i].penalty >= 100 ? 30.0 : 100.0));
+        pen.push_back(
+            override_of("materials." + m + ".joint_penalty", c.joint_materials[i].penalty >= 100 ? 30.0 : 100.0));
         law.push_back(override_of("materials." + m + ".joint_law", std::string("coupled")));
       }
     for (std::size_t i = 0; i < c.bodies.size(); ++i)
@@ -176,8 +177,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   } else {
     for (std::size_t i = 0; i < speeds.size(); ++i)
       DSPDEM_CHECK(fs::exists(fs::path(plan[i].dir) / "summary.json"),
-                   "--from-run {}: no finished run at {} (the sweep's speeds/ folders of an earlier report)", a.from_run,
-                   plan[i].dir);
+                   "--from-run {}: no finished run at {} (the sweep's speeds/ folders of an earlier report)",
+                   a.from_run, plan[i].dir);
     if (a.study) {
       std::vector<Planned> study(plan.begin() + static_cast<long>(speeds.size()), plan.end());
       const auto e = run_planned(c, study, jobs);
@@ -222,8 +223,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   }
   all.close();
   render::plot_curves(dist, "fragment mass [kg]", "mass fraction in fragments of at most this mass",
-                      "cumulative fragment mass distribution at the compared time", (img / "fragment_masses.png").string(),
-                      true);
+                      "cumulative fragment mass distribution at the compared time",
+                      (img / "fragment_masses.png").string(), true);
   render::plot_curves(cracks, "time [ms]", "broken joints' area [cm^2]", "crack area against time",
                       (img / "crack_area.png").string());
   render::plot_curves(force, "time [ms]", "|f_y| on the plate [kN]", "contact force on the plate against time",
@@ -286,8 +287,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   doc.subsection("Against the paper's description");
   doc.table({"speed [m/s]", "paper", "dspdem", "matches"}, pat);
   {
-    const std::string nb = monotonic(sweep, [](const SphereImpactResult& r) { return double(r.fragments.count()); }, 1);
-    const std::string lb = monotonic(sweep, [](const SphereImpactResult& r) { return r.fragments.largest_fraction(); }, -1);
+    const std::string nb = monotonic(
+        sweep, [](const SphereImpactResult& r) { return double(r.fragments.count()); }, 1);
+    const std::string lb = monotonic(
+        sweep, [](const SphereImpactResult& r) { return r.fragments.largest_fraction(); }, -1);
     doc.para(fmt::format("Fragment count with speed: {}. Largest-fragment fraction with speed: {}.",
                          nb.empty() ? "never falls" : "falls between " + nb,
                          lb.empty() ? "never rises" : "rises between " + lb));
