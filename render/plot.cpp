@@ -57,6 +57,23 @@ const unsigned char many_colors[10][3] = {{31, 119, 180},  {255, 127, 14}, {44, 
                                           {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {127, 127, 127},
                                           {188, 189, 34},  {23, 190, 207}};
 
+// An off-screen window holding one XY chart on a white background.
+struct ChartWindow {
+  OffscreenWindow win;
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkChartXY> chart;
+  vtkNew<vtkContextScene> scene;
+  vtkNew<vtkContextActor> actor;
+  ChartWindow(int width, int height) : win(width, height) {
+    ren->SetBackground(1, 1, 1);
+    win.add_renderer(ren);
+    scene->AddItem(chart);
+    actor->SetScene(scene);
+    ren->AddActor(actor);
+    scene->SetRenderer(ren);
+  }
+};
+
 std::size_t column(const std::vector<std::string>& names, const std::string& name, const std::string& file) {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return i;
@@ -100,40 +117,22 @@ void add_lines(vtkChartXY* chart, const std::string& csv, const PlotSpec& spec, 
 
 void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& png) {
   DSPDEM_CHECK(!spec.y.empty(), "plot of '{}': no y column given", csv);
-  OffscreenWindow win(spec.width, spec.height);
-  vtkNew<vtkRenderer> ren;
-  ren->SetBackground(1, 1, 1);
-  win.add_renderer(ren);
-  vtkNew<vtkChartXY> chart;
-  vtkNew<vtkContextScene> scene;
-  vtkNew<vtkContextActor> actor;
-  scene->AddItem(chart);
-  actor->SetScene(scene);
-  ren->AddActor(actor);
-  scene->SetRenderer(ren);
+  ChartWindow cw(spec.width, spec.height);
+  vtkChartXY* chart = cw.chart;
   add_lines(chart, csv, spec, false);
   if (!spec.reference_csv.empty()) add_lines(chart, spec.reference_csv, spec, true);
   chart->SetShowLegend(true);
   chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(spec.x);
   chart->GetAxis(vtkAxis::LEFT)->SetTitle(spec.y.size() == 1 ? spec.y[0] : "");
   chart->SetTitle(spec.title.empty() ? csv : spec.title);
-  win.write_png(png);
+  cw.win.write_png(png);
 }
 
 void plot_curves(const std::vector<Curve>& curves, const std::string& x_title, const std::string& y_title,
                  const std::string& title, const std::string& png, bool log_x, int width, int height) {
   DSPDEM_CHECK(!curves.empty(), "plot '{}': no curve given", png);
-  OffscreenWindow win(width, height);
-  vtkNew<vtkRenderer> ren;
-  ren->SetBackground(1, 1, 1);
-  win.add_renderer(ren);
-  vtkNew<vtkChartXY> chart;
-  vtkNew<vtkContextScene> scene;
-  vtkNew<vtkContextActor> actor;
-  scene->AddItem(chart);
-  actor->SetScene(scene);
-  ren->AddActor(actor);
-  scene->SetRenderer(ren);
+  ChartWindow cw(width, height);
+  vtkChartXY* chart = cw.chart;
   std::vector<vtkSmartPointer<vtkTable>> tables;  // a table per curve: each has its own x
   for (std::size_t k = 0; k < curves.size(); ++k) {
     const Curve& c = curves[k];
@@ -164,7 +163,7 @@ void plot_curves(const std::vector<Curve>& curves, const std::string& x_title, c
   chart->GetAxis(vtkAxis::LEFT)->SetTitle(y_title);
   if (log_x) chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
   chart->SetTitle(title);
-  win.write_png(png);
+  cw.win.write_png(png);
 }
 
 }  // namespace dspdem::render

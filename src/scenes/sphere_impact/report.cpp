@@ -212,8 +212,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   all << "speed,mass_kg,cumulative\n";
   for (const auto& r : sweep) {
     render::Curve d{fmt::format("{:g} m/s", r.speed), {}, {}};
+    double below = 0;  // drawn as steps: the fraction jumps at each fragment's mass
     for (const auto& [m, f] : report::cumulative_mass_distribution(r.fragments)) {
-      d.x.push_back(m), d.y.push_back(f);
+      d.x.insert(d.x.end(), {m, m}), d.y.insert(d.y.end(), {below, f});
+      below = f;
       all << fmt::format("{:g},{:.8g},{:.8g}\n", r.speed, m, f);
     }
     dist.push_back(d);
