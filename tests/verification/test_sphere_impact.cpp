@@ -7,7 +7,8 @@
 //   sphere crushed (largest piece under half the mass, most pieces single elements);
 // - the fragment count rises and the largest fraction falls with speed;
 // - every speed reaches the compared time without a numerical failure, and the energy
-//   balance closes within 1 % of the largest term at 2.5 and 7.5 m/s;
+//   balance closes within 1 % of the largest term at every speed (the case's contact radius
+//   of 0.3 inradius keeps pieces' skeletons apart: at 0.1 the 20 m/s run created 2 %);
 // - regression: the montage of the three speeds (fragments cut and from outside) within
 //   0.2 % of the pixels of the stored image, so a change that alters the fracture pattern
 //   fails CI.
@@ -50,7 +51,7 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
     EXPECT_LT(r[i].fragments.largest_fraction(), r[i - 1].fragments.largest_fraction()) << r[i].speed << " m/s";
     EXPECT_GT(r[i].crack_area, r[i - 1].crack_area) << r[i].speed << " m/s";
   }
-  for (std::size_t i = 0; i < 2; ++i) EXPECT_LT(r[i].balance_max, 0.01) << r[i].speed << " m/s";
+  for (std::size_t i = 0; i < r.size(); ++i) EXPECT_LT(r[i].balance_max, 0.01) << r[i].speed << " m/s";
   // The compared frame is 0.75 ms after the first contact, within half a frame interval.
   for (const auto& q : r)
     EXPECT_LE(std::abs(q.t_compare - q.t_contact - base.t_end), 0.5 * base.frame_interval + 1e-12);
