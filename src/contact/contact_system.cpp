@@ -3,19 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <omp.h>
 
 #include "core/error.hpp"
 #include "joint/fragments.hpp"
 #include "joint/joint_forces.hpp"
 
 namespace dspdem::contact {
-
-std::size_t ContactSystem::KeyHash::operator()(const Key& k) const {
-  std::size_t h = static_cast<std::size_t>(k.ea) * 0x9E3779B97F4A7C15ull;
-  h ^= static_cast<std::size_t>(k.eb + 0x7fffffff) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-  h ^= static_cast<std::size_t>(k.kind * 4096 + k.fa * 64 + k.fb) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-  return h;
-}
 
 void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std::vector<Index>& elem_material,
                           const std::vector<ContactMaterial>& materials, const std::vector<Real>& elem_E,
@@ -91,9 +85,11 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   skin_ = settings_.skin > 0 ? settings_.skin : (size_n > 0 ? 0.2 * size_sum / size_n : 0.0);
   built_ = false;
   failed_seen_ = 0;
-  history_.clear();
+  history_.clear(0);
+  pairs_.clear(), wall_pairs_.clear();
   born_offset_.clear();
   fragment_prev_.clear();
+  skel_slot_.assign(ne, -1);
   totals_ = {};
 }
 
@@ -130,8 +126,17 @@ bool ContactSystem::needs_rebuild(const joint::JointSet& js, const Real* x) cons
   return false;
 }
 
+std::vector<PairKey> ContactSystem::pair_keys() const {
+  const Index ne = static_cast<Index>(elems_.size());
+  std::vector<PairKey> k(pairs_.begin(), pairs_.end());
+  for (auto [w, e] : wall_pairs_) k.emplace_back(ne + w, e);
+  return k;
+}
+
 void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x) {
   const Index ne = static_cast<Index>(elems_.size());
+  const std::vector<PairKey> old_keys = pair_keys();
+  const std::vector<PairKey> old_elem_keys(pairs_.begin(), pairs_.end());
   surface_.assign(ne, 0);
   for (Index e = 0; e < ne; ++e) surface_[e] = outer_faces_[e] > 0 && skel_off_[e] >= 0;
   for (Index j : js.failed) {
@@ -168,24 +173,20 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   grid_.find(boxes, local, &group);
   pairs_.clear();
   for (auto [i, j] : local) pairs_.emplace_back(surface_list_[i], surface_list_[j]);
-  // Offsets of pairs born overlapping at a split: new ones measured now, old ones kept
-  // while the pair stays a candidate.
-  std::unordered_map<std::uint64_t, Real> offsets;
-  for (auto [ea, eb] : pairs_) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(ea) << 32) | static_cast<std::uint32_t>(eb);
-    auto it = born_offset_.find(key);
-    if (it != born_offset_.end()) {
-      offsets.emplace(key, it->second);
-      continue;
-    }
+  // Offsets of pairs born overlapping at a split: old ones kept while the pair stays a
+  // candidate (-1 marks the new pairs), new ones measured now.
+  born_offset_ = remap_values(born_offset_, old_elem_keys, pairs_, -1.0);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    if (born_offset_[p] >= 0) continue;
+    born_offset_[p] = 0;
+    const auto [ea, eb] = pairs_[p];
     if (fragment_prev_.empty() || fragment_prev_[ea] != fragment_prev_[eb]) continue;
     touches_.clear();
     find_touches(skeleton_poly(ea, x), radius_[ea], skeleton_poly(eb, x), radius_[eb], touches_);
     Real worst = 0;
     for (const Touch& t : touches_) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
-    if (worst > 0) offsets.emplace(key, worst);
+    born_offset_[p] = worst;
   }
-  born_offset_ = std::move(offsets);
   fragment_prev_ = fragment_;
   // Walls: linear in the number of surface elements per wall.
   wall_pairs_.clear();
@@ -229,6 +230,10 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   x_build_.assign(x, x + 3 * static_cast<std::size_t>(mesh.n_nodes()));
   wall_build_.clear(), wall_q_build_.clear();
   for (const Wall& wl : walls_) wall_build_.push_back(wl.centre), wall_q_build_.push_back(wl.q);
+  history_ = remap_history(history_, old_keys, pair_keys());
+  skel_slot_.assign(ne, -1);
+  for (Index i = 0; i < ns; ++i) skel_slot_[surface_list_[i]] = i;
+  skel_cache_.resize(ns);
   failed_seen_ = js.failed.size();
   built_ = true;
   ++totals_.rebuilds;
@@ -258,15 +263,17 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
   return p;
 }
 
-void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x,
-                          const Real* v, Real dt, Real* f, Real offset) {
+bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x,
+                             const Real* v, Real dt, Real offset, TouchOut& o) const {
   const Real ra = radius_[ea], rb = wall ? (wall->type == Wall::Type::Cylinder ? wall->radius : 0.0) : radius_[eb];
   const Real overlap = ra + rb - t.d - offset;
-  if (overlap <= 0) return;
-  totals_.max_overlap = std::max(totals_.max_overlap, overlap / (ra + rb));
+  if (overlap <= 0) return false;
+  o.ea = ea, o.eb = eb;
+  o.overlap_ratio = overlap / (ra + rb);
   // One contact point for both sides (the middle of the overlap), so the pair's forces
   // are equal, opposite and collinear: momentum and angular momentum are exact.
   const Vec3 c = 0.5 * (t.pa - ra * t.n + t.pb + rb * t.n);
+  o.c = c;
   auto skeleton_weights = [&](Index e, const std::array<int, 3>& iv, const std::array<Real, 3>& wv, Real* Ws) {
     const Elem& el = elems_[e];
     const Real* W = &skel_w_[skel_off_[e]];
@@ -275,9 +282,8 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
       if (wv[m] != 0)
         for (int j = 0; j < el.npe; ++j) Ws[j] += wv[m] * W[iv[m] * el.npe + j];
   };
-  Real Wa[8], Wb[8];
-  skeleton_weights(ea, t.ia, t.wa, Wa);
-  if (!wall) skeleton_weights(eb, t.ib, t.wb, Wb);
+  skeleton_weights(ea, t.ia, t.wa, o.Wa);
+  if (!wall) skeleton_weights(eb, t.ib, t.wb, o.Wb);
   auto spread = [&](Index e, Real* N, const Real* near) {
     const Elem& el = elems_[e];
     Vec3 xe[8];
@@ -287,9 +293,8 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
     for (int i = 0; i < el.npe; ++i) vel += N[i] * node_pos_ptr(v, el.conn[i]);
     return vel;
   };
-  Real Na[8], Nb[8];
-  const Vec3 va = spread(ea, Na, Wa);
-  const Vec3 vb = wall ? wall->velocity_at(c) : spread(eb, Nb, Wb);
+  const Vec3 va = spread(ea, o.Na, o.Wa);
+  const Vec3 vb = wall ? wall->velocity_at(c) : spread(eb, o.Nb, o.Wb);
   // The normal force acts at the skeleton points (weights W), the tangential one at c: each
   // part's damping and dissipation must use the velocity where it acts, or a spinning piece
   // books power that is not extracted (5-10 % of the ledger in a tumbling-fragments test).
@@ -299,50 +304,98 @@ void ContactSystem::apply(Index ea, Index eb, const Wall* wall, int wall_id, con
     for (int i = 0; i < el.npe; ++i) vel += W[i] * node_pos_ptr(v, el.conn[i]);
     return vel;
   };
-  const Vec3 vn_rel = velocity_w(ea, Wa) - (wall ? wall->velocity_at(t.pb) : velocity_w(eb, Wb));
+  const Vec3 vn_rel = velocity_w(ea, o.Wa) - (wall ? wall->velocity_at(t.pb) : velocity_w(eb, o.Wb));
   Vec3 vrel = va - vb;
   vrel += (vn_rel - vrel).dot(t.n) * t.n;
-  const Key key{ea, wall ? -1 - wall_id : eb, static_cast<int>(t.kind), t.fa, t.fb};
-  auto it = history_.find(key);
-  Vec3 xi = it != history_.end() ? it->second : Vec3::Zero();
-  LawResult r = contact_law(pair_params(ea, eb, wall), overlap, t.n, vrel, dt, xi);
-  r.force *= t.weight, r.elastic *= t.weight, r.slip_work *= t.weight, r.damping_power *= t.weight;
+  o.hist = {static_cast<int>(t.kind), t.fa, t.fb, history_.find(p, static_cast<int>(t.kind), t.fa, t.fb)};
+  LawResult r = contact_law(pair_params(ea, wall ? -1 : eb, wall), overlap, t.n, vrel, dt, o.hist.xi);
+  r.force *= t.weight, r.elastic *= t.weight, r.slip_work *= t.weight;
   r.damping_n *= t.weight, r.damping_t *= t.weight;
-  history_next_[key] = xi;
-  elastic_ += r.elastic;
-  totals_.friction += r.slip_work;
+  o.elastic = r.elastic;
+  o.slip_work = r.slip_work;
+  o.force = r.force;
+  o.fn = r.force.dot(t.n) * t.n;
+  o.ft = r.force - o.fn;
+  o.dmp_n = r.damping_n, o.dmp_t = r.damping_t;
+  return true;
+}
+
+void ContactSystem::gather(const TouchOut& o, Real* f) {
+  history_next_.entry.push_back(o.hist);
+  elastic_ += o.elastic;
+  totals_.friction += o.slip_work;
   ++totals_.contacts;
+  totals_.max_overlap = std::max(totals_.max_overlap, o.overlap_ratio);
   // Normal force at the skeleton points pa, pb with their own weights: the exact gradient of
   // the overlap energy (energy-conserving). Tangential force at the common point c with
   // the element's shape functions (eq. 16): equal, opposite and collinear, so angular
   // momentum is exact; friction dissipates anyway.
-  const Vec3 fn = r.force.dot(t.n) * t.n, ft = r.force - fn;
-  const Elem& a = elems_[ea];
+  const Elem& a = elems_[o.ea];
   for (int i = 0; i < a.npe; ++i)
     for (int d = 0; d < 3; ++d) {
-      f[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * fn(d) + Na[i] * ft(d);
+      f[3 * static_cast<std::size_t>(a.conn[i]) + d] += o.Wa[i] * o.fn(d) + o.Na[i] * o.ft(d);
       if (any_damping_)
-        fdamp_[3 * static_cast<std::size_t>(a.conn[i]) + d] += Wa[i] * r.damping_n(d) + Na[i] * r.damping_t(d);
+        fdamp_[3 * static_cast<std::size_t>(a.conn[i]) + d] += o.Wa[i] * o.dmp_n(d) + o.Na[i] * o.dmp_t(d);
     }
-  if (wall) {
-    Wall& w = walls_[wall_id];
-    w.force -= r.force;
-    w.torque -= (c - w.centre).cross(r.force);
+  if (o.eb < 0) {
+    Wall& w = walls_[-1 - o.eb];
+    w.force -= o.force;
+    w.torque -= (o.c - w.centre).cross(o.force);
     return;
   }
-  const Elem& b = elems_[eb];
+  const Elem& b = elems_[o.eb];
   for (int i = 0; i < b.npe; ++i)
     for (int d = 0; d < 3; ++d) {
-      f[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * fn(d) + Nb[i] * ft(d);
+      f[3 * static_cast<std::size_t>(b.conn[i]) + d] -= o.Wb[i] * o.fn(d) + o.Nb[i] * o.ft(d);
       if (any_damping_)
-        fdamp_[3 * static_cast<std::size_t>(b.conn[i]) + d] -= Wb[i] * r.damping_n(d) + Nb[i] * r.damping_t(d);
+        fdamp_[3 * static_cast<std::size_t>(b.conn[i]) + d] -= o.Wb[i] * o.dmp_n(d) + o.Nb[i] * o.dmp_t(d);
     }
+}
+
+void ContactSystem::cache_skeletons(const Real* x) {
+  const Index ns = static_cast<Index>(surface_list_.size());
+#pragma omp parallel for schedule(static) if (ns > 1024)
+  for (Index i = 0; i < ns; ++i) skel_cache_[i] = skeleton_poly(surface_list_[i], x);
+}
+
+void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,
+                                  std::vector<TouchOut>& out) {
+  const Index npair = static_cast<Index>(pairs_.size());
+  touches.clear();
+  TouchOut o;
+  if (p < npair) {
+    const auto [ea, eb] = pairs_[p];
+    find_touches(cached(ea), radius_[ea], cached(eb), radius_[eb], touches);
+    Real offset = born_offset_[p];
+    if (offset > 0) {
+      // The offset only shrinks: once the pair has opened, closing again is a real contact.
+      Real worst = 0;
+      for (const Touch& t : touches) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
+      offset = born_offset_[p] = std::min(offset, worst);
+    }
+    for (const Touch& t : touches)
+      if (evaluate(p, ea, eb, nullptr, t, x, v, dt, offset, o)) out.push_back(o);
+    return;
+  }
+  const auto [w, e] = wall_pairs_[p - npair];
+  const Wall& wl = walls_[w];
+  const Poly& A = cached(e);
+  if (wl.type == Wall::Type::Plane)
+    find_plane_touches(A, radius_[e], wl.centre, wl.plane_normal(), touches);
+  else if (wl.type == Wall::Type::Jaw)
+    find_jaw_touches(A, radius_[e], wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle, touches);
+  else if (wl.type == Wall::Type::Cylinder)
+    find_touches(A, radius_[e], wl.axis_poly(), wl.radius, touches);
+  else
+    find_touches(A, radius_[e], wl.box_poly(), 0.0, touches);
+  for (const Touch& t : touches)
+    if (evaluate(p, e, -1 - w, &wl, t, x, v, dt, 0.0, o)) out.push_back(o);
 }
 
 void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f) {
   if (!enabled_) return;
   if (needs_rebuild(js, x)) rebuild(mesh, js, x);
-  history_next_.clear();
+  cache_skeletons(x);
   elastic_ = 0;
   const std::size_t nd = 3 * static_cast<std::size_t>(mesh.n_nodes());
   if (any_damping_) {
@@ -353,37 +406,30 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
   totals_.contacts = 0;
   totals_.max_overlap = 0;
   for (Wall& w : walls_) w.force.setZero(), w.torque.setZero();
-  for (auto [ea, eb] : pairs_) {
-    const Poly A = skeleton_poly(ea, x), B = skeleton_poly(eb, x);
-    touches_.clear();
-    find_touches(A, radius_[ea], B, radius_[eb], touches_);
-    Real offset = 0;
-    if (!born_offset_.empty()) {
-      auto it = born_offset_.find((static_cast<std::uint64_t>(ea) << 32) | static_cast<std::uint32_t>(eb));
-      if (it != born_offset_.end()) {
-        // The offset only shrinks: once the pair has opened, closing again is a real contact.
-        Real worst = 0;
-        for (const Touch& t : touches_) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
-        it->second = std::min(it->second, worst);
-        offset = it->second;
-      }
+
+  // Evaluate every pair into its own records (any thread, any order)...
+  const Index np = static_cast<Index>(pairs_.size() + wall_pairs_.size());
+  rec_thread_.resize(np), rec_off_.resize(np), rec_n_.resize(np);
+  arena_.resize(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+#pragma omp parallel if (np > 256)
+  {
+    std::vector<TouchOut>& out = arena_[static_cast<std::size_t>(omp_get_thread_num())];
+    out.clear();
+    std::vector<Touch> touches;
+#pragma omp for schedule(dynamic, 64)
+    for (Index p = 0; p < np; ++p) {
+      rec_thread_[p] = omp_get_thread_num();
+      rec_off_[p] = static_cast<Index>(out.size());
+      evaluate_pair(p, x, v, dt, touches, out);
+      rec_n_[p] = static_cast<Index>(out.size()) - rec_off_[p];
     }
-    for (const Touch& t : touches_) apply(ea, eb, nullptr, -1, t, x, v, dt, f, offset);
   }
-  for (auto [w, e] : wall_pairs_) {
-    const Wall& wl = walls_[w];
-    const Poly A = skeleton_poly(e, x);
-    touches_.clear();
-    if (wl.type == Wall::Type::Plane)
-      find_plane_touches(A, radius_[e], wl.centre, wl.plane_normal(), touches_);
-    else if (wl.type == Wall::Type::Jaw)
-      find_jaw_touches(A, radius_[e], wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle,
-                       touches_);
-    else if (wl.type == Wall::Type::Cylinder)
-      find_touches(A, radius_[e], wl.axis_poly(), wl.radius, touches_);
-    else
-      find_touches(A, radius_[e], wl.box_poly(), 0.0, touches_);
-    for (const Touch& t : touches_) apply(e, -1, &wl, static_cast<int>(w), t, x, v, dt, f);
+  // ...then add them up in the order of the pairs, so the sums are those of a serial loop.
+  history_next_.clear(np);
+  for (Index p = 0; p < np; ++p) {
+    const TouchOut* r = arena_[rec_thread_[p]].data() + rec_off_[p];
+    for (Index k = 0; k < rec_n_[p]; ++k) gather(r[k], f);
+    history_next_.offset[p + 1] = static_cast<Index>(history_next_.entry.size());
   }
   std::swap(history_, history_next_);
   // Viscous dissipation over the drift just made (x moved by dt v): trapezoidal work of the

@@ -7,15 +7,21 @@
 // pairs from different fragments (pieces connected through nodes or unbroken joints never
 // touch each other). The candidate list is rebuilt when a node has moved more than half the
 // skin since the last build, when a wall has, or when joints have failed.
+//
+// A step runs in parallel and gives the same bits on any number of threads: the skeletons
+// of the surface elements are computed once (not once per pair), each candidate pair's
+// touches are evaluated into records of its own, and the records are then added to the
+// nodes, walls, ledger and history in the fixed order of the pairs, one thread (the order
+// of a serial loop, so the sums do not depend on how the pairs were shared out).
 #pragma once
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "contact/broad_phase.hpp"
 #include "contact/contact_law.hpp"
 #include "contact/contact_params.hpp"
 #include "contact/narrow_phase.hpp"
+#include "contact/pair_history.hpp"
 #include "contact/skeleton.hpp"
 #include "contact/walls.hpp"
 #include "joint/joint_set.hpp"
@@ -77,13 +83,15 @@ class ContactSystem {
   const std::string& setup_error() const { return setup_error_; }
 
  private:
-  struct Key {
-    Index ea, eb;
-    int kind, fa, fb;
-    bool operator==(const Key&) const = default;
-  };
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const;
+  /// One touch evaluated: what the ordered gather adds to nodes, walls, ledger and history.
+  struct TouchOut {
+    Index ea, eb;  ///< eb < 0: wall -1 - eb
+    Real Wa[8], Na[8], Wb[8], Nb[8];
+    Vec3 force, fn, ft;  ///< force on A, its normal and tangential parts
+    Vec3 dmp_n, dmp_t;  ///< their viscous parts
+    Vec3 c;             ///< contact point (wall torque)
+    Real elastic, slip_work, overlap_ratio;
+    HistoryEntry hist;
   };
   struct Elem {
     CellType type;
@@ -95,8 +103,15 @@ class ContactSystem {
   void rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x);
   bool needs_rebuild(const joint::JointSet& js, const Real* x) const;
   LawParams pair_params(Index ea, Index eb, const Wall* w) const;
-  void apply(Index ea, Index eb, const Wall* wall, int wall_id, const Touch& t, const Real* x, const Real* v, Real dt,
-             Real* f, Real offset = 0);
+  /// Evaluates pair p (element pair or wall pair) at x, v into `out`.
+  void evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,
+                     std::vector<TouchOut>& out);
+  bool evaluate(Index p, Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v, Real dt,
+                Real offset, TouchOut& o) const;
+  void gather(const TouchOut& o, Real* f);
+  void cache_skeletons(const Real* x);
+  const Poly& cached(Index e) const { return skel_cache_[skel_slot_[e]]; }
+  std::vector<PairKey> pair_keys() const;
 
   bool enabled_ = false;
   ContactSettings settings_;
@@ -109,11 +124,11 @@ class ContactSystem {
   std::vector<Index> outer_faces_;  ///< per element
   std::vector<char> surface_;       ///< per element: candidate
   std::vector<Index> surface_list_, fragment_, fragment_prev_;
-  /// Pairs that became candidates because their piece split, with the overlap their
-  /// skeletons already had then (elements that met at an edge or a vertex of the crack):
-  /// that overlap is not an impact and must not push (it would create energy); it shrinks
-  /// as the pair opens and is dropped when the pair leaves the candidate list.
-  std::unordered_map<std::uint64_t, Real> born_offset_;
+  /// Per element pair: the overlap its skeletons already had when it became a candidate
+  /// because its piece split (elements that met at an edge or a vertex of the crack; 0 for
+  /// the others). That overlap is not an impact and must not push (it would create
+  /// energy); it shrinks as the pair opens and is dropped when the pair leaves the list.
+  std::vector<Real> born_offset_;
   std::vector<Wall> walls_;
   std::vector<Real> x_build_;
   std::vector<Vec3> wall_build_;  ///< centres at the last build
@@ -124,8 +139,13 @@ class ContactSystem {
   PairList pairs_;
   std::vector<std::pair<Index, Index>> wall_pairs_;  ///< (wall, element)
   GridBroadPhase grid_;
-  std::unordered_map<Key, Vec3, KeyHash> history_, history_next_;
-  std::vector<Touch> touches_;
+  PairHistory history_, history_next_;  ///< by index into pairs_ then wall_pairs_
+  std::vector<Index> skel_slot_;        ///< per element: index into skel_cache_ (-1: not surface)
+  std::vector<Poly> skel_cache_;        ///< skeletons of the surface elements at this step
+  std::vector<std::vector<TouchOut>> arena_;  ///< per thread
+  std::vector<int> rec_thread_;              ///< per pair: whose arena holds its records
+  std::vector<Index> rec_off_, rec_n_;       ///< per pair: where, how many
+  std::vector<Touch> touches_;  ///< scratch of the serial paths (rebuild)
   ContactTotals totals_;
   Real elastic_ = 0, wall_power_ = 0;
   /// Viscous contact forces on the nodes, this and the last evaluation: the dissipation is

@@ -1,0 +1,52 @@
+// Tangential history of the contacts, in flat arrays keyed by candidate pair (no hash map
+// per step). A pair's entries are its touches of the last step, each named by its feature
+// pair (kind, fa, fb) and holding the tangential spring elongation xi. The entries of pair p
+// are entry[offset[p] .. offset[p+1]); a step writes the next history in pair order, and a
+// rebuild of the candidate list carries the entries of the pairs that stay candidates over
+// to their new index (both lists are sorted, so this is one merge).
+#pragma once
+#include <utility>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace dspdem::contact {
+
+struct HistoryEntry {
+  int kind = 0, fa = 0, fb = 0;
+  Vec3 xi = Vec3::Zero();
+};
+
+/// A candidate pair's name: (ea, eb) for elements ea < eb; (n_elements + w, e) for element e
+/// against wall w, so that wall pairs sort after element pairs, as they are evaluated.
+using PairKey = std::pair<Index, Index>;
+
+struct PairHistory {
+  std::vector<Index> offset{0};  ///< size pairs + 1
+  std::vector<HistoryEntry> entry;
+
+  Index pairs() const { return static_cast<Index>(offset.size()) - 1; }
+  /// xi of pair p's feature pair (kind, fa, fb), or zero when it did not touch last step.
+  Vec3 find(Index p, int kind, int fa, int fb) const {
+    for (Index k = offset[p]; k < offset[p + 1]; ++k) {
+      const HistoryEntry& h = entry[k];
+      if (h.kind == kind && h.fa == fa && h.fb == fb) return h.xi;
+    }
+    return Vec3::Zero();
+  }
+  void clear(Index pairs) {
+    offset.assign(static_cast<std::size_t>(pairs) + 1, 0);
+    entry.clear();
+  }
+};
+
+/// The history of the pairs `old_keys` (with `old`) re-indexed to `new_keys`; both key lists
+/// sorted ascending. Pairs only in `new_keys` start empty; pairs only in `old_keys` are gone.
+PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& old_keys,
+                          const std::vector<PairKey>& new_keys);
+
+/// Values per pair carried over the same way (`absent` for new pairs).
+std::vector<Real> remap_values(const std::vector<Real>& old, const std::vector<PairKey>& old_keys,
+                               const std::vector<PairKey>& new_keys, Real absent);
+
+}  // namespace dspdem::contact
