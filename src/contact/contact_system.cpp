@@ -1,9 +1,10 @@
 #include "contact/contact_system.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <omp.h>
 
 #include "core/error.hpp"
 #include "joint/fragments.hpp"

@@ -88,8 +88,8 @@ class ContactSystem {
     Index ea, eb;  ///< eb < 0: wall -1 - eb
     Real Wa[8], Na[8], Wb[8], Nb[8];
     Vec3 force, fn, ft;  ///< force on A, its normal and tangential parts
-    Vec3 dmp_n, dmp_t;  ///< their viscous parts
-    Vec3 c;             ///< contact point (wall torque)
+    Vec3 dmp_n, dmp_t;   ///< their viscous parts
+    Vec3 c;              ///< contact point (wall torque)
     Real elastic, slip_work, overlap_ratio;
     HistoryEntry hist;
   };
@@ -139,13 +139,13 @@ class ContactSystem {
   PairList pairs_;
   std::vector<std::pair<Index, Index>> wall_pairs_;  ///< (wall, element)
   GridBroadPhase grid_;
-  PairHistory history_, history_next_;  ///< by index into pairs_ then wall_pairs_
-  std::vector<Index> skel_slot_;        ///< per element: index into skel_cache_ (-1: not surface)
-  std::vector<Poly> skel_cache_;        ///< skeletons of the surface elements at this step
+  PairHistory history_, history_next_;        ///< by index into pairs_ then wall_pairs_
+  std::vector<Index> skel_slot_;              ///< per element: index into skel_cache_ (-1: not surface)
+  std::vector<Poly> skel_cache_;              ///< skeletons of the surface elements at this step
   std::vector<std::vector<TouchOut>> arena_;  ///< per thread
-  std::vector<int> rec_thread_;              ///< per pair: whose arena holds its records
-  std::vector<Index> rec_off_, rec_n_;       ///< per pair: where, how many
-  std::vector<Touch> touches_;  ///< scratch of the serial paths (rebuild)
+  std::vector<int> rec_thread_;               ///< per pair: whose arena holds its records
+  std::vector<Index> rec_off_, rec_n_;        ///< per pair: where, how many
+  std::vector<Touch> touches_;                ///< scratch of the serial paths (rebuild)
   ContactTotals totals_;
   Real elastic_ = 0, wall_power_ = 0;
   /// Viscous contact forces on the nodes, this and the last evaluation: the dissipation is

@@ -26,7 +26,8 @@ PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& ol
   h.offset.assign(new_keys.size() + 1, 0);
   for (std::size_t j = 0; j < new_keys.size(); ++j) {
     if (from[j] >= 0)
-      h.entry.insert(h.entry.end(), old.entry.begin() + old.offset[from[j]], old.entry.begin() + old.offset[from[j] + 1]);
+      h.entry.insert(h.entry.end(), old.entry.begin() + old.offset[from[j]],
+                     old.entry.begin() + old.offset[from[j] + 1]);
     h.offset[j + 1] = static_cast<Index>(h.entry.size());
   }
   return h;
