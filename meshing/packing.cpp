@@ -1,6 +1,7 @@
 // Tetrahedral particles above and inside an open-top box (paper section 2.1). The box is
-// meshed by gmsh from five wall slabs; the particles are single tet4 elements added as a
-// discrete gmsh entity, each one its own connected component.
+// meshed by gmsh from five wall slabs when asked for (container = 1; the shipped case takes
+// the box as five rigid [[walls]] boxes instead); the particles are single tet4 elements
+// added as a discrete gmsh entity, each one its own connected component.
 //
 // Placement: a lattice of cubic cells of side s = 2 R_max (1 + 1 %), where R_max bounds
 // the distance from a particle's centroid to its vertices (regular tet: 0.6124 a, plus the
@@ -53,21 +54,23 @@ void build_packing(const Params& p) {
                             capacity, amax, top, nx, nz, ny));
 
   // Container: floor and four walls, non-overlapping slabs fragmented into one conformal body.
-  gmsh::vectorpair walls = {
-      {3, occ::addBox(-t, -t, -t, lx + 2 * t, t, lz + 2 * t)},  // floor
-      {3, occ::addBox(-t, 0, -t, t, ly, lz + 2 * t)},           // x = 0 wall
-      {3, occ::addBox(lx, 0, -t, t, ly, lz + 2 * t)},           // x = lx wall
-      {3, occ::addBox(0, 0, -t, lx, ly, t)},                    // z = 0 wall
-      {3, occ::addBox(0, 0, lz, lx, ly, t)},                    // z = lz wall
-  };
-  gmsh::vectorpair out;
-  std::vector<gmsh::vectorpair> map;
-  occ::fragment({walls.front()}, gmsh::vectorpair(walls.begin() + 1, walls.end()), out, map);
-  occ::synchronize();
   std::vector<int> container;
-  for (auto [d, tag] : out) container.push_back(tag);
-  set_volume_size(container, p["wall_size"]);
-  gmsh::model::mesh::generate(3);
+  if (p["container"] != 0) {
+    gmsh::vectorpair walls = {
+        {3, occ::addBox(-t, -t, -t, lx + 2 * t, t, lz + 2 * t)},  // floor
+        {3, occ::addBox(-t, 0, -t, t, ly, lz + 2 * t)},           // x = 0 wall
+        {3, occ::addBox(lx, 0, -t, t, ly, lz + 2 * t)},           // x = lx wall
+        {3, occ::addBox(0, 0, -t, lx, ly, t)},                    // z = 0 wall
+        {3, occ::addBox(0, 0, lz, lx, ly, t)},                    // z = lz wall
+    };
+    gmsh::vectorpair out;
+    std::vector<gmsh::vectorpair> map;
+    occ::fragment({walls.front()}, gmsh::vectorpair(walls.begin() + 1, walls.end()), out, map);
+    occ::synchronize();
+    for (auto [d, tag] : out) container.push_back(tag);
+    set_volume_size(container, p["wall_size"]);
+    gmsh::model::mesh::generate(3);
+  }
 
   std::size_t next_node = 0;
   {
@@ -106,7 +109,7 @@ void build_packing(const Params& p) {
   const int ent = gmsh::model::addDiscreteEntity(3);
   gmsh::model::mesh::addNodes(3, ent, node_tags, coords);
   gmsh::model::mesh::addElementsByType(ent, 4, {}, conn);
-  add_group(3, container, "container");
+  if (!container.empty()) add_group(3, container, "container");
   add_group(3, {ent}, "particles");
 }
 
@@ -120,6 +123,7 @@ const std::vector<schema::Key>& packing_keys() {
     {"mesh.packing", "box_x", T::Real, "16.0", 0, inf, true, false, "m", nullptr, "Inner box size along x [S]."},
     {"mesh.packing", "box_z", T::Real, "13.8", 0, inf, true, false, "m", nullptr, "Inner box size along z [S]."},
     {"mesh.packing", "box_height", T::Real, "15.2", 0, inf, true, false, "m", nullptr, "Inner box height along y (gravity along -y) [S]; which of the paper's three sizes is the height is [NF]."},
+    {"mesh.packing", "container", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the box's five wall slabs as the group `container`; 0: particles only (the box is given as [[walls]])."},
     {"mesh.packing", "wall_thickness", T::Real, "0.5", 0, inf, true, false, "m", nullptr, "Thickness of the five wall slabs."},
     {"mesh.packing", "wall_size", T::Real, "2.0", 0, inf, true, false, "m", nullptr, "Element size in the walls."},
     {"mesh.packing", "count", T::Int, "5346", 1, 10000000, false, false, "", nullptr, "Number of particles [S]."},

@@ -4,12 +4,14 @@
 #include "scenes/brazilian_disc/scene.hpp"
 #include "scenes/galvez_beam/scene.hpp"
 #include "scenes/murray_beam/scene.hpp"
+#include "scenes/packing/scene.hpp"
 #include "scenes/sphere_impact/scene.hpp"
 
 namespace dspdem::scenes {
 
 const std::vector<Scene>& all() {
   static const std::vector<Scene> s = {
+      {"packing", "packing", "tetrahedra falling into a rigid box and coming to rest (paper 2.1)", packing_report},
       {"brazilian_disc", "brazilian_disc", "Brazilian disc split between two plates (paper 2.2)",
        brazilian_disc_report},
       {"galvez_beam", "galvez_beam", "Galvez mixed-mode notched beam (paper 2.3)", galvez_beam_report},

@@ -1,0 +1,99 @@
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "render/plot.hpp"
+#include "report/document.hpp"
+#include "report/report_dirs.hpp"
+#include "report/run_data.hpp"
+#include "run/montage.hpp"
+#include "run/render_run.hpp"
+#include "scenes/packing/analysis.hpp"
+#include "scenes/packing/scene.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+
+// The paper's times for this case (section 2.1), on its machine: its method and FDEM.
+constexpr double kPaperSeconds = 62060, kPaperFdemSeconds = 117813;
+}  // namespace
+
+int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
+  Timer total;
+  const report::ReportDirs dirs = report::prepare_report_run(c, a);
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
+  const PackingResult r = analyse_packing_run(c, run_dir, true);
+  const fs::path img = fs::path(run_dir) / "images";
+  fs::create_directories(img / "plots");
+  auto plot = [&](const std::string& y, const std::string& title, const std::string& png) {
+    render::plot_csv((fs::path(run_dir) / "packing_series.csv").string(), render::PlotSpec{"time", {y}, "", title},
+                     (img / "plots" / png).string());
+  };
+  plot("log10_kinetic_over_released", "log10(kinetic energy / potential energy released) against time [s]",
+       "kinetic_decay.png");
+  plot("contacts_per_particle", "feature contacts per particle against time [s]", "contacts.png");
+  plot("floor_force_over_weight", "floor force over the particles' weight against time [s]", "floor_force.png");
+  if (!a.no_render) {
+    RenderArgs ra;  // the case's views over all frames, with the animation
+    ra.run_dir = run_dir;
+    render_command(ra);
+    for (const char* cam : {"front", "side", "iso"}) {
+      MontageArgs m;
+      m.run_dirs = {run_dir}, m.labels = {fmt::format("final heap, {} view", cam)};
+      m.rows = {"fragments"}, m.camera = cam, m.width = 1000, m.height = 600;
+      m.out = (img / fmt::format("heap_{}.png", cam)).string();
+      write_montage(m);
+    }
+  }
+
+  const bool rest = r.t_rest >= 0;
+  report::Document doc(dir, run_dir);
+  doc.title("Packing (paper section 2.1): report");
+  doc.para(fmt::format(
+      "Case `{}` ({}), run in `{}`: {} single-tetrahedron particles fall under gravity into a rigid open box "
+      "{:.1f} x {:.1f} m (footprint) x {:.1f} m (height). Reference data and sources: src/scenes/packing/REFERENCE.md "
+      "in dspdem. The paper uses this case for speed only: 5346 tetrahedra, {:.0f} s with its method against {:.0f} s "
+      "with FDEM, on its own machine; it reports no heap geometry.",
+      c.path, c.name, doc.run_link(""), r.particles, r.box_x, r.box_z, r.box_height, kPaperSeconds, kPaperFdemSeconds));
+  doc.section("The heap at the end");
+  const double ratio = r.released > 0 ? r.kinetic_end / r.released : 1.0;
+  doc.table(
+      {"quantity", "value", "note"},
+      {{"time simulated", fmt::format("{:.2f} s", r.t_end), ""},
+       {"potential energy released", fmt::format("{:.4g} J", r.released), "work of gravity"},
+       {"kinetic energy / released", fmt::format("{:.2e}", ratio),
+        fmt::format("at rest below {:.0e}: {}", PackingResult::rest_ratio, rest ? "yes" : "no")},
+       {"at rest from", rest ? fmt::format("{:.2f} s", r.t_rest) : "-", "and to the end"},
+       {"particles outside the box", std::to_string(r.escaped), "centroid outside the footprint or below the floor"},
+       {"heap surface, mean", fmt::format("{:.3f} m", r.surface_mean),
+        fmt::format("highest vertex per {:.2f} m cell, over the footprint", r.cell)},
+       {"heap surface, highest", fmt::format("{:.3f} m", r.surface_max), ""},
+       {"packing fraction", fmt::format("{:.3f}", r.packing_fraction),
+        "solid volume / (footprint x mean surface height): a lower bound, the surface is the highest vertices"},
+       {"contacts per particle", fmt::format("{:.2f}", r.contacts_end / static_cast<double>(r.particles)),
+        "feature contacts (a face flat on a face counts 3)"},
+       {"energy balance, largest error", fmt::format("{:.1e}", r.balance_max), "of the largest term"}});
+  doc.figures({{"kinetic energy decay", "images/plots/kinetic_decay.png"},
+               {"contacts per particle", "images/plots/contacts.png"}});
+  doc.figure("floor force over weight", "images/plots/floor_force.png");
+  if (!a.no_render) {
+    doc.section("The final heap");
+    doc.figures({{"heap, front", "images/heap_front.png"}, {"heap, side", "images/heap_side.png"}});
+    doc.figure("heap, from above at an angle", "images/heap_iso.png");
+  }
+  doc.section("Speed");
+  doc.para(fmt::format(
+      "{} steps of {:.3g} s in {:.1f} s wall time on {} thread(s): {:.3g} particle-steps per second over the whole "
+      "run (free fall and settled bed together).",
+      r.steps, r.dt, r.wall_s, report::RunData::open(run_dir).summary.threads, r.particle_steps_per_s));
+  doc.write();
+  log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
+  return 0;
+}
+
+}  // namespace dspdem
