@@ -13,6 +13,7 @@ struct ReportArgs {
   std::string from_run;          ///< analyse this finished run of the same case instead of running it
   bool no_stress_check = false;  ///< skip a scene's extra verification runs (the disc's stress check)
   std::vector<double> speeds;    ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
+  std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)
   int jobs = 0;                  ///< runs of a sweep or study in parallel processes (0: one per core)
 };
 
