@@ -1,5 +1,6 @@
 #include "joint/joint_forces.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "joint/coupled_law.hpp"
@@ -34,10 +35,63 @@ int face_quadrature(int npf, Quadrature rule, double N[4][4], double w[4]) {
   return 4;
 }
 
+namespace {
+// The four quadrature rules (triangle/quadrilateral x Gauss/nodal), computed once.
+struct QuadratureTables {
+  double N[2][2][4][4], w[2][2][4];
+  int ng[2][2];
+  QuadratureTables() {
+    for (int q = 0; q < 2; ++q)
+      for (int r = 0; r < 2; ++r)
+        ng[q][r] = face_quadrature(q == 0 ? 3 : 4, static_cast<Quadrature>(r), N[q][r], w[q][r]);
+  }
+};
+const QuadratureTables& quadrature_tables() {
+  static const QuadratureTables t;
+  return t;
+}
+
+// For each node a joint touches, its slots in joint order (see JointSet::gather_*).
+void build_gather(JointSet& js) {
+  const Index nj = js.size();
+  Index n_max = 0;
+  for (Index j = 0; j < nj; ++j)
+    for (int k = 0; k < js.npf[j]; ++k)
+      n_max = std::max(
+          {n_max, js.a[4 * static_cast<std::size_t>(j) + k] + 1, js.b[4 * static_cast<std::size_t>(j) + k] + 1});
+  std::vector<Index> count(static_cast<std::size_t>(n_max), 0);
+  for (Index j = 0; j < nj; ++j)
+    for (int k = 0; k < js.npf[j]; ++k)
+      ++count[js.a[4 * static_cast<std::size_t>(j) + k]], ++count[js.b[4 * static_cast<std::size_t>(j) + k]];
+  std::vector<Index> row(static_cast<std::size_t>(n_max), -1);
+  js.gather_node.clear();
+  js.gather_ptr.assign(1, 0);
+  for (Index n = 0; n < n_max; ++n)
+    if (count[n] > 0) {
+      row[n] = static_cast<Index>(js.gather_node.size());
+      js.gather_node.push_back(n);
+      js.gather_ptr.push_back(js.gather_ptr.back() + count[n]);
+    }
+  js.gather_slot.assign(static_cast<std::size_t>(js.gather_ptr.back()), 0);
+  std::vector<Index> fill(js.gather_ptr.begin(), js.gather_ptr.end() - 1);
+  // Joint order: side A before side B within a joint is the serial loop's order too.
+  for (Index j = 0; j < nj; ++j)
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < js.npf[j]; ++k) {
+        const Index n = (side == 0 ? js.a : js.b)[4 * static_cast<std::size_t>(j) + k];
+        js.gather_slot[fill[row[n]]++] = 24 * j + 12 * side + 3 * k;
+      }
+  js.gather_joints = nj;
+}
+}  // namespace
+
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots) {
   const Index nj = js.size();
+  if (nj == 0) return;
+  if (js.gather_joints != nj) build_gather(js);
   slots.resize(24 * static_cast<std::size_t>(nj));
   js.newly_failed.resize(nj);
+  const QuadratureTables& qt = quadrature_tables();
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
@@ -56,8 +110,10 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     const Real nl = n.norm();
     if (!(nl > 0)) continue;  // collapsed face: nothing sensible to apply (the element check reports it)
     n /= nl;
-    double N[4][4], w[4];
-    const int ng = face_quadrature(npf, js.rule(j), N, w);
+    const int qi = npf == 3 ? 0 : 1, ri = static_cast<int>(js.rule(j));
+    const auto& N = qt.N[qi][ri];
+    const auto& w = qt.w[qi][ri];
+    const int ng = qt.ng[qi][ri];
     const CohesiveParams& p = js.params[js.param[j]];
     int broken = 0, touched = 0;
     for (int g = 0; g < ng; ++g) {
@@ -88,15 +144,20 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
     js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
   }
-  for (Index j = 0; j < nj; ++j) {
-    const std::size_t js4 = 4 * static_cast<std::size_t>(j);
-    const Real* s = &slots[24 * static_cast<std::size_t>(j)];
+  for (Index j = 0; j < nj; ++j)
     if (js.newly_failed[j]) js.failed.push_back(j);
-    for (int k = 0; k < js.npf[j]; ++k)
-      for (int d = 0; d < 3; ++d) {
-        f[3 * js.a[js4 + k] + d] += s[3 * k + d];
-        f[3 * js.b[js4 + k] + d] += s[12 + 3 * k + d];
-      }
+  // Each node its slots in joint order: the serial loop's sums, in parallel over nodes.
+  const Index ng_nodes = static_cast<Index>(js.gather_node.size());
+  const Real* s = slots.data();
+#pragma omp parallel for schedule(static) if (ng_nodes > 4096)
+  for (Index i = 0; i < ng_nodes; ++i) {
+    Real* fn = f + 3 * static_cast<std::size_t>(js.gather_node[i]);
+    Real f0 = fn[0], f1 = fn[1], f2 = fn[2];
+    for (Index q = js.gather_ptr[i]; q < js.gather_ptr[i + 1]; ++q) {
+      const Real* sq = s + js.gather_slot[q];
+      f0 += sq[0], f1 += sq[1], f2 += sq[2];
+    }
+    fn[0] = f0, fn[1] = f1, fn[2] = f2;
   }
 }
 

@@ -18,8 +18,12 @@ struct JointTotals {
 };
 
 /// Updates every joint at positions x and adds its nodal forces to f. Deterministic: joint
-/// forces go to per-joint slots, then are added in joint order.
+/// forces go to per-joint slots, then each node adds its slots in joint order (in parallel
+/// over nodes); the result is bitwise that of add_joint_forces_reference on any thread count.
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots);
+
+/// The plain serial kernel, joint after joint: the test oracle of add_joint_forces.
+void add_joint_forces_reference(JointSet& js, const Real* x, Real* f);
 
 JointTotals joint_totals(const JointSet& js);
 

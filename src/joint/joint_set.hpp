@@ -39,6 +39,12 @@ struct JointSet {
   /// in different fragments. Energy still stored in it then is booked in released_energy.
   std::vector<char> released;
   Real released_energy = 0;
+  /// Derived from a and b, built by the first force evaluation (the topology never changes
+  /// after insertion): for each node a joint touches, the force slots (24 per joint: side A
+  /// then side B, 3 per node) that add to it, in joint order. The forces are then gathered in
+  /// parallel over nodes, each node's sum in the order of a serial loop over the joints.
+  std::vector<Index> gather_node, gather_ptr, gather_slot;
+  Index gather_joints = -1;  ///< joint count the gather was built for (rebuilt when it changes)
   Index size() const { return static_cast<Index>(npf.size()); }
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };
