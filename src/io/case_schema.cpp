@@ -106,7 +106,7 @@ const std::vector<Key>& general_keys() {
     {"time", "safety", T::Real, "0.9", 0, 1, true, false, "", nullptr, "Fraction of the critical step used when dt is absent."},
     {"time", "allow_unstable", T::Bool, "false", 0, 0, false, false, "", nullptr, "Accept a fixed dt above the critical step (for stability studies; the run's checks still stop a blow-up)."},
     {"time", "max_steps", T::Int, "0", 0, inf, false, false, "", nullptr, "Stop after this many steps (0 = no limit)."},
-    {"time", "stop_series", T::String, "auto", 0, 0, false, false, "", nullptr, "End the run early once this series.csv column (a wall force such as plate_top_fy, or a monitor) has passed its peak and fallen below stop_fraction of it; a last frame is written there. For tests that are over when the specimen breaks."},
+    {"time", "stop_series", T::String, "auto", 0, 0, false, false, "", nullptr, "End the run early once this series.csv column (a wall force such as plate_top_fy, a monitor, or kinetic: the kinetic energy) has passed its peak and fallen below stop_fraction of it; a last frame is written there. For tests that are over when the specimen breaks, and heaps that have come to rest."},
     {"time", "stop_fraction", T::Real, "0.3", 0, 1, true, true, "", nullptr, "With stop_series: the fraction of the peak |value| below which the run ends."},
     {"time", "stop_delay", T::Real, "0.0", 0, inf, false, false, "s", nullptr, "With stop_series: run on this long after the drop before ending (the pieces of a specimen that has just lost its load may still be separating)."},
     {"time", "stop_min_peak", T::Real, "0.0", 0, inf, false, false, "", nullptr, "With stop_series: the peak |value| must first reach this (keeps the first contact's ringing from ending the run)."},

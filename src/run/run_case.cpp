@@ -78,16 +78,20 @@ class Series {
 /// The series.csv column named by [time] stop_series: a wall force or a monitor.
 std::function<Real()> series_column(const CaseConfig& c, const Model& m, const Integrator& it) {
   const std::string& name = c.stop_series;
+  // The kinetic energy: a heap or a rubble pile that has come to rest.
+  if (name == "kinetic") return [&it]() { return it.energy().kinetic; };
   for (const auto& w : m.contact.walls())
     for (int k = 0; k < 3; ++k)
       if (name == w.name + "_f" + "xyz"[k]) return [&w, k]() { return w.force(k); };
   for (const auto& ms : m.monitors)
     if (name == ms.cfg.name) return [&it, &ms]() { return it.monitor(ms); };
-  std::string known;
+  std::string known = " kinetic";
   for (const auto& w : m.contact.walls()) known += fmt::format(" {0}_fx {0}_fy {0}_fz", w.name);
   for (const auto& ms : m.monitors) known += " " + ms.cfg.name;
-  fail("{}: [time] stop_series = \"{}\" is not a wall force or monitor column of series.csv (known:{})", c.path, name,
-       known.empty() ? " none" : known);
+  fail(
+      "{}: [time] stop_series = \"{}\" is not the kinetic energy, a wall force or a monitor column of series.csv "
+      "(known:{})",
+      c.path, name, known);
 }
 }  // namespace
 
