@@ -118,6 +118,27 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
       inc_node[i] = it->second;
     }
   }
+  // Number the new nodes in the order the elements first use them: in a mesh with joints
+  // everywhere each element then owns four (eight) consecutive nodes, and the element and
+  // joint kernels read nodes that lie together in memory instead of scattered along the
+  // original (gmsh) node order. Only storage moves: every node keeps its own forces and
+  // every sum over a node's elements or joints keeps its order.
+  {
+    std::vector<Index> perm(tags.size(), -1);
+    Index next = 0;
+    for (std::size_t i = 0; i < n_inc; ++i)
+      if (perm[inc_node[i]] < 0) perm[inc_node[i]] = next++;
+    std::vector<Real> xp(x.size());
+    std::vector<std::size_t> tp(tags.size());
+    for (std::size_t o = 0; o < tags.size(); ++o) {
+      tp[perm[o]] = tags[o];
+      for (int d = 0; d < 3; ++d) xp[3 * static_cast<std::size_t>(perm[o]) + d] = x[3 * o + d];
+    }
+    x = std::move(xp), tags = std::move(tp);
+    for (auto& i : inc_node) i = perm[i];
+    for (auto& c : copies)
+      for (auto& i : c) i = perm[i];
+  }
   std::vector<std::vector<Index>> old_conn;
   for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
     old_conn.push_back(mesh.blocks[b].conn);

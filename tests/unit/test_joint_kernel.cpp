@@ -32,9 +32,10 @@ void compare_kernels(CellType type, joint::Quadrature rule, int threads) {
   omp_set_num_threads(threads);
   std::vector<Real> slots;
   const std::size_t nd = m.fem.x0.size();
-  // Node jumps grow to about 1.2 x (w_ft + w_GI) = 8e-5 m over the steps: joints go through softening to
-  // failure, and some close again in compression (the sine changes sign along the nodes).
-  const Real amp = 4e-5;
+  // Node displacements growing to 5 um, a different phase at every dof: over the steps the
+  // joints go through softening to failure (between 10 % and all of them, checked below),
+  // and some close again in compression.
+  const Real amp = 5e-6;
   Index broken = 0;
   for (int step = 1; step <= 30; ++step) {
     std::vector<Real> x(nd), f_ref(nd), f_opt(nd);
