@@ -8,13 +8,13 @@ namespace dspdem::report {
 struct ReportArgs {
   std::string case_file, out_dir;
   std::vector<std::string> sets;
-  bool study = false;            ///< also run the speed-against-error sweep
-  bool no_render = false;        ///< skip images (numbers and plots only)
-  std::string from_run;          ///< analyse this finished run of the same case instead of running it
-  bool no_stress_check = false;  ///< skip a scene's extra verification runs (the disc's stress check)
-  std::vector<double> speeds;    ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
+  bool study = false;                ///< also run the speed-against-error sweep
+  bool no_render = false;            ///< skip images (numbers and plots only)
+  std::string from_run;              ///< analyse this finished run of the same case instead of running it
+  bool no_stress_check = false;      ///< skip a scene's extra verification runs (the disc's stress check)
+  std::vector<double> speeds;        ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
   std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)
-  int jobs = 0;                  ///< runs of a sweep or study in parallel processes (0: one per core)
+  int jobs = 0;                      ///< runs of a sweep or study in parallel processes (0: one per core)
 };
 
 }  // namespace dspdem::report
