@@ -146,7 +146,7 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
     const int ng = joint::face_quadrature(npf, js.rule(j), N, w);
     Real d = 0, dn = 0, ds = 0;
     for (int g = 0; g < ng; ++g) {
-      const joint::CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];
+      const joint::CohesiveState s = js.point_state(4 * static_cast<std::size_t>(j) + g);
       d = std::max(d, joint::damage_index(p, s));
       dn += s.dn / ng, ds += s.ds / ng;
     }

@@ -144,6 +144,12 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
     old_conn.push_back(mesh.blocks[b].conn);
     for (std::size_t k = 0; k < mesh.blocks[b].conn.size(); ++k) mesh.blocks[b].conn[k] = inc_node[inc0[b] + k];
   }
+  // Joints in element order (A is the lower element: faces sort by element within a key),
+  // so that with elements in a spatial order (mesh/locality.hpp) neighbouring joints read
+  // neighbouring nodes. Two elements share at most one face: the order is total.
+  std::sort(jointed.begin(), jointed.end(), [](const auto& p, const auto& q) {
+    return p.first.elem != q.first.elem ? p.first.elem < q.first.elem : p.second.elem < q.second.elem;
+  });
   // Joints: side A as A's outward face, side B the same original nodes seen from B.
   for (const auto& [A, B] : jointed) {
     const auto& blkA = mesh.blocks[A.block];
@@ -214,6 +220,8 @@ JointSet insert_joints(Mesh& mesh, const InsertionInput& in, InsertionReport* re
   }
   mesh.x = std::move(x);
   mesh.node_tag = std::move(tags);
+  js.lean.assign(4 * static_cast<std::size_t>(js.size()), LeanPoint{});
+  js.full.assign(4 * static_cast<std::size_t>(js.size()), 0);
   js.state.assign(4 * static_cast<std::size_t>(js.size()), CohesiveState{});
   js.status.assign(js.size(), JointStatus::Intact);
   js.released.assign(js.size(), 0);

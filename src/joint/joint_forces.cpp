@@ -85,6 +85,65 @@ void build_gather(JointSet& js) {
 }
 }  // namespace
 
+namespace {
+// One joint of NPF nodes (and NPF points, Gauss or nodal): its forces into out (side A's
+// NPF nodes at out[0..], side B's at out[12..]). The face size is a template parameter so
+// that every loop below has a fixed trip count and unrolls; the arithmetic, and its order,
+// is add_joint_forces_reference's.
+template <int NPF>
+void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
+  const std::size_t js4 = 4 * static_cast<std::size_t>(j);
+  Vec3 xa[NPF], dx[NPF], xm[NPF];
+  for (int k = 0; k < NPF; ++k) {
+    xa[k] = node_pos_ptr(x, js.a[js4 + k]);
+    const Vec3 xb = node_pos_ptr(x, js.b[js4 + k]);
+    dx[k] = xb - xa[k];
+    xm[k] = 0.5 * (xa[k] + xb);
+  }
+  Vec3 n = NPF == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
+  const Real nl = n.norm();
+  if (!(nl > 0)) {  // collapsed face: nothing sensible to apply (the element check reports it)
+    for (int k = 0; k < 24; ++k) out[k] = 0;
+    return;
+  }
+  n /= nl;
+  const CohesiveParams& p = js.params[js.param[j]];
+  Real fa[3 * NPF] = {};
+  int broken = 0, touched = 0;
+  for (int g = 0; g < NPF; ++g) {
+    Vec3 jump = Vec3::Zero();
+    for (int k = 0; k < NPF; ++k) jump += N[g][k] * dx[k];
+    const Real dn = jump.dot(n);
+    const Vec3 sv = jump - dn * n;
+    const Real ds = sv.norm();
+    // An elastic point stays lean (lean_point.hpp); any other runs its law on the full state.
+    Real sn, ss;
+    if (js.full[js4 + g] || !lean_update(p, dn, ds, js.lean[js4 + g], sn, ss)) {
+      CohesiveState& st = js.full_point(js4 + g);
+      joint_law_update(p, dn, ds, st);
+      broken += st.status == JointStatus::Broken;
+      touched += st.status != JointStatus::Intact;
+      sn = st.sn, ss = st.ss;
+    }
+    // Traction on side B (force per area): pulls B back towards A in tension, resists slip.
+    Vec3 t = -sn * n;
+    if (ds > 0) t -= (ss / ds) * sv;
+    const Real wa = w[g] * js.area0[j];
+    for (int k = 0; k < NPF; ++k)
+      for (int d = 0; d < 3; ++d) fa[3 * k + d] -= N[g][k] * wa * t(d);
+  }
+  // Side B takes the opposite of side A's force, summed in the same order: exactly -fa.
+  for (int k = 0; k < 3 * NPF; ++k) out[k] = fa[k], out[12 + k] = -fa[k];
+  // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and
+  // a half-failed facet would otherwise hold two separated pieces together.
+  if (broken > 0 && broken < NPF)
+    for (int g = 0; g < NPF; ++g) force_break(js.full_point(js4 + g));
+  const JointStatus before = js.status[j];
+  js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
+  js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
+}
+}  // namespace
+
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots) {
   const Index nj = js.size();
   if (nj == 0) return;
@@ -94,55 +153,17 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
   const QuadratureTables& qt = quadrature_tables();
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
-    const std::size_t js4 = 4 * static_cast<std::size_t>(j);
-    const int npf = js.npf[j];
     Real* out = &slots[24 * static_cast<std::size_t>(j)];
-    for (int k = 0; k < 24; ++k) out[k] = 0;
     js.newly_failed[j] = 0;
-    if (js.released[j]) continue;
-    Vec3 xa[4], xb[4], xm[4];
-    for (int k = 0; k < npf; ++k) {
-      xa[k] = node_pos_ptr(x, js.a[js4 + k]);
-      xb[k] = node_pos_ptr(x, js.b[js4 + k]);
-      xm[k] = 0.5 * (xa[k] + xb[k]);
+    if (js.released[j]) {
+      for (int k = 0; k < 24; ++k) out[k] = 0;
+      continue;
     }
-    Vec3 n = npf == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
-    const Real nl = n.norm();
-    if (!(nl > 0)) continue;  // collapsed face: nothing sensible to apply (the element check reports it)
-    n /= nl;
-    const int qi = npf == 3 ? 0 : 1, ri = static_cast<int>(js.rule(j));
-    const auto& N = qt.N[qi][ri];
-    const auto& w = qt.w[qi][ri];
-    const int ng = qt.ng[qi][ri];
-    const CohesiveParams& p = js.params[js.param[j]];
-    int broken = 0, touched = 0;
-    for (int g = 0; g < ng; ++g) {
-      Vec3 jump = Vec3::Zero();
-      for (int k = 0; k < npf; ++k) jump += N[g][k] * (xb[k] - xa[k]);
-      const Real dn = jump.dot(n);
-      const Vec3 sv = jump - dn * n;
-      const Real ds = sv.norm();
-      CohesiveState& st = js.state[js4 + g];
-      joint_law_update(p, dn, ds, st);
-      broken += st.status == JointStatus::Broken;
-      touched += st.status != JointStatus::Intact;
-      // Traction on side B (force per area): pulls B back towards A in tension, resists slip.
-      Vec3 t = -st.sn * n;
-      if (ds > 0) t -= st.ss * (sv / ds);
-      const Real wa = w[g] * js.area0[j];
-      for (int k = 0; k < npf; ++k)
-        for (int d = 0; d < 3; ++d) {
-          out[3 * k + d] -= N[g][k] * wa * t(d);       // side A
-          out[12 + 3 * k + d] += N[g][k] * wa * t(d);  // side B
-        }
-    }
-    // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and
-    // a half-failed facet would otherwise hold two separated pieces together.
-    if (broken > 0 && broken < ng)
-      for (int g = 0; g < ng; ++g) force_break(js.state[js4 + g]);
-    const JointStatus before = js.status[j];
-    js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
-    js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
+    const int ri = static_cast<int>(js.rule(j));
+    if (js.npf[j] == 3)
+      joint_kernel<3>(js, j, x, qt.N[0][ri], qt.w[0][ri], out);
+    else
+      joint_kernel<4>(js, j, x, qt.N[1][ri], qt.w[1][ri], out);
   }
   for (Index j = 0; j < nj; ++j)
     if (js.newly_failed[j]) js.failed.push_back(j);
@@ -167,7 +188,7 @@ Real joint_elastic_energy(const JointSet& js, Index j) {
   const CohesiveParams& p = js.params[js.param[j]];
   Real e = 0;
   for (int g = 0; g < ng; ++g)
-    e += w[g] * js.area0[j] * js.state[4 * static_cast<std::size_t>(j) + g].elastic_energy(p);
+    e += w[g] * js.area0[j] * js.point_state(4 * static_cast<std::size_t>(j) + g).elastic_energy(p);
   return e;
 }
 
@@ -178,7 +199,7 @@ JointTotals joint_totals(const JointSet& js) {
     const int ng = face_quadrature(js.npf[j], js.rule(j), N, w);
     const CohesiveParams& p = js.params[js.param[j]];
     for (int g = 0; g < ng; ++g) {
-      const CohesiveState& s = js.state[4 * static_cast<std::size_t>(j) + g];
+      const CohesiveState s = js.point_state(4 * static_cast<std::size_t>(j) + g);
       const Real wa = w[g] * js.area0[j];
       if (!js.released[j]) t.elastic += wa * s.elastic_energy(p);
       t.fracture_I += wa * s.dissipated_I(p);

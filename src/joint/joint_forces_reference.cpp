@@ -34,12 +34,12 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
       const Real dn = jump.dot(n);
       const Vec3 sv = jump - dn * n;
       const Real ds = sv.norm();
-      CohesiveState& st = js.state[js4 + g];
+      CohesiveState& st = js.full_point(js4 + g);  // the oracle keeps every point in full
       joint_law_update(p, dn, ds, st);
       broken += st.status == JointStatus::Broken;
       touched += st.status != JointStatus::Intact;
       Vec3 t = -st.sn * n;
-      if (ds > 0) t -= st.ss * (sv / ds);
+      if (ds > 0) t -= (st.ss / ds) * sv;
       const Real wa = w[g] * js.area0[j];
       for (int k = 0; k < npf; ++k)
         for (int d = 0; d < 3; ++d) {
@@ -48,7 +48,7 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
         }
     }
     if (broken > 0 && broken < ng)
-      for (int g = 0; g < ng; ++g) force_break(js.state[js4 + g]);
+      for (int g = 0; g < ng; ++g) force_break(js.full_point(js4 + g));
     const JointStatus before = js.status[j];
     js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
     js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;

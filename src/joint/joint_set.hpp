@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/types.hpp"
-#include "joint/cohesive_law.hpp"
+#include "joint/lean_point.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dspdem::joint {
@@ -28,9 +28,13 @@ struct JointSet {
   std::vector<Index> param;   ///< index into params
   std::vector<CohesiveParams> params;
   std::vector<Quadrature> quadrature;  ///< parallel to params (empty: Gauss everywhere)
-  // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint).
-  std::vector<CohesiveState> state;
-  std::vector<JointStatus> status;  ///< per joint: Broken once any of its points fails
+  // Per integration point (3 for triangles, 4 for quadrilaterals; 4 slots per joint): the
+  // lean form while the point is elastic, the full state once it is not (lean_point.hpp).
+  // Read a point through point_state, whichever form it is in.
+  std::vector<LeanPoint> lean;
+  std::vector<char> full;            ///< per point: 1 once state[] holds it
+  std::vector<CohesiveState> state;  ///< valid where full is 1
+  std::vector<JointStatus> status;   ///< per joint: Broken once any of its points fails
   /// Failed joints in the order they failed: their two faces (a, b) are new free surface,
   /// the list the contact stage consumes. Appended in joint order within a step.
   std::vector<Index> failed;
@@ -43,9 +47,20 @@ struct JointSet {
   /// after insertion): for each node a joint touches, the force slots (24 per joint: side A
   /// then side B, 3 per node) that add to it, in joint order. The forces are then gathered in
   /// parallel over nodes, each node's sum in the order of a serial loop over the joints.
+  /// (Joints writing straight into per-node slots, so that the gather streams, measured 1.2x
+  /// slower on the Brazilian disc: the scattered writes cost more than the gathered reads.)
   std::vector<Index> gather_node, gather_ptr, gather_slot;
   Index gather_joints = -1;  ///< joint count the gather was built for (rebuilt when it changes)
   Index size() const { return static_cast<Index>(npf.size()); }
+  /// Point i (= 4 joint + g) as a full state, whichever form it is kept in.
+  CohesiveState point_state(std::size_t i) const {
+    return full[i] ? state[i] : full_state(params[param[i / 4]], lean[i]);
+  }
+  /// Point i in its full form, switched to it (for good) if it was lean.
+  CohesiveState& full_point(std::size_t i) {
+    if (!full[i]) state[i] = full_state(params[param[i / 4]], lean[i]), full[i] = 1;
+    return state[i];
+  }
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };
 

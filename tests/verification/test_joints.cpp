@@ -171,7 +171,7 @@ std::pair<Real, Real> traction_scatter(const RelaxedBlock& b) {
     if ((mid.array() < 0.025 - 1e-9).any() || (mid.array() > 0.075 + 1e-9).any()) continue;  // away from the faces
     const Real exact = 1e6 * n(0) * n(0);
     for (int g = 0; g < js.npf[j]; ++g) {
-      const Real d = (js.state[4 * static_cast<std::size_t>(j) + g].sn - exact) / 1e6;
+      const Real d = (js.point_state(4 * static_cast<std::size_t>(j) + g).sn - exact) / 1e6;
       sum2 += d * d, worst = std::max(worst, std::abs(d)), ++count;
     }
   }
