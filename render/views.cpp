@@ -26,6 +26,7 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -246,13 +247,18 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     c->SetName("colors");
     c->SetNumberOfComponents(3);
     c->SetNumberOfTuples(g->GetNumberOfCells());
-    for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
-      // Fragment ids are element ids (sparse, spatially ordered): hash them so neighbouring
-      // pieces rarely share a colour; the colour of an id never changes.
-      const std::uint64_t k = static_cast<std::uint64_t>(static_cast<long>(id->GetComponent(e, 0)));
-      const unsigned char* col = kPalette[((k * 0x9E3779B97F4A7C15ull) >> 32) % 20];
-      c->SetTypedTuple(e, col);
-    }
+    // Colour by size rank (cells per piece, ties by id): the largest piece palette[0], the
+    // next palette[1], and so on, so the pieces a crack pattern is about always differ in
+    // colour (a hash of the id, used before, gave the two halves of a split disc one colour).
+    // A piece keeps its colour while its rank does; beyond the 20th the palette wraps.
+    const vtkIdType nc = g->GetNumberOfCells();
+    std::map<long, long> cells;
+    for (vtkIdType e = 0; e < nc; ++e) ++cells[std::lround(id->GetComponent(e, 0))];
+    std::vector<std::pair<long, long>> by_size(cells.begin(), cells.end());
+    std::stable_sort(by_size.begin(), by_size.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::map<long, std::size_t> rank;
+    for (std::size_t r = 0; r < by_size.size(); ++r) rank[by_size[r].first] = r;
+    for (vtkIdType e = 0; e < nc; ++e) c->SetTypedTuple(e, kPalette[rank[std::lround(id->GetComponent(e, 0))] % 20]);
     g->GetCellData()->AddArray(c);
   }
   vtkNew<vtkDataSetSurfaceFilter> surf;

@@ -2,7 +2,8 @@
 //   stress    - a scalar field on the (optionally magnified) deformed bodies, fixed colour
 //               range over the series, scalar bar and simulated time;
 //   fragments - every fragment (or, in runs without fragment data, every body) its own
-//               colour, stable from frame to frame (colour = palette[hash(id) mod 20]);
+//               colour by size rank: the largest piece palette[0], the next palette[1], ...
+//               (ties by id, 20 colours then wrapping), kept while a piece keeps its rank;
 //   cracks    - broken joint faces over a translucent body (needs joint data in the run).
 // Camera presets look at the first frame's bounds, so every frame of a series is framed
 // the same and images can be compared pixel by pixel.

@@ -1,8 +1,12 @@
 #include "joint/fragments.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <numeric>
+
+#include "core/error.hpp"
 
 namespace dspdem::joint {
 
@@ -32,11 +36,22 @@ Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector
       }
   for (Index j = 0; j < js.size(); ++j)
     if (js.status[j] != JointStatus::Broken) unite(js.ea[j], js.eb[j]);
+  // Each set named by the smallest mesh-file tag in it: the name of a piece then depends on
+  // the mesh alone, not on the order the elements are kept in memory (mesh/locality.hpp).
+  std::vector<std::size_t> tag(static_cast<std::size_t>(ne));
+  g = 0;
+  for (const auto& b : mesh.blocks)
+    for (Index e = 0; e < b.size(); ++e, ++g) tag[g] = b.tag[e];
+  std::vector<std::size_t> min_tag(static_cast<std::size_t>(ne), SIZE_MAX);
+  for (Index e = 0; e < ne; ++e) min_tag[find(e)] = std::min(min_tag[find(e)], tag[e]);
   Fragments fr;
   fr.id.resize(ne);
   std::map<Index, Real> mass;
   for (Index e = 0; e < ne; ++e) {
-    fr.id[e] = find(e);  // the root is the smallest element id of the set
+    const std::size_t t = min_tag[find(e)];
+    DSPDEM_CHECK(t <= static_cast<std::size_t>(std::numeric_limits<Index>::max()),
+                 "element tag {} is too large to name a fragment", t);
+    fr.id[e] = static_cast<Index>(t);
     mass[fr.id[e]] += elem_mass[e];
   }
   fr.count = static_cast<Index>(mass.size());

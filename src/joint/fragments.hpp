@@ -1,6 +1,7 @@
 // Fragments: connected sets of elements, through shared nodes and through joints that have
-// not failed (union-find). A fragment's id is the smallest global element id in it, so the
-// id (and the colour drawn from it) of a piece stays the same while other pieces split off.
+// not failed (union-find). A fragment's id is the smallest element tag (the mesh file's
+// element number) in it, so the id (and the colour drawn from it) of a piece stays the same
+// while other pieces split off, whatever order the elements are kept in.
 #pragma once
 #include <vector>
 
@@ -20,7 +21,7 @@ Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector
 
 /// One fragment described for output: where it is and how heavy.
 struct FragmentInfo {
-  Index id = 0;  ///< as in Fragments::id (smallest element id in it)
+  Index id = 0;  ///< as in Fragments::id (smallest element tag in it)
   Real mass = 0;
   Index elements = 0;
   Vec3 centroid = Vec3::Zero();  ///< mass-weighted mean of its elements' node averages at `x`

@@ -18,6 +18,7 @@
 #include "io/vtu_writer.hpp"
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
+#include "mesh/locality.hpp"
 #include "run/case_mesh.hpp"
 #include "time/integrator.hpp"
 #include "time/stop_rule.hpp"
@@ -99,6 +100,10 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   Timer wall;
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
   Mesh mesh = load_case_mesh(c);
+  // Elements and nodes in a spatial order before anything numbers them (joints, contact,
+  // output): the step's kernels then read neighbours from neighbouring memory. Here, not in
+  // build_model, so that a model built from a structured test mesh keeps its numbering.
+  order_for_locality(mesh);
   Model model = build_model(c, std::move(mesh));
   const FemModel& fem = model.fem;
   log::info("  mesh {}: {} nodes, {} elements, {} body(ies)", c.mesh_generator.empty() ? c.mesh_file : c.mesh_generator,

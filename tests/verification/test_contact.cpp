@@ -601,7 +601,7 @@ TEST(Fragments, DescribedLargestFirstWithMassAndCentroid) {
   // A 3 x 1 x 1 hex bar with joints, the joint between the first two cells broken by hand:
   // two fragments, the first cell alone and the other two. With element masses 1, 2, 3 kg
   // (by x) the pair comes first (5 kg, centroid x = (2 x 0.15 + 3 x 0.25) / 5 = 0.21 m),
-  // then the single cell (1 kg at x = 0.05 m); ids are the fragments' smallest element.
+  // then the single cell (1 kg at x = 0.05 m); ids are the fragments' smallest element tag.
   CaseConfig c = contact_case(0.0);
   make_fracturable(c, 1e5, 1.0, 1e6, 30, 10.0);
   Model m = build_model(c, box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1)));
@@ -629,7 +629,8 @@ TEST(Fragments, DescribedLargestFirstWithMassAndCentroid) {
   EXPECT_NEAR(info[0].centroid(0), 0.21, 1e-12);
   EXPECT_NEAR(info[0].centroid(1), 0.05, 1e-12);
   EXPECT_DOUBLE_EQ(info[1].mass, 1.0);
-  EXPECT_EQ(info[1].id, first);
+  EXPECT_EQ(info[1].id, static_cast<Index>(b.tag[first]));
+  EXPECT_EQ(info[0].id, static_cast<Index>(std::min(b.tag[(first + 1) % 3], b.tag[(first + 2) % 3])));
   EXPECT_NEAR(info[1].centroid(0), 0.05, 1e-12);
 }
 
