@@ -256,9 +256,8 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     for (vtkIdType e = 0; e < nc; ++e) ++cells[std::lround(id->GetComponent(e, 0))];
     std::vector<std::pair<long, long>> by_size(cells.begin(), cells.end());
     std::stable_sort(by_size.begin(), by_size.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-    std::map<long, std::size_t> rank;
-    for (std::size_t r = 0; r < by_size.size(); ++r) rank[by_size[r].first] = r;
-    for (vtkIdType e = 0; e < nc; ++e) c->SetTypedTuple(e, kPalette[rank[std::lround(id->GetComponent(e, 0))] % 20]);
+    for (std::size_t r = 0; r < by_size.size(); ++r) cells[by_size[r].first] = static_cast<long>(r);  // now the rank
+    for (vtkIdType e = 0; e < nc; ++e) c->SetTypedTuple(e, kPalette[cells[std::lround(id->GetComponent(e, 0))] % 20]);
     g->GetCellData()->AddArray(c);
   }
   vtkNew<vtkDataSetSurfaceFilter> surf;

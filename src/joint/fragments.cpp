@@ -38,20 +38,20 @@ Fragments find_fragments(const Mesh& mesh, const JointSet& js, const std::vector
     if (js.status[j] != JointStatus::Broken) unite(js.ea[j], js.eb[j]);
   // Each set named by the smallest mesh-file tag in it: the name of a piece then depends on
   // the mesh alone, not on the order the elements are kept in memory (mesh/locality.hpp).
-  std::vector<std::size_t> tag(static_cast<std::size_t>(ne));
+  std::vector<std::size_t> min_tag(static_cast<std::size_t>(ne), SIZE_MAX);
   g = 0;
   for (const auto& b : mesh.blocks)
-    for (Index e = 0; e < b.size(); ++e, ++g) tag[g] = b.tag[e];
-  std::vector<std::size_t> min_tag(static_cast<std::size_t>(ne), SIZE_MAX);
-  for (Index e = 0; e < ne; ++e) min_tag[find(e)] = std::min(min_tag[find(e)], tag[e]);
+    for (Index e = 0; e < b.size(); ++e, ++g) {
+      DSPDEM_CHECK(b.tag[e] <= static_cast<std::size_t>(std::numeric_limits<Index>::max()),
+                   "element tag {} is too large to name a fragment", b.tag[e]);
+      std::size_t& t = min_tag[find(g)];
+      t = std::min(t, b.tag[e]);
+    }
   Fragments fr;
   fr.id.resize(ne);
   std::map<Index, Real> mass;
   for (Index e = 0; e < ne; ++e) {
-    const std::size_t t = min_tag[find(e)];
-    DSPDEM_CHECK(t <= static_cast<std::size_t>(std::numeric_limits<Index>::max()),
-                 "element tag {} is too large to name a fragment", t);
-    fr.id[e] = static_cast<Index>(t);
+    fr.id[e] = static_cast<Index>(min_tag[find(e)]);
     mass[fr.id[e]] += elem_mass[e];
   }
   fr.count = static_cast<Index>(mass.size());

@@ -37,13 +37,12 @@ int face_quadrature(int npf, Quadrature rule, double N[4][4], double w[4]) {
 
 namespace {
 // The four quadrature rules (triangle/quadrilateral x Gauss/nodal), computed once.
+// Every rule has as many points as the face has nodes (joint_kernel relies on it).
 struct QuadratureTables {
   double N[2][2][4][4], w[2][2][4];
-  int ng[2][2];
   QuadratureTables() {
     for (int q = 0; q < 2; ++q)
-      for (int r = 0; r < 2; ++r)
-        ng[q][r] = face_quadrature(q == 0 ? 3 : 4, static_cast<Quadrature>(r), N[q][r], w[q][r]);
+      for (int r = 0; r < 2; ++r) face_quadrature(q == 0 ? 3 : 4, static_cast<Quadrature>(r), N[q][r], w[q][r]);
   }
 };
 const QuadratureTables& quadrature_tables() {
@@ -83,9 +82,7 @@ void build_gather(JointSet& js) {
       }
   js.gather_joints = nj;
 }
-}  // namespace
 
-namespace {
 // One joint of NPF nodes (and NPF points, Gauss or nodal): its forces into out (side A's
 // NPF nodes at out[0..], side B's at out[12..]). The face size is a template parameter so
 // that every loop below has a fixed trip count and unrolls; the arithmetic, and its order,
