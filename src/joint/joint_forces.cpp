@@ -73,21 +73,25 @@ void build_gather(JointSet& js) {
     }
   js.gather_slot.assign(static_cast<std::size_t>(js.gather_ptr.back()), 0);
   std::vector<Index> fill(js.gather_ptr.begin(), js.gather_ptr.end() - 1);
-  // Joint order: side A before side B within a joint is the serial loop's order too.
+  // Joint order: side A before side B within a joint is the serial loop's order too. A slot
+  // is stored as 2 x (offset of side A's force) + side: side B's force is exactly -A's, so
+  // only A's is kept and side B's nodes subtract it (f - a is f + (-a) to the bit).
   for (Index j = 0; j < nj; ++j)
     for (int side = 0; side < 2; ++side)
       for (int k = 0; k < js.npf[j]; ++k) {
         const Index n = (side == 0 ? js.a : js.b)[4 * static_cast<std::size_t>(j) + k];
-        js.gather_slot[fill[row[n]]++] = 24 * j + 12 * side + 3 * k;
+        js.gather_slot[fill[row[n]]++] = 2 * (12 * j + 3 * k) + side;
       }
   js.gather_joints = nj;
 }
 
-// One joint of NPF nodes (and NPF points, Gauss or nodal): its forces into out (side A's
-// NPF nodes at out[0..], side B's at out[12..]). The face size is a template parameter so
-// that every loop below has a fixed trip count and unrolls; the arithmetic, and its order,
-// is add_joint_forces_reference's.
-template <int NPF>
+// One joint of NPF nodes (and NPF points, Gauss or nodal): side A's nodal forces into
+// out[0..3 NPF) (side B's are exactly their opposite). The face size and the rule are template
+// parameters so that every loop has a fixed trip count and nodal quadrature skips its zero
+// shape values. The arithmetic, and its order, is add_joint_forces_reference's; with nodal
+// quadrature the skipped terms are products with 0 and 1, which change no bit of the sums
+// (the first term is written 0 - y, as the oracle's +0 - y, so that no -0 appears).
+template <int NPF, bool NODAL>
 void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
   const std::size_t js4 = 4 * static_cast<std::size_t>(j);
   Vec3 xa[NPF], dx[NPF], xm[NPF];
@@ -100,7 +104,7 @@ void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4],
   Vec3 n = NPF == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
   const Real nl = n.norm();
   if (!(nl > 0)) {  // collapsed face: nothing sensible to apply (the element check reports it)
-    for (int k = 0; k < 24; ++k) out[k] = 0;
+    for (int k = 0; k < 3 * NPF; ++k) out[k] = 0;
     return;
   }
   n /= nl;
@@ -108,8 +112,13 @@ void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4],
   Real fa[3 * NPF] = {};
   int broken = 0, touched = 0;
   for (int g = 0; g < NPF; ++g) {
-    Vec3 jump = Vec3::Zero();
-    for (int k = 0; k < NPF; ++k) jump += N[g][k] * dx[k];
+    Vec3 jump;
+    if constexpr (NODAL) {
+      jump = dx[g];
+    } else {
+      jump = Vec3::Zero();
+      for (int k = 0; k < NPF; ++k) jump += N[g][k] * dx[k];
+    }
     const Real dn = jump.dot(n);
     const Vec3 sv = jump - dn * n;
     const Real ds = sv.norm();
@@ -126,11 +135,14 @@ void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4],
     Vec3 t = -sn * n;
     if (ds > 0) t -= (ss / ds) * sv;
     const Real wa = w[g] * js.area0[j];
-    for (int k = 0; k < NPF; ++k)
-      for (int d = 0; d < 3; ++d) fa[3 * k + d] -= N[g][k] * wa * t(d);
+    if constexpr (NODAL) {
+      for (int d = 0; d < 3; ++d) fa[3 * g + d] = 0.0 - wa * t(d);
+    } else {
+      for (int k = 0; k < NPF; ++k)
+        for (int d = 0; d < 3; ++d) fa[3 * k + d] -= N[g][k] * wa * t(d);
+    }
   }
-  // Side B takes the opposite of side A's force, summed in the same order: exactly -fa.
-  for (int k = 0; k < 3 * NPF; ++k) out[k] = fa[k], out[12 + k] = -fa[k];
+  for (int k = 0; k < 3 * NPF; ++k) out[k] = fa[k];
   // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and
   // a half-failed facet would otherwise hold two separated pieces together.
   if (broken > 0 && broken < NPF)
@@ -139,32 +151,48 @@ void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4],
   js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
   js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
 }
+
+// The node positions joint j will read, asked for ahead of time: after the Hilbert order the
+// nodes of nearby joints are close, but not in the cache when the joint comes up.
+inline void prefetch_joint(const JointSet& js, Index j, const Real* x) {
+  const std::size_t js4 = 4 * static_cast<std::size_t>(j);
+  for (int k = 0; k < js.npf[j]; ++k) {
+    __builtin_prefetch(x + 3 * static_cast<std::size_t>(js.a[js4 + k]));
+    __builtin_prefetch(x + 3 * static_cast<std::size_t>(js.b[js4 + k]));
+  }
+}
 }  // namespace
 
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots) {
   const Index nj = js.size();
   if (nj == 0) return;
   if (js.gather_joints != nj) build_gather(js);
-  slots.resize(24 * static_cast<std::size_t>(nj));
+  slots.resize(12 * static_cast<std::size_t>(nj));
   js.newly_failed.resize(nj);
   const QuadratureTables& qt = quadrature_tables();
+  constexpr Index ahead = 8;  // joints between a prefetch and its use
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
-    Real* out = &slots[24 * static_cast<std::size_t>(j)];
+    if (j + ahead < nj) prefetch_joint(js, j + ahead, x);
+    Real* out = &slots[12 * static_cast<std::size_t>(j)];
     js.newly_failed[j] = 0;
     if (js.released[j]) {
-      for (int k = 0; k < 24; ++k) out[k] = 0;
+      for (int k = 0; k < 12; ++k) out[k] = 0;
       continue;
     }
     const int ri = static_cast<int>(js.rule(j));
+    const bool nodal = js.rule(j) == Quadrature::Nodal;
     if (js.npf[j] == 3)
-      joint_kernel<3>(js, j, x, qt.N[0][ri], qt.w[0][ri], out);
+      nodal ? joint_kernel<3, true>(js, j, x, qt.N[0][ri], qt.w[0][ri], out)
+            : joint_kernel<3, false>(js, j, x, qt.N[0][ri], qt.w[0][ri], out);
     else
-      joint_kernel<4>(js, j, x, qt.N[1][ri], qt.w[1][ri], out);
+      nodal ? joint_kernel<4, true>(js, j, x, qt.N[1][ri], qt.w[1][ri], out)
+            : joint_kernel<4, false>(js, j, x, qt.N[1][ri], qt.w[1][ri], out);
   }
   for (Index j = 0; j < nj; ++j)
     if (js.newly_failed[j]) js.failed.push_back(j);
   // Each node its slots in joint order: the serial loop's sums, in parallel over nodes.
+  // Side B's slots hold side A's force: subtracted, which is adding its opposite exactly.
   const Index ng_nodes = static_cast<Index>(js.gather_node.size());
   const Real* s = slots.data();
 #pragma omp parallel for schedule(static) if (ng_nodes > 4096)
@@ -172,8 +200,12 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     Real* fn = f + 3 * static_cast<std::size_t>(js.gather_node[i]);
     Real f0 = fn[0], f1 = fn[1], f2 = fn[2];
     for (Index q = js.gather_ptr[i]; q < js.gather_ptr[i + 1]; ++q) {
-      const Real* sq = s + js.gather_slot[q];
-      f0 += sq[0], f1 += sq[1], f2 += sq[2];
+      const Index e = js.gather_slot[q];
+      const Real* sq = s + (e >> 1);
+      if (e & 1)
+        f0 -= sq[0], f1 -= sq[1], f2 -= sq[2];
+      else
+        f0 += sq[0], f1 += sq[1], f2 += sq[2];
     }
     fn[0] = f0, fn[1] = f1, fn[2] = f2;
   }

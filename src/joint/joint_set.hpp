@@ -44,9 +44,11 @@ struct JointSet {
   std::vector<char> released;
   Real released_energy = 0;
   /// Derived from a and b, built by the first force evaluation (the topology never changes
-  /// after insertion): for each node a joint touches, the force slots (24 per joint: side A
-  /// then side B, 3 per node) that add to it, in joint order. The forces are then gathered in
-  /// parallel over nodes, each node's sum in the order of a serial loop over the joints.
+  /// after insertion): for each node a joint touches, the force slots that add to it, in joint
+  /// order. A joint keeps side A's forces only (12 numbers, 3 per node; side B's are exactly
+  /// their opposite); a slot is 2 x its offset + side, and side B's nodes subtract. The forces
+  /// are then gathered in parallel over nodes, each node's sum in the order of a serial loop
+  /// over the joints.
   /// (Joints writing straight into per-node slots, so that the gather streams, measured 1.2x
   /// slower on the Brazilian disc: the scattered writes cost more than the gathered reads.)
   std::vector<Index> gather_node, gather_ptr, gather_slot;

@@ -35,9 +35,10 @@ bool same_state(const joint::CohesiveState& a, const joint::CohesiveState& b, Re
          close_work(a.work_s, b.work_s, work_floor) && close_work(a.diss_II_at_break, b.diss_II_at_break, work_floor);
 }
 
-void compare_kernels(CellType type, joint::Quadrature rule, int threads) {
+void compare_kernels(CellType type, joint::Quadrature rule, int threads, bool coupled = false) {
   CaseConfig c = simple_case(30e9, 0.2, 2400);
   make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  for (auto& jm : c.joint_materials) jm.coupled = coupled;
   const int n = type == CellType::Tet4 ? 8 : 14;
   const Model m = build_model(c, box_mesh(type, n, n, n, Vec3(0.1, 0.1, 0.1), 0.2));
   ASSERT_GT(m.joints.size(), 4000);
@@ -91,6 +92,14 @@ TEST(JointKernel, TetGaussMatchesTheSerialOracleOnTwoThreads) {
 }
 TEST(JointKernel, TetNodalMatchesTheSerialOracleOnTwoThreads) {
   compare_kernels(CellType::Tet4, joint::Quadrature::Nodal, 2);
+}
+// The disc's combination: nodal points (the kernel's own branch, which skips the zero shape
+// values) under the coupled law (its own elastic gate in lean_update).
+TEST(JointKernel, TetNodalCoupledMatchesTheSerialOracleOnTwoThreads) {
+  compare_kernels(CellType::Tet4, joint::Quadrature::Nodal, 2, true);
+}
+TEST(JointKernel, HexNodalMatchesTheSerialOracleOnOneThread) {
+  compare_kernels(CellType::Hex8, joint::Quadrature::Nodal, 1);
 }
 TEST(JointKernel, HexGaussMatchesTheSerialOracleOnTwoThreads) {
   compare_kernels(CellType::Hex8, joint::Quadrature::Gauss, 2);
