@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/chunked_sum.hpp"
 #include "core/error.hpp"
 #include "joint/joint_forces.hpp"
 
@@ -30,6 +31,7 @@ Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
   inv_mass_.resize(m.fem.n_nodes);
   for (Index i = 0; i < m.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / m.fem.mass[i];
   constrained_.assign(nd, 0);
+  v_target_.assign(nd, 0.0);
   for (const auto& c : m.constraints) {
     constrained_[c.dof] = 1;
     v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
@@ -55,19 +57,32 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact) {
   const Real* mass = m_.fem.mass.data();
   const Real* alpha = m_.fem.node_alpha.data();
   const Vec3 g = m_.gravity;
-  Real mass_dpower = 0;
   // External force array: gravity + loads; reactions are added below at constrained dofs.
-  for (Index i = 0; i < nn; ++i) {
-    for (int d = 0; d < 3; ++d) {
-      const std::size_t k = 3 * static_cast<std::size_t>(i) + d;
-      f_ext_[k] = mass[i] * g(d);
-      const Real fd = -alpha[i] * mass[i] * vel[k];
-      mass_dpower -= fd * vel[k];
-      f_[k] += fd;
-    }
+  // Without nodal loads the external force joins f_ in the same pass, in the same order
+  // (f + damping, then + external) as the two passes with loads.
+  const bool loads = !m_.loads.empty();
+  Real* f = f_.data();
+  Real* fe = f_ext_.data();
+  const Real* v = vel.data();
+  const Real mass_dpower = chunked_sums<1>(static_cast<std::size_t>(nn), [&](std::size_t b, std::size_t e) {
+    Real dp = 0;
+    for (std::size_t i = b; i < e; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const std::size_t k = 3 * i + d;
+        fe[k] = mass[i] * g(d);
+        const Real fd = -alpha[i] * mass[i] * v[k];
+        dp -= fd * v[k];
+        const Real fk = f[k] + fd;
+        f[k] = loads ? fk : fk + fe[k];
+      }
+    return std::array<Real, 1>{dp};
+  })[0];
+  if (loads) {
+    for (const auto& l : m_.loads) f_ext_[l.dof] += l.value * ramp_factor(t_, l.ramp);
+    const long nd = static_cast<long>(f_.size());
+#pragma omp parallel for schedule(static) if (nd > 8192)
+    for (long k = 0; k < nd; ++k) f[k] += fe[k];
   }
-  for (const auto& l : m_.loads) f_ext_[l.dof] += l.value * ramp_factor(t_, l.ramp);
-  for (std::size_t k = 0; k < f_.size(); ++k) f_[k] += f_ext_[k];
   // Reaction = the force the support must supply so the dof follows its prescribed motion.
   for (const auto& c : m_.constraints) {
     const Real a = c.value * ramp_rate(t_, c.ramp);
@@ -79,26 +94,61 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact) {
   dpower_ = mass_dpower + (m_.fem.any_stiffness_damping ? deterministic_sum(m_.fem.elem_dpower) : 0.0);
 }
 
-void Integrator::kick(Real h, Real t_target) {
-  const std::size_t nd = v_.size();
-  const Real* im = inv_mass_.data();
-  for (std::size_t k = 0; k < nd; ++k) v_[k] += h * f_[k] * im[k / 3];
+void Integrator::kick_nonnodal(Real h, Real t_target) {
   for (const auto& c : m_.constraints) v_[c.dof] = c.value * ramp_factor(t_target, c.ramp);
   for (RigidBody& b : m_.rigid) rigid_kick(b, f_.data(), x_.data(), h, v_.data());  // their nodes: one motion
   if (m_.contact.enabled()) m_.contact.kick_walls(h, t_target, m_.gravity);
 }
 
+// The passes over the nodes are fused where that keeps every operation and its order: the
+// first half kick with the drift, the external work of the step's end with the second half
+// kick and the finite check. Each runs in parallel over fixed chunks of nodes, and its sums
+// (work, the finite check) are added in chunk order, so a step is the same to the bit on
+// any thread count.
 void Integrator::step() {
-  const Real h = dt_;
-  kick(0.5 * h, t_ + 0.5 * h);
-  // Drift, with the first half of the trapezoidal external work.
+  const Real h = dt_, hh = 0.5 * h;
+  const std::size_t nn = static_cast<std::size_t>(m_.fem.n_nodes);
+  Real* x = x_.data();
+  Real* v = v_.data();
+  const Real* f = f_.data();
+  const Real* fe = f_ext_.data();
+  const Real* im = inv_mass_.data();
+  const char* cons = constrained_.data();
   Real w = 0;
-  for (std::size_t k = 0; k < x_.size(); ++k) {
-    const Real dx = h * v_[k];
-    x_[k] += dx;
-    w += 0.5 * f_ext_[k] * dx;
+  if (m_.rigid.empty()) {
+    // Half kick and drift in one pass: a constrained dof takes its prescribed velocity (the
+    // last constraint on it wins, as in kick_nonnodal) before it drifts.
+    Real* vt = v_target_.data();
+    for (const auto& c : m_.constraints) vt[c.dof] = c.value * ramp_factor(t_ + hh, c.ramp);
+    w = chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
+      Real s = 0;
+      for (std::size_t i = b; i < e; ++i)
+        for (int d = 0; d < 3; ++d) {
+          const std::size_t k = 3 * i + d;
+          const Real vk = cons[k] ? vt[k] : v[k] + hh * f[k] * im[i];
+          v[k] = vk;
+          const Real dx = h * vk;
+          x[k] += dx;
+          s += 0.5 * fe[k] * dx;
+        }
+      return std::array<Real, 1>{s};
+    })[0];
+    if (m_.contact.enabled()) m_.contact.kick_walls(hh, t_ + hh, m_.gravity);
+  } else {
+    // Rigid bodies set their nodes' velocities from the whole kick: kick, then drift.
+    kick_nodes(hh);
+    kick_nonnodal(hh, t_ + hh);
+    w = chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
+      Real s = 0;
+      for (std::size_t k = 3 * b; k < 3 * e; ++k) {
+        const Real dx = h * v[k];
+        x[k] += dx;
+        s += 0.5 * fe[k] * dx;
+      }
+      return std::array<Real, 1>{s};
+    })[0];
+    for (RigidBody& b : m_.rigid) w += 0.5 * rigid_drift(b, h, f_ext_.data(), x_.data(), v_.data());
   }
-  for (RigidBody& b : m_.rigid) w += 0.5 * rigid_drift(b, h, f_ext_.data(), x_.data(), v_.data());
   const bool contact = m_.contact.enabled();
   const Real wall_power0 = contact ? m_.contact.wall_power() : 0.0;
   if (contact) m_.contact.drift_walls(h, m_.gravity);
@@ -106,13 +156,39 @@ void Integrator::step() {
   ++n_;
   compute_forces(v_, h);  // v_ holds the mid-step velocity: damping is lagged by h/2
   damp_ += h * dpower_;
-  for (std::size_t k = 0; k < x_.size(); ++k) w += 0.5 * f_ext_[k] * h * v_[k];
+  // The end of the step's external work (at the mid-step velocity), the half kick, and a
+  // check that the state is finite (x - x and v - v are 0 unless x or v is not finite; the
+  // check's sum is NaN if any is).
+  const std::array<Real, 2> tail = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
+    Real s = 0, bad = 0;
+    for (std::size_t i = b; i < e; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const std::size_t k = 3 * i + d;
+        s += 0.5 * fe[k] * h * v[k];
+        v[k] += hh * f[k] * im[i];
+        bad += (x[k] - x[k]) + (cons[k] ? 0.0 : v[k] - v[k]);  // constrained: checked below
+      }
+    return std::array<Real, 2>{s, bad};
+  });
+  w += tail[0];
   w_ext_ += w;
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
-  kick(0.5 * h, t_);
-  bool finite = std::isfinite(w);
-  for (std::size_t k = 0; k < v_.size() && finite; ++k) finite = std::isfinite(v_[k]) && std::isfinite(x_[k]);
+  kick_nonnodal(hh, t_);
+  bool finite = std::isfinite(w) && tail[1] == 0;
+  // Rigid bodies and constraints wrote velocities after the check's pass: check them all.
+  for (std::size_t k = 0; k < v_.size() && finite && !m_.rigid.empty(); ++k) finite = std::isfinite(v_[k]);
+  for (const auto& c : m_.constraints) finite = finite && std::isfinite(v_[c.dof]);
   if (!finite) non_finite_state();
+}
+
+void Integrator::kick_nodes(Real h) {
+  Real* v = v_.data();
+  const Real* f = f_.data();
+  const Real* im = inv_mass_.data();
+  const long nn = static_cast<long>(m_.fem.n_nodes);
+#pragma omp parallel for schedule(static) if (nn > 4096)
+  for (long i = 0; i < nn; ++i)
+    for (int d = 0; d < 3; ++d) v[3 * i + d] += h * f[3 * i + d] * im[i];
 }
 
 void Integrator::non_finite_state() const {

@@ -58,13 +58,15 @@ class Integrator {
  private:
   /// dt_contact: time since the last evaluation (0 at the start), for contact histories.
   void compute_forces(const std::vector<Real>& vel, Real dt_contact);
-  void kick(Real h, Real t_target);
+  void kick_nodes(Real h);                    ///< v += h f / m at every node
+  void kick_nonnodal(Real h, Real t_target);  ///< constraints, rigid bodies, walls
   [[noreturn]] void non_finite_state() const;
 
   Model& m_;
   Real dt_, t_ = 0;
   long n_ = 0;
   std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_, joint_slots_;
+  std::vector<Real> v_target_;  ///< prescribed velocities of constrained dofs (scratch)
   std::vector<char> constrained_;
   Real w_ext_ = 0, damp_ = 0, e0_ = 0;
   Real dpower_ = 0;  ///< dissipation rate at the last force evaluation
