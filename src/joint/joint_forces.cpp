@@ -85,81 +85,114 @@ void build_gather(JointSet& js) {
   js.gather_joints = nj;
 }
 
-// One joint of NPF nodes (and NPF points, Gauss or nodal): side A's nodal forces into
-// out[0..3 NPF) (side B's are exactly their opposite). The face size and the rule are template
-// parameters so that every loop has a fixed trip count and nodal quadrature skips its zero
-// shape values. The arithmetic, and its order, is add_joint_forces_reference's; with nodal
-// quadrature the skipped terms are products with 0 and 1, which change no bit of the sums
-// (the first term is written 0 - y, as the oracle's +0 - y, so that no -0 appears).
-template <int NPF, bool NODAL>
-void joint_kernel(JointSet& js, Index j, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
-  const std::size_t js4 = 4 * static_cast<std::size_t>(j);
-  Vec3 xa[NPF], dx[NPF], xm[NPF];
-  for (int k = 0; k < NPF; ++k) {
-    xa[k] = node_pos_ptr(x, js.a[js4 + k]);
-    const Vec3 xb = node_pos_ptr(x, js.b[js4 + k]);
-    dx[k] = xb - xa[k];
-    xm[k] = 0.5 * (xa[k] + xb);
-  }
-  Vec3 n = NPF == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
-  const Real nl = n.norm();
-  if (!(nl > 0)) {  // collapsed face: nothing sensible to apply (the element check reports it)
-    for (int k = 0; k < 3 * NPF; ++k) out[k] = 0;
-    return;
-  }
-  n /= nl;
-  const CohesiveParams& p = js.params[js.param[j]];
-  Real fa[3 * NPF] = {};
-  int broken = 0, touched = 0;
-  for (int g = 0; g < NPF; ++g) {
-    Vec3 jump;
-    if constexpr (NODAL) {
-      jump = dx[g];
-    } else {
-      jump = Vec3::Zero();
-      for (int k = 0; k < NPF; ++k) jump += N[g][k] * dx[k];
+// B consecutive joints of NPF nodes each (and NPF points, Gauss or nodal): side A's nodal
+// forces of joint j0 + b into out[12 b ..) (side B's are exactly their opposite). The joints
+// are taken phase by phase (geometry, then the points' kinematics, then the laws, then the
+// forces), so that the square roots and divisions of different joints are independent and
+// overlap: one joint alone is a single chain of them, and its latency was the kernel's cost.
+// The face size and the rule are template parameters so that every loop has a fixed trip
+// count and nodal quadrature skips its zero shape values. The arithmetic of each joint, and
+// its order, is add_joint_forces_reference's; with nodal quadrature the skipped terms are
+// products with 0 and 1, which change no bit of the sums (the first term is written 0 - y, as
+// the oracle's +0 - y, so that no -0 appears).
+template <int NPF, bool NODAL, int B>
+void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
+  Vec3 dx[B][NPF], n[B];
+  bool live[B];
+  for (int b = 0; b < B; ++b) {
+    const std::size_t js4 = 4 * static_cast<std::size_t>(j0 + b);
+    Vec3 xm[NPF];
+    for (int k = 0; k < NPF; ++k) {
+      const Vec3 xa = node_pos_ptr(x, js.a[js4 + k]), xb = node_pos_ptr(x, js.b[js4 + k]);
+      dx[b][k] = xb - xa;
+      xm[k] = 0.5 * (xa + xb);
     }
-    const Real dn = jump.dot(n);
-    const Vec3 sv = jump - dn * n;
-    const Real ds = sv.norm();
-    // An elastic point stays lean (lean_point.hpp); any other runs its law on the full state.
-    Real sn, ss;
-    if (js.full[js4 + g] || !lean_update(p, dn, ds, js.lean[js4 + g], sn, ss)) {
-      CohesiveState& st = js.full_point(js4 + g);
-      joint_law_update(p, dn, ds, st);
-      broken += st.status == JointStatus::Broken;
-      touched += st.status != JointStatus::Intact;
-      sn = st.sn, ss = st.ss;
-    }
-    // Traction on side B (force per area): pulls B back towards A in tension, resists slip.
-    Vec3 t = -sn * n;
-    if (ds > 0) t -= (ss / ds) * sv;
-    const Real wa = w[g] * js.area0[j];
-    if constexpr (NODAL) {
-      for (int d = 0; d < 3; ++d) fa[3 * g + d] = 0.0 - wa * t(d);
-    } else {
-      for (int k = 0; k < NPF; ++k)
-        for (int d = 0; d < 3; ++d) fa[3 * k + d] -= N[g][k] * wa * t(d);
-    }
+    n[b] = NPF == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
+    const Real nl = n[b].norm();
+    live[b] = nl > 0;  // a collapsed face: nothing sensible to apply (the element check reports it)
+    if (live[b]) n[b] /= nl;
   }
-  for (int k = 0; k < 3 * NPF; ++k) out[k] = fa[k];
-  // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and
-  // a half-failed facet would otherwise hold two separated pieces together.
-  if (broken > 0 && broken < NPF)
-    for (int g = 0; g < NPF; ++g) force_break(js.full_point(js4 + g));
-  const JointStatus before = js.status[j];
-  js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
-  js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
+  Real dn[B][NPF], ds[B][NPF];
+  Vec3 sv[B][NPF];
+  for (int b = 0; b < B; ++b)
+    for (int g = 0; g < NPF; ++g) {
+      Vec3 jump;
+      if constexpr (NODAL) {
+        jump = dx[b][g];
+      } else {
+        jump = Vec3::Zero();
+        for (int k = 0; k < NPF; ++k) jump += N[g][k] * dx[b][k];
+      }
+      dn[b][g] = jump.dot(n[b]);
+      sv[b][g] = jump - dn[b][g] * n[b];
+      ds[b][g] = sv[b][g].norm();
+    }
+  Real sn[B][NPF], ss[B][NPF];
+  int broken[B] = {}, touched[B] = {};
+  for (int b = 0; b < B; ++b) {
+    if (!live[b]) continue;
+    const std::size_t js4 = 4 * static_cast<std::size_t>(j0 + b);
+    const CohesiveParams& p = js.params[js.param[j0 + b]];
+    for (int g = 0; g < NPF; ++g)
+      // An elastic point stays lean (lean_point.hpp); any other runs its law on the full state.
+      if (js.full[js4 + g] || !lean_update(p, dn[b][g], ds[b][g], js.lean[js4 + g], sn[b][g], ss[b][g])) {
+        CohesiveState& st = js.full_point(js4 + g);
+        joint_law_update(p, dn[b][g], ds[b][g], st);
+        broken[b] += st.status == JointStatus::Broken;
+        touched[b] += st.status != JointStatus::Intact;
+        sn[b][g] = st.sn, ss[b][g] = st.ss;
+      }
+  }
+  for (int b = 0; b < B; ++b) {
+    const Index j = j0 + b;
+    Real* o = out + 12 * b;
+    if (!live[b]) {
+      for (int k = 0; k < 3 * NPF; ++k) o[k] = 0;
+      continue;
+    }
+    Real fa[3 * NPF] = {};
+    for (int g = 0; g < NPF; ++g) {
+      // Traction on side B (force per area): pulls B back towards A in tension, resists slip.
+      Vec3 t = -sn[b][g] * n[b];
+      if (ds[b][g] > 0) t -= (ss[b][g] / ds[b][g]) * sv[b][g];
+      const Real wa = w[g] * js.area0[j];
+      if constexpr (NODAL) {
+        for (int d = 0; d < 3; ++d) fa[3 * g + d] = 0.0 - wa * t(d);
+      } else {
+        for (int k = 0; k < NPF; ++k)
+          for (int d = 0; d < 3; ++d) fa[3 * k + d] -= N[g][k] * wa * t(d);
+      }
+    }
+    for (int k = 0; k < 3 * NPF; ++k) o[k] = fa[k];
+    // A joint fails as a whole when any of its points fails: a facet is the crack's unit, and
+    // a half-failed facet would otherwise hold two separated pieces together.
+    const std::size_t js4 = 4 * static_cast<std::size_t>(j);
+    if (broken[b] > 0 && broken[b] < NPF)
+      for (int g = 0; g < NPF; ++g) force_break(js.full_point(js4 + g));
+    const JointStatus before = js.status[j];
+    js.status[j] = broken[b] > 0 ? JointStatus::Broken : touched[b] > 0 ? JointStatus::Softening : JointStatus::Intact;
+    js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;
+  }
 }
 
-// The node positions joint j will read, asked for ahead of time: after the Hilbert order the
-// nodes of nearby joints are close, but not in the cache when the joint comes up.
-inline void prefetch_joint(const JointSet& js, Index j, const Real* x) {
-  const std::size_t js4 = 4 * static_cast<std::size_t>(j);
-  for (int k = 0; k < js.npf[j]; ++k) {
-    __builtin_prefetch(x + 3 * static_cast<std::size_t>(js.a[js4 + k]));
-    __builtin_prefetch(x + 3 * static_cast<std::size_t>(js.b[js4 + k]));
-  }
+// Joints j0 .. j0 + B - 1 with the same face size and rule, none released: one batch.
+template <int B>
+bool uniform_batch(const JointSet& js, Index j0) {
+  for (int b = 0; b < B; ++b)
+    if (js.released[j0 + b] || js.npf[j0 + b] != js.npf[j0] || js.rule(j0 + b) != js.rule(j0)) return false;
+  return true;
+}
+
+template <int B>
+void run_kernel(JointSet& js, Index j0, const Real* x, const QuadratureTables& qt, Real* out) {
+  const int ri = static_cast<int>(js.rule(j0));
+  const bool nodal = js.rule(j0) == Quadrature::Nodal;
+  if (js.npf[j0] == 3)
+    nodal ? joint_kernel<3, true, B>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out)
+          : joint_kernel<3, false, B>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out);
+  else
+    nodal ? joint_kernel<4, true, B>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out)
+          : joint_kernel<4, false, B>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out);
 }
 }  // namespace
 
@@ -170,24 +203,23 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
   slots.resize(12 * static_cast<std::size_t>(nj));
   js.newly_failed.resize(nj);
   const QuadratureTables& qt = quadrature_tables();
-  constexpr Index ahead = 8;  // joints between a prefetch and its use
+  constexpr Index batch = 4;
+  const Index nb = (nj + batch - 1) / batch;
 #pragma omp parallel for schedule(static) if (nj > 1024)
-  for (Index j = 0; j < nj; ++j) {
-    if (j + ahead < nj) prefetch_joint(js, j + ahead, x);
-    Real* out = &slots[12 * static_cast<std::size_t>(j)];
-    js.newly_failed[j] = 0;
-    if (js.released[j]) {
-      for (int k = 0; k < 12; ++k) out[k] = 0;
+  for (Index q = 0; q < nb; ++q) {
+    const Index j0 = batch * q, j1 = std::min(j0 + batch, nj);
+    for (Index j = j0; j < j1; ++j) js.newly_failed[j] = 0;
+    if (j1 - j0 == batch && uniform_batch<batch>(js, j0)) {
+      run_kernel<batch>(js, j0, x, qt, &slots[12 * static_cast<std::size_t>(j0)]);
       continue;
     }
-    const int ri = static_cast<int>(js.rule(j));
-    const bool nodal = js.rule(j) == Quadrature::Nodal;
-    if (js.npf[j] == 3)
-      nodal ? joint_kernel<3, true>(js, j, x, qt.N[0][ri], qt.w[0][ri], out)
-            : joint_kernel<3, false>(js, j, x, qt.N[0][ri], qt.w[0][ri], out);
-    else
-      nodal ? joint_kernel<4, true>(js, j, x, qt.N[1][ri], qt.w[1][ri], out)
-            : joint_kernel<4, false>(js, j, x, qt.N[1][ri], qt.w[1][ri], out);
+    for (Index j = j0; j < j1; ++j) {
+      Real* out = &slots[12 * static_cast<std::size_t>(j)];
+      if (js.released[j])
+        for (int k = 0; k < 12; ++k) out[k] = 0;
+      else
+        run_kernel<1>(js, j, x, qt, out);
+    }
   }
   for (Index j = 0; j < nj; ++j)
     if (js.newly_failed[j]) js.failed.push_back(j);

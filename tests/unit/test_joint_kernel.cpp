@@ -44,6 +44,10 @@ void compare_kernels(CellType type, joint::Quadrature rule, int threads, bool co
   ASSERT_GT(m.joints.size(), 4000);
   joint::JointSet ref = m.joints, opt = m.joints;
   for (auto* js : {&ref, &opt}) js->quadrature.assign(js->params.size(), rule);
+  // Some joints released (contact took over): the kernel takes joints in batches of equal
+  // ones and the rest one by one, so both paths run.
+  for (auto* js : {&ref, &opt})
+    for (Index j = 5; j < js->size(); j += 97) js->released[j] = 1;
   omp_set_num_threads(threads);
   std::vector<Real> slots;
   const std::size_t nd = m.fem.x0.size();
