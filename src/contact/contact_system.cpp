@@ -114,11 +114,19 @@ void ContactSystem::touches_of(Index ea, Index eb, const Real* x, std::vector<To
 
 bool ContactSystem::needs_rebuild(const joint::JointSet& js, const Real* x) const {
   if (!built_ || js.failed.size() != failed_seen_) return true;
+  // Only the nodes of candidate elements: no other element is in a pair until the next
+  // rebuild (the candidates change only at one, when joints fail).
   const Real lim2 = 0.25 * skin_ * skin_;
-  for (std::size_t i = 0; i < x_build_.size(); i += 3) {
-    const Real dx = x[i] - x_build_[i], dy = x[i + 1] - x_build_[i + 1], dz = x[i + 2] - x_build_[i + 2];
-    if (dx * dx + dy * dy + dz * dz > lim2) return true;
+  const long nw = static_cast<long>(watch_.size());
+  bool moved = false;
+#pragma omp parallel for schedule(static) reduction(|| : moved) if (nw > 8192)
+  for (long i = 0; i < nw; ++i) {
+    const Real* xi = x + 3 * static_cast<std::size_t>(watch_[i]);
+    const Real* xb = &x_build_[3 * static_cast<std::size_t>(i)];
+    const Real dx = xi[0] - xb[0], dy = xi[1] - xb[1], dz = xi[2] - xb[2];
+    moved = moved || dx * dx + dy * dy + dz * dz > lim2;
   }
+  if (moved) return true;
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const Wall& wl = walls_[w];
     const Real turn = wl.q.angularDistance(wall_q_build_[w]) * wl.half.norm();
@@ -228,7 +236,13 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
       if (hit) wall_pairs_.emplace_back(static_cast<Index>(w), surface_list_[i]);
     }
   }
-  x_build_.assign(x, x + 3 * static_cast<std::size_t>(mesh.n_nodes()));
+  watch_.clear();
+  for (Index e : surface_list_) watch_.insert(watch_.end(), elems_[e].conn, elems_[e].conn + elems_[e].npe);
+  std::sort(watch_.begin(), watch_.end());
+  watch_.erase(std::unique(watch_.begin(), watch_.end()), watch_.end());
+  x_build_.resize(3 * watch_.size());
+  for (std::size_t i = 0; i < watch_.size(); ++i)
+    for (int d = 0; d < 3; ++d) x_build_[3 * i + d] = x[3 * static_cast<std::size_t>(watch_[i]) + d];
   wall_build_.clear(), wall_q_build_.clear();
   for (const Wall& wl : walls_) wall_build_.push_back(wl.centre), wall_q_build_.push_back(wl.q);
   history_ = remap_history(history_, old_keys, pair_keys());

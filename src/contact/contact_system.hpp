@@ -130,7 +130,8 @@ class ContactSystem {
   /// energy); it shrinks as the pair opens and is dropped when the pair leaves the list.
   std::vector<Real> born_offset_;
   std::vector<Wall> walls_;
-  std::vector<Real> x_build_;
+  std::vector<Index> watch_;      ///< nodes of the candidate elements, ascending
+  std::vector<Real> x_build_;     ///< their positions at the last build (3 per node)
   std::vector<Vec3> wall_build_;  ///< centres at the last build
   std::vector<Eigen::Quaternion<Real>> wall_q_build_;
   std::size_t failed_seen_ = 0;
