@@ -32,18 +32,35 @@ Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
   for (Index i = 0; i < m.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / m.fem.mass[i];
   constrained_.assign(nd, 0);
   v_target_.assign(nd, 0.0);
+  special_.assign(nd, 0);
+  for (const auto& c : m.constraints) special_[c.dof] = 1;
+  for (const auto& l : m.loads) special_[l.dof] = 1;
+  for (std::size_t k = 0; k < nd; ++k)
+    if (special_[k]) special_list_.push_back(k);
+  quiet_ = m.rigid.empty() && m.gravity == Vec3::Zero();
+  for (Index i = 0; i < m.fem.n_nodes && quiet_; ++i)
+    quiet_ = m.fem.node_alpha[i] == 0 && m.fem.mass[i] > 0 && std::isfinite(m.fem.mass[i]);
   for (const auto& c : m.constraints) {
     constrained_[c.dof] = 1;
     v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
   }
   for (const RigidBody& b : m.rigid) rigid_set_velocities(b, x_.data(), v_.data());
   if (m.contact.enabled()) m.contact.kick_walls(0.0, 0.0, m.gravity);  // prescribed wall velocities at t = 0
-  compute_forces(v_, 0.0);
+  compute_forces(v_, 0.0, false);
   const Energy e = energy();
   e0_ = e.kinetic + e.internal + e.joint_elastic + e.contact_elastic;
 }
 
-void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact) {
+Real Integrator::nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) const {
+  const Real m = m_.fem.mass[i];
+  const Real fe = m * m_.gravity(d);
+  const Real fd = -m_.fem.node_alpha[i] * m * vk;
+  dp -= fd * vk;
+  f = (f + fd) + fe;
+  return fe;
+}
+
+void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail) {
   const ForceStatus st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data());
   if (st.inverted_element >= 0)
     throw NumericalError(fmt::format("element {} inverted (det F = {:.3g}) at step {}, t = {:.6g} s; the time step "
@@ -53,37 +70,36 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact) {
   if (m_.joints.size() > 0) joint::add_joint_forces(m_.joints, x_.data(), f_.data(), joint_slots_);
   // Contact forces are internal between bodies and external from walls; both go to f_.
   if (m_.contact.enabled()) m_.contact.add_forces(m_.mesh, m_.joints, x_.data(), vel.data(), dt_contact, f_.data());
-  const Index nn = m_.fem.n_nodes;
-  const Real* mass = m_.fem.mass.data();
-  const Real* alpha = m_.fem.node_alpha.data();
-  const Vec3 g = m_.gravity;
-  // External force array: gravity + loads; reactions are added below at constrained dofs.
-  // Without nodal loads the external force joins f_ in the same pass, in the same order
-  // (f + damping, then + external) as the two passes with loads.
-  const bool loads = !m_.loads.empty();
+  // f = (f + damping) + external at every dof, external = gravity + loads (+ the reaction,
+  // added below at constrained dofs). Loaded and constrained dofs are done here; the others
+  // here too, or in the step's last pass (nodal_in_tail), where the same arithmetic saves a
+  // pass over the nodes.
+  const Real* v = vel.data();
   Real* f = f_.data();
   Real* fe = f_ext_.data();
-  const Real* v = vel.data();
-  const Real mass_dpower = chunked_sums<1>(static_cast<std::size_t>(nn), [&](std::size_t b, std::size_t e) {
-    Real dp = 0;
-    for (std::size_t i = b; i < e; ++i)
-      for (int d = 0; d < 3; ++d) {
-        const std::size_t k = 3 * i + d;
-        fe[k] = mass[i] * g(d);
-        const Real fd = -alpha[i] * mass[i] * v[k];
-        dp -= fd * v[k];
-        const Real fk = f[k] + fd;
-        f[k] = loads ? fk : fk + fe[k];
-      }
-    return std::array<Real, 1>{dp};
-  })[0];
-  if (loads) {
-    for (const auto& l : m_.loads) f_ext_[l.dof] += l.value * ramp_factor(t_, l.ramp);
-    const long nd = static_cast<long>(f_.size());
-#pragma omp parallel for schedule(static) if (nd > 8192)
-    for (long k = 0; k < nd; ++k) f[k] += fe[k];
+  for (std::size_t k : special_list_) fe[k] = m_.fem.mass[k / 3] * m_.gravity(k % 3);
+  for (const auto& l : m_.loads) fe[l.dof] += l.value * ramp_factor(t_, l.ramp);
+  for (std::size_t k : special_list_) {
+    const Real fd = -m_.fem.node_alpha[k / 3] * m_.fem.mass[k / 3] * v[k];
+    f[k] = (f[k] + fd) + fe[k];
+  }
+  if (!nodal_in_tail) {
+    const Real mass_dpower =
+        chunked_sums<1>(static_cast<std::size_t>(m_.fem.n_nodes), [&](std::size_t b, std::size_t e) {
+          Real dp = 0;
+          for (std::size_t i = b; i < e; ++i)
+            for (int d = 0; d < 3; ++d) {
+              const std::size_t k = 3 * i + d;
+              Real fk = f[k];
+              const Real fek = nodal_force(i, d, v[k], fk, dp);
+              if (!special_[k]) f[k] = fk, fe[k] = fek;
+            }
+          return std::array<Real, 1>{dp};
+        })[0];
+    dpower_ = mass_dpower + element_dpower();
   }
   // Reaction = the force the support must supply so the dof follows its prescribed motion.
+  const Real* mass = m_.fem.mass.data();
   for (const auto& c : m_.constraints) {
     const Real a = c.value * ramp_rate(t_, c.ramp);
     const Real r = mass[c.dof / 3] * a - f_[c.dof];
@@ -91,7 +107,10 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact) {
     f_ext_[c.dof] += r;
     f_[c.dof] += r;
   }
-  dpower_ = mass_dpower + (m_.fem.any_stiffness_damping ? deterministic_sum(m_.fem.elem_dpower) : 0.0);
+}
+
+Real Integrator::element_dpower() const {
+  return m_.fem.any_stiffness_damping ? deterministic_sum(m_.fem.elem_dpower) : 0.0;
 }
 
 void Integrator::kick_nonnodal(Real h, Real t_target) {
@@ -110,18 +129,25 @@ void Integrator::step() {
   const std::size_t nn = static_cast<std::size_t>(m_.fem.n_nodes);
   Real* x = x_.data();
   Real* v = v_.data();
-  const Real* f = f_.data();
+  Real* f = f_.data();
   const Real* fe = f_ext_.data();
   const Real* im = inv_mass_.data();
+  const Real* mass = m_.fem.mass.data();
+  const Vec3 g = m_.gravity;
   const char* cons = constrained_.data();
-  Real w = 0;
-  if (m_.rigid.empty()) {
+  const char* special = special_.data();
+  // Without rigid bodies, the external force of a dof with no load or constraint is its
+  // weight, computed where it is needed rather than stored (fused passes below); in a quiet
+  // model it is zero and its terms are skipped.
+  const bool fused = m_.rigid.empty();
+  Real w = 0, bad = 0;
+  if (fused) {
     // Half kick and drift in one pass: a constrained dof takes its prescribed velocity (the
     // last constraint on it wins, as in kick_nonnodal) before it drifts.
     Real* vt = v_target_.data();
     for (const auto& c : m_.constraints) vt[c.dof] = c.value * ramp_factor(t_ + hh, c.ramp);
-    w = chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
-      Real s = 0;
+    const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
+      Real s = 0, nf = 0;
       for (std::size_t i = b; i < e; ++i)
         for (int d = 0; d < 3; ++d) {
           const std::size_t k = 3 * i + d;
@@ -129,24 +155,31 @@ void Integrator::step() {
           v[k] = vk;
           const Real dx = h * vk;
           x[k] += dx;
-          s += 0.5 * fe[k] * dx;
+          nf += x[k] - x[k];  // 0 unless x is not finite (NaN then)
+          if (special[k])
+            s += 0.5 * fe[k] * dx;
+          else if (!quiet_)
+            s += 0.5 * (mass[i] * g(d)) * dx;
         }
-      return std::array<Real, 1>{s};
-    })[0];
+      return std::array<Real, 2>{s, nf};
+    });
+    w = r[0], bad = r[1];
     if (m_.contact.enabled()) m_.contact.kick_walls(hh, t_ + hh, m_.gravity);
   } else {
     // Rigid bodies set their nodes' velocities from the whole kick: kick, then drift.
     kick_nodes(hh);
     kick_nonnodal(hh, t_ + hh);
-    w = chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
-      Real s = 0;
+    const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
+      Real s = 0, nf = 0;
       for (std::size_t k = 3 * b; k < 3 * e; ++k) {
         const Real dx = h * v[k];
         x[k] += dx;
+        nf += x[k] - x[k];
         s += 0.5 * fe[k] * dx;
       }
-      return std::array<Real, 1>{s};
-    })[0];
+      return std::array<Real, 2>{s, nf};
+    });
+    w = r[0], bad = r[1];
     for (RigidBody& b : m_.rigid) w += 0.5 * rigid_drift(b, h, f_ext_.data(), x_.data(), v_.data());
   }
   const bool contact = m_.contact.enabled();
@@ -154,27 +187,43 @@ void Integrator::step() {
   if (contact) m_.contact.drift_walls(h, m_.gravity);
   t_ += h;
   ++n_;
-  compute_forces(v_, h);  // v_ holds the mid-step velocity: damping is lagged by h/2
-  damp_ += h * dpower_;
-  // The end of the step's external work (at the mid-step velocity), the half kick, and a
-  // check that the state is finite (x - x and v - v are 0 unless x or v is not finite; the
-  // check's sum is NaN if any is).
-  const std::array<Real, 2> tail = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
-    Real s = 0, bad = 0;
+  compute_forces(v_, h, fused);  // v_ holds the mid-step velocity: damping is lagged by h/2
+  // The last pass: (fused) the damping and external forces of the dofs compute_forces left,
+  // and the damping power; the end of the step's external work (at the mid-step velocity);
+  // the half kick; a check that the velocities are finite (v - v is 0 unless v is not).
+  // Quiet: no damping and no weight, so f = (f + (+-0)) + (+0) is f + 0 (which only turns
+  // -0 into +0) and the work and power terms are +-0, which change no sum.
+  const std::array<Real, 3> tail = chunked_sums<3>(nn, [&](std::size_t b, std::size_t e) {
+    Real s = 0, nf = 0, dp = 0;
     for (std::size_t i = b; i < e; ++i)
       for (int d = 0; d < 3; ++d) {
         const std::size_t k = 3 * i + d;
-        s += 0.5 * fe[k] * h * v[k];
-        v[k] += hh * f[k] * im[i];
-        bad += (x[k] - x[k]) + (cons[k] ? 0.0 : v[k] - v[k]);  // constrained: checked below
+        const Real vk = v[k];
+        if (special[k] || !fused) {
+          s += 0.5 * fe[k] * h * vk;
+          if (fused) {
+            Real fk = f[k];
+            nodal_force(i, d, vk, fk, dp);  // the damping power only: f[k] is complete
+          }
+        } else if (quiet_) {
+          f[k] = f[k] + 0.0;
+        } else {
+          Real fk = f[k];
+          s += 0.5 * nodal_force(i, d, vk, fk, dp) * h * vk;
+          f[k] = fk;
+        }
+        v[k] = vk + hh * f[k] * im[i];
+        nf += cons[k] ? 0.0 : v[k] - v[k];  // constrained: checked below
       }
-    return std::array<Real, 2>{s, bad};
+    return std::array<Real, 3>{s, nf, dp};
   });
+  if (fused) dpower_ = tail[2] + element_dpower();
+  damp_ += h * dpower_;
   w += tail[0];
   w_ext_ += w;
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
   kick_nonnodal(hh, t_);
-  bool finite = std::isfinite(w) && tail[1] == 0;
+  bool finite = std::isfinite(w) && bad == 0 && tail[1] == 0;
   // Rigid bodies and constraints wrote velocities after the check's pass: check them all.
   for (std::size_t k = 0; k < v_.size() && finite && !m_.rigid.empty(); ++k) finite = std::isfinite(v_[k]);
   for (const auto& c : m_.constraints) finite = finite && std::isfinite(v_[c.dof]);

@@ -57,7 +57,13 @@ class Integrator {
 
  private:
   /// dt_contact: time since the last evaluation (0 at the start), for contact histories.
-  void compute_forces(const std::vector<Real>& vel, Real dt_contact);
+  /// nodal_in_tail: leave damping and external forces of the dofs without a load or a
+  /// constraint to the pass that ends the step (step()); otherwise add them here.
+  void compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail);
+  /// Damping and external force of one dof at velocity vk: adds to the damping power dp,
+  /// returns the external force.
+  Real nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) const;
+  Real element_dpower() const;                ///< stiffness-damping power of the elements [W]
   void kick_nodes(Real h);                    ///< v += h f / m at every node
   void kick_nonnodal(Real h, Real t_target);  ///< constraints, rigid bodies, walls
   [[noreturn]] void non_finite_state() const;
@@ -68,6 +74,11 @@ class Integrator {
   std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_, joint_slots_;
   std::vector<Real> v_target_;  ///< prescribed velocities of constrained dofs (scratch)
   std::vector<char> constrained_;
+  std::vector<char> special_;              ///< per dof: constrained or loaded
+  std::vector<std::size_t> special_list_;  ///< those dofs, ascending
+  /// No rigid bodies, no gravity, no mass damping: a dof without a load or a constraint has
+  /// no nodal force besides f_ (its weight and damping are exactly +-0).
+  bool quiet_ = false;
   Real w_ext_ = 0, damp_ = 0, e0_ = 0;
   Real dpower_ = 0;  ///< dissipation rate at the last force evaluation
 };
