@@ -71,6 +71,8 @@ class Integrator {
   Model& m_;
   Real dt_, t_ = 0;
   long n_ = 0;
+  /// f_ext_: external force per dof. Without rigid bodies it is kept only at loaded and
+  /// constrained dofs (special_); elsewhere it is the weight, computed where it is used.
   std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_, joint_slots_;
   std::vector<Real> v_target_;  ///< prescribed velocities of constrained dofs (scratch)
   std::vector<char> constrained_;
