@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/chunked_sum.hpp"
 #include "core/error.hpp"
 #include "fem/hex8.hpp"
 #include "fem/tet4.hpp"
@@ -132,20 +133,14 @@ ForceStatus internal_forces(FemModel& m, const Real* x, const Real* v, Real* f, 
 }
 
 Real deterministic_sum(const std::vector<Real>& a) {
-  constexpr std::size_t chunk = 4096;
-  const std::size_t nc = (a.size() + chunk - 1) / chunk;
-  std::vector<Real> part(nc, 0.0);
-  const long nl = static_cast<long>(nc);
-#pragma omp parallel for schedule(static) if (nl > 1)
-  for (long c = 0; c < nl; ++c) {
-    Real s = 0;
-    const std::size_t end = std::min(a.size(), (c + 1) * chunk);
-    for (std::size_t i = c * chunk; i < end; ++i) s += a[i];
-    part[c] = s;
-  }
-  Real s = 0;
-  for (Real p : part) s += p;
-  return s;
+  return chunked_sums<1>(
+      a.size(),
+      [&](std::size_t b, std::size_t e) {
+        Real s = 0;
+        for (std::size_t i = b; i < e; ++i) s += a[i];
+        return std::array<Real, 1>{s};
+      },
+      4096)[0];
 }
 
 }  // namespace dspdem
