@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "joint/coupled_law.hpp"
+#include "joint/lane4.hpp"
 
 namespace dspdem::joint {
 
@@ -175,6 +176,102 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
   }
 }
 
+// The common case of a tetrahedral model with nodal quadrature, before anything cracks: four
+// triangular joints under one law with all their points lean and elastic. The four
+// joints are the four lanes of lane::V4, so each operation of joint_kernel<3, true, 4> is one
+// operation for the four: the same arithmetic in the same order (so the same bits; the
+// oracle test checks it), without the per-joint square root and division latencies of the
+// scalar kernel. Returns false, having written nothing, when the batch is not that case or
+// when any point may leave its elastic branch (lean_update's tests, taken conservatively):
+// the caller then runs the scalar kernel, which decides exactly.
+bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&w)[4], Real* out) {
+  using lane::V4;
+  const std::size_t p0 = 4 * static_cast<std::size_t>(j0);
+  const JointLaw law = js.params[js.param[j0]].law;
+  for (int b = 0; b < 4; ++b) {
+    if (js.params[js.param[j0 + b]].law != law) return false;
+    for (int g = 0; g < 3; ++g)
+      if (js.full[p0 + 4 * b + g]) return false;
+  }
+  // Lane b is joint j0 + b (each joint has its own parameters: the penalty follows its
+  // elements' size).
+  const CohesiveParams* P[4];
+  for (int b = 0; b < 4; ++b) P[b] = &js.params[js.param[j0 + b]];
+  auto par = [&](Real CohesiveParams::*m) { return V4::gather(&(P[0]->*m), &(P[1]->*m), &(P[2]->*m), &(P[3]->*m)); };
+  const Index* ja = &js.a[p0];
+  const Index* jb = &js.b[p0];
+  auto pos = [x](const Index* nodes, int k, int d) {
+    return V4::gather(
+        x + 3 * static_cast<std::size_t>(nodes[k]) + d, x + 3 * static_cast<std::size_t>(nodes[4 + k]) + d,
+        x + 3 * static_cast<std::size_t>(nodes[8 + k]) + d, x + 3 * static_cast<std::size_t>(nodes[12 + k]) + d);
+  };
+  // A lean point's fields, lane b from point 4 (j0 + b) + g.
+  constexpr std::size_t stride = 4 * sizeof(LeanPoint) / sizeof(Real);
+  static_assert(sizeof(LeanPoint) == 4 * sizeof(Real));
+  auto lean = [&](int g, Real LeanPoint::*m) {
+    const Real* q = &(js.lean[p0 + g].*m);
+    return V4::gather(q, q + stride, q + 2 * stride, q + 3 * stride);
+  };
+  const V4 zero = V4::set1(0.0), half = V4::set1(0.5);
+  V4 dx[3][3], xm[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int d = 0; d < 3; ++d) {
+      const V4 A = pos(ja, k, d), B = pos(jb, k, d);
+      dx[k][d] = B - A;
+      xm[k][d] = half * (A + B);
+    }
+  V4 e1[3], e2[3];
+  for (int d = 0; d < 3; ++d) e1[d] = xm[1][d] - xm[0][d], e2[d] = xm[2][d] - xm[0][d];
+  V4 n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  const V4 nl = lane::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!lane::all(lane::gt(nl, zero))) return false;  // a collapsed face: the scalar kernel's case
+  for (int d = 0; d < 3; ++d) n[d] = n[d] / nl;
+  const V4 kn = par(&CohesiveParams::kn), ks = par(&CohesiveParams::ks), ft = par(&CohesiveParams::ft),
+           c = par(&CohesiveParams::c), tan_phi = par(&CohesiveParams::tan_phi);
+  const V4 area0 = V4::load(&js.area0[j0]);
+  V4 ok = lane::gt(nl, zero);  // all set
+  V4 dn[3], ds[3], sv[3][3], sn[3], ss[3], dn_max[3], ds_max[3];
+  for (int g = 0; g < 3; ++g) {
+    dn[g] = dx[g][0] * n[0] + dx[g][1] * n[1] + dx[g][2] * n[2];
+    for (int d = 0; d < 3; ++d) sv[g][d] = dx[g][d] - dn[g] * n[d];
+    ds[g] = lane::sqrt(sv[g][0] * sv[g][0] + sv[g][1] * sv[g][1] + sv[g][2] * sv[g][2]);
+    // lean_update, lane by lane.
+    sn[g] = kn * dn[g];
+    ss[g] = ks * ds[g];
+    ds_max[g] = lane::max(lean(g, &LeanPoint::ds_max), ds[g]);
+    const V4 lp_dn_max = lean(g, &LeanPoint::dn_max);
+    if (law == JointLaw::Coupled) {
+      const V4 un = lane::max(zero, dn[g]);
+      const V4 fs = c + lane::max(zero, lane::neg(kn) * dn[g]) * tan_phi;
+      const V4 an = kn * un * fs, as = ks * ds[g] * ft, lim = ft * fs;
+      ok = ok & lane::lt(an * an + as * as, V4::set1(0.98) * lim * lim);
+      dn_max[g] = lane::max(lp_dn_max, dn[g]);
+    } else {
+      dn_max[g] = lane::select(lane::gt(dn[g], zero), lane::max(lp_dn_max, dn[g]), lp_dn_max);
+      ok = ok & lane::lt(dn_max[g] * kn, ft * V4::set1(1 - 1e-12));
+      if (law != JointLaw::ModeI) {
+        const V4 fs = lane::max(c - lane::min(sn[g], ft) * tan_phi, V4::set1(1e-12) * lane::max(c, V4::set1(1.0)));
+        ok = ok & lane::lt(ds_max[g] * ks, fs * V4::set1(1 - 1e-12));
+      }
+    }
+  }
+  if (!lane::all(ok)) return false;
+  // Forces of side A; written only now that every lane is known to be elastic.
+  for (int g = 0; g < 3; ++g) {
+    V4 t[3];
+    const V4 slip = lane::gt(ds[g], zero), r = ss[g] / lane::select(slip, ds[g], V4::set1(1.0));
+    for (int d = 0; d < 3; ++d)
+      t[d] = lane::select(slip, lane::neg(sn[g]) * n[d] - r * sv[g][d], lane::neg(sn[g]) * n[d]);
+    const V4 wa = V4::set1(w[g]) * area0;
+    for (int d = 0; d < 3; ++d) (zero - wa * t[d]).scatter(out + 3 * g + d, 12);
+    LeanPoint& l = js.lean[p0 + g];
+    dn[g].scatter(&l.dn, stride), ds[g].scatter(&l.ds, stride);
+    dn_max[g].scatter(&l.dn_max, stride), ds_max[g].scatter(&l.ds_max, stride);
+  }
+  for (int b = 0; b < 4; ++b) js.status[j0 + b] = JointStatus::Intact;
+  return true;
+}
+
 // Joints j0 .. j0 + B - 1 with the same face size and rule, none released: one batch.
 template <int B>
 bool uniform_batch(const JointSet& js, Index j0) {
@@ -210,7 +307,10 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     const Index j0 = batch * q, j1 = std::min(j0 + batch, nj);
     for (Index j = j0; j < j1; ++j) js.newly_failed[j] = 0;
     if (j1 - j0 == batch && uniform_batch<batch>(js, j0)) {
-      run_kernel<batch>(js, j0, x, qt, &slots[12 * static_cast<std::size_t>(j0)]);
+      Real* out = &slots[12 * static_cast<std::size_t>(j0)];
+      const bool lean = js.npf[j0] == 3 && js.rule(j0) == Quadrature::Nodal &&
+                        lean_batch_tri_nodal(js, j0, x, qt.w[0][static_cast<int>(Quadrature::Nodal)], out);
+      if (!lean) run_kernel<batch>(js, j0, x, qt, out);
       continue;
     }
     for (Index j = j0; j < j1; ++j) {
