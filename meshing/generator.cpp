@@ -82,9 +82,10 @@ const std::vector<Generator>& registry() {
        build_sphere_plate, "sphere", sphere_plate_keys},
       {"packing",
        "Open-top rigid box (inner size lx x ly(height) x lz, floor at y = 0) made of five wall slabs, and N "
-       "tetrahedral particles (one tet4 each, randomly oriented, edge length uniform in [size_min, size_max], "
-       "vertices jittered by 'irregularity') on a lattice inside and above it, without overlaps; deterministic for a "
-       "seed. Volumes: container, particles (each particle is a connected component: use split_components = true).",
+       "tetrahedral particles (one tet4 each, or 8^refine when refine > 0: small meshed polyhedra; randomly oriented, "
+       "edge length uniform in [size_min, size_max], vertices jittered by 'irregularity') on a lattice inside and "
+       "above it, without overlaps; deterministic for a seed. Volumes: container, particles (each particle is a "
+       "connected component: use split_components = true).",
        build_packing, nullptr, packing_keys},
   };
   return r;

@@ -6,6 +6,9 @@
 // - At rest the floor carries the weight: one layer leans on no wall, so the floor force
 //   equals m g to within 1 % (the resting contacts' springs hold it exactly; the 1 % covers
 //   the last creep of the series row).
+// - The variant with particles as small meshed polyhedra (mesh.packing.refine = 1: 8 tets
+//   each, one deformable body per particle): 24 particles dropped on the floor come to rest,
+//   counted as 24 particles (their cells grouped by body), with the floor carrying them.
 // - Contact is evaluated in parallel and added up in a fixed order: with a few hundred
 //   candidate pairs (the parallel path) the series of 1 and 2 threads are bitwise equal.
 #include <gtest/gtest.h>
@@ -67,4 +70,21 @@ TEST(Packing, OneAndTwoThreadsGiveTheSameBits) {
   // The comparison means something only if contact was busy: many touches at the end.
   const report::Series s((out / "1" / "series.csv").string());
   EXPECT_GT(s["contacts"].back(), 200);
+}
+
+TEST(Packing, MeshedParticlesComeToRestOnTheFloor) {
+  const fs::path out = fs::temp_directory_path() / "dspdem_packing_meshed";
+  fs::remove_all(out);
+  const auto run =
+      testsupport::shell(std::string(DSPDEM_BIN) + " -q -t 1 report " + kCase + " --no-render --out " + out.string() +
+                         " --set mesh.packing.count=24 --set mesh.packing.refine=1 --set time.end=3.0");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const CaseConfig c = read_case((out / "run" / "case.resolved.toml").string());
+  const PackingResult r = analyse_packing_run(c, (out / "run").string(), false);
+  EXPECT_EQ(r.particles, 24);  // 192 cells, 8 per particle
+  EXPECT_GE(r.t_rest, 0.0) << "kinetic / released at the end " << r.kinetic_end / r.released;
+  EXPECT_EQ(r.escaped, 0);
+  EXPECT_LT(r.balance_max, 0.01);
+  const report::Series s((out / "run" / "packing_series.csv").string());
+  EXPECT_NEAR(s["floor_force_over_weight"].back(), 1.0, 0.01);
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "core/error.hpp"
 #include "render/series.hpp"
@@ -50,27 +51,43 @@ PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_di
     r.t_rest = t[i];
   }
 
-  // The last frame: particles' centroids, highest vertices and volumes.
-  auto g = render::read_frame(run.frames.back().file);
+  // The last frame: particles' centroids, highest vertices and volumes. A particle is one
+  // body (split_components): one tetrahedron, or a small meshed polyhedron (mesh.packing.refine),
+  // whose centroid is its cells' centroids weighted by their volumes.
+  const std::string& frame = run.frames.back().file;
+  auto g = render::read_frame(frame);
   vtkDataArray* matf = g->GetCellData()->GetArray("material");
-  DSPDEM_CHECK(matf, "frame '{}' has no 'material' cell field (add it to [output] fields)", run.frames.back().file);
-  const long gx = std::max(1L, std::lround(r.box_x / r.cell)), gz = std::max(1L, std::lround(r.box_z / r.cell));
-  std::vector<double> surface(static_cast<std::size_t>(gx * gz), 0.0);
+  vtkDataArray* bodyf = g->GetCellData()->GetArray("body");
+  DSPDEM_CHECK(matf, "frame '{}' has no 'material' cell field (add it to [output] fields)", frame);
+  DSPDEM_CHECK(bodyf || mesh_param(c, "refine") == 0,
+               "frame '{}' has no 'body' cell field, which meshed particles need (add it to [output] fields)", frame);
+  struct Particle {
+    double volume = 0, top = -INFINITY;
+    Vec3 moment = Vec3::Zero();
+  };
+  std::map<long, Particle> particles;  // by body (by cell without the body field: one tet each)
   vtkNew<vtkIdList> ids;
   for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
     if (std::lround(matf->GetTuple1(e)) != mat) continue;
     g->GetCellPoints(e, ids);
-    DSPDEM_CHECK(ids->GetNumberOfIds() == 4, "frame '{}' cell {}: a packing particle must be one tetrahedron",
-                 run.frames.back().file, e);
+    DSPDEM_CHECK(ids->GetNumberOfIds() == 4, "frame '{}' cell {}: packing particles are made of tetrahedra", frame, e);
     Vec3 p[4], ctr = Vec3::Zero();
-    double top = -INFINITY;
+    Particle& q = particles[bodyf ? std::lround(bodyf->GetTuple1(e)) : static_cast<long>(e)];
     for (int k = 0; k < 4; ++k) {
       g->GetPoint(ids->GetId(k), p[k].data());
       ctr += 0.25 * p[k];
-      top = std::max(top, p[k](1));
+      q.top = std::max(q.top, p[k](1));
     }
+    const double vol = std::abs((p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0])) / 6;
+    q.volume += vol;
+    q.moment += vol * ctr;
+  }
+  const long gx = std::max(1L, std::lround(r.box_x / r.cell)), gz = std::max(1L, std::lround(r.box_z / r.cell));
+  std::vector<double> surface(static_cast<std::size_t>(gx * gz), 0.0);
+  for (const auto& [body, q] : particles) {
+    const Vec3 ctr = q.moment / q.volume;
     ++r.particles;
-    r.solid_volume += std::abs((p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0])) / 6;
+    r.solid_volume += q.volume;
     r.centroid_max = std::max(r.centroid_max, ctr(1));
     if (ctr(0) < 0 || ctr(0) > r.box_x || ctr(2) < 0 || ctr(2) > r.box_z || ctr(1) < 0) {
       ++r.escaped;
@@ -79,9 +96,9 @@ PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_di
     const long ix = std::min(gx - 1, static_cast<long>(ctr(0) / r.box_x * gx));
     const long iz = std::min(gz - 1, static_cast<long>(ctr(2) / r.box_z * gz));
     double& cell = surface[static_cast<std::size_t>(iz * gx + ix)];
-    cell = std::max(cell, top);
+    cell = std::max(cell, q.top);
   }
-  DSPDEM_CHECK(r.particles > 0, "frame '{}': no particle cells (material {})", run.frames.back().file, mat);
+  DSPDEM_CHECK(r.particles > 0, "frame '{}': no particle cells (material {})", frame, mat);
   for (double h : surface) r.surface_mean += h / static_cast<double>(surface.size());
   r.surface_max = *std::max_element(surface.begin(), surface.end());
   r.packing_fraction = r.surface_mean > 0 ? r.solid_volume / (r.box_x * r.box_z * r.surface_mean) : 0.0;

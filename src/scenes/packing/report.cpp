@@ -21,6 +21,13 @@ namespace fs = std::filesystem;
 
 // The paper's times for this case (section 2.1), on its machine: its method and FDEM.
 constexpr double kPaperSeconds = 62060, kPaperFdemSeconds = 117813;
+
+// What a particle is made of: one tet4 (the paper's), or a meshed polyhedron (refined).
+std::string particle_kind(const CaseConfig& c) {
+  const long refine = std::lround(mesh_param(c, "refine"));
+  if (refine == 0) return "single-tetrahedron";
+  return fmt::format("meshed tetrahedral ({} elements each, mesh.packing.refine = {})", 1L << (3 * refine), refine);
+}
 }  // namespace
 
 int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
@@ -55,11 +62,12 @@ int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
   report::Document doc(dir, run_dir);
   doc.title("Packing (paper section 2.1): report");
   doc.para(fmt::format(
-      "Case `{}` ({}), run in `{}`: {} single-tetrahedron particles fall under gravity into a rigid open box "
+      "Case `{}` ({}), run in `{}`: {} {} particles fall under gravity into a rigid open box "
       "{:.1f} x {:.1f} m (footprint) x {:.1f} m (height). Reference data and sources: src/scenes/packing/REFERENCE.md "
       "in dspdem. The paper uses this case for speed only: 5346 tetrahedra, {:.0f} s with its method against {:.0f} s "
       "with FDEM, on its own machine; it reports no heap geometry.",
-      c.path, c.name, doc.run_link(""), r.particles, r.box_x, r.box_z, r.box_height, kPaperSeconds, kPaperFdemSeconds));
+      c.path, c.name, doc.run_link(""), r.particles, particle_kind(c), r.box_x, r.box_z, r.box_height, kPaperSeconds,
+      kPaperFdemSeconds));
   doc.section("The heap at the end");
   const double ratio = r.released > 0 ? r.kinetic_end / r.released : 1.0;
   doc.table(
