@@ -18,6 +18,7 @@ StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const 
       }
     }
   for (Index j = 0; j < js.size(); ++j) {
+    if (!js.closed.empty() && js.closed[j]) continue;  // no spring: its nodes are tied
     const CohesiveParams& p = js.params[js.param[j]];
     const Real k = max_stiffness(p) * js.area0[j] / js.npf[j];
     for (int s = 0; s < js.npf[j]; ++s) {

@@ -272,11 +272,11 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
   return true;
 }
 
-// Joints j0 .. j0 + B - 1 with the same face size and rule, none released: one batch.
+// Joints j0 .. j0 + B - 1 with the same face size and rule, all active: one batch.
 template <int B>
 bool uniform_batch(const JointSet& js, Index j0) {
   for (int b = 0; b < B; ++b)
-    if (js.released[j0 + b] || js.npf[j0 + b] != js.npf[j0] || js.rule(j0 + b) != js.rule(j0)) return false;
+    if (js.inactive(j0 + b) || js.npf[j0 + b] != js.npf[j0] || js.rule(j0 + b) != js.rule(j0)) return false;
   return true;
 }
 
@@ -315,7 +315,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     }
     for (Index j = j0; j < j1; ++j) {
       Real* out = &slots[12 * static_cast<std::size_t>(j)];
-      if (js.released[j])
+      if (js.inactive(j))
         for (int k = 0; k < 12; ++k) out[k] = 0;
       else
         run_kernel<1>(js, j, x, qt, out);

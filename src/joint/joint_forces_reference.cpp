@@ -12,7 +12,7 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
   for (Index j = 0; j < nj; ++j) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
     const int npf = js.npf[j];
-    if (js.released[j]) continue;
+    if (js.inactive(j)) continue;
     Vec3 xa[4], xb[4], xm[4];
     for (int k = 0; k < npf; ++k) {
       xa[k] = node_pos_ptr(x, js.a[js4 + k]);

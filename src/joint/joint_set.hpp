@@ -43,6 +43,9 @@ struct JointSet {
   /// in different fragments. Energy still stored in it then is booked in released_energy.
   std::vector<char> released;
   Real released_energy = 0;
+  /// Per joint: closed (extrinsic insertion, joint/ties.hpp): its two sides are still one
+  /// material, their node pairs tied, and the joint applies no force. Empty: none closed.
+  std::vector<char> closed;
   /// Derived from a and b, built by the first force evaluation (the topology never changes
   /// after insertion): for each node a joint touches, the force slots that add to it, in joint
   /// order. A joint keeps side A's forces only (12 numbers, 3 per node; side B's are exactly
@@ -63,6 +66,8 @@ struct JointSet {
     if (!full[i]) state[i] = full_state(params[param[i / 4]], lean[i]), full[i] = 1;
     return state[i];
   }
+  /// Joint j applies no force: released, or closed.
+  bool inactive(Index j) const { return released[j] || (!closed.empty() && closed[j]); }
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };
 

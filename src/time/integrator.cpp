@@ -40,10 +40,9 @@ Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
   quiet_ = m.rigid.empty() && m.gravity == Vec3::Zero();
   for (Index i = 0; i < m.fem.n_nodes && quiet_; ++i)
     quiet_ = m.fem.node_alpha[i] == 0 && m.fem.mass[i] > 0 && std::isfinite(m.fem.mass[i]);
-  for (const auto& c : m.constraints) {
-    constrained_[c.dof] = 1;
-    v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
-  }
+  for (const auto& c : m.constraints) constrained_[c.dof] = 1;
+  if (!m.joints.closed.empty()) retie(true);
+  for (const auto& c : m.constraints) v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
   for (const RigidBody& b : m.rigid) rigid_set_velocities(b, x_.data(), v_.data());
   if (m.contact.enabled()) m.contact.kick_walls(0.0, 0.0, m.gravity);  // prescribed wall velocities at t = 0
   compute_forces(v_, 0.0, false);
@@ -98,11 +97,19 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
         })[0];
     dpower_ = mass_dpower + element_dpower();
   }
+  if (ties_.groups() > 0) {
+    DSPDEM_CHECK(!nodal_in_tail, "internal: tied nodes need their forces complete before the tie");
+    tie_forces();
+  }
   // Reaction = the force the support must supply so the dof follows its prescribed motion.
+  // A tied group is one point: its reaction is the group's, booked once, at its first node.
   const Real* mass = m_.fem.mass.data();
   for (const auto& c : m_.constraints) {
     const Real a = c.value * ramp_rate(t_, c.ramp);
-    const Real r = mass[c.dof / 3] * a - f_[c.dof];
+    const Index i = c.dof / 3, g = ties_.groups() > 0 ? ties_.group[i] : -1;
+    const Real r = g < 0                           ? mass[i] * a - f_[c.dof]
+                   : ties_.node[ties_.ptr[g]] == i ? group_mass_[g] * a - f_[c.dof]
+                                                   : 0.0;
     reaction_[c.dof] = r;
     f_ext_[c.dof] += r;
     f_[c.dof] += r;
@@ -139,7 +146,7 @@ void Integrator::step() {
   // Without rigid bodies, the external force of a dof with no load or constraint is its
   // weight, computed where it is needed rather than stored (fused passes below); in a quiet
   // model it is zero and its terms are skipped.
-  const bool fused = m_.rigid.empty();
+  const bool fused = m_.rigid.empty() && ties_.groups() == 0;
   Real w = 0, bad = 0;
   if (fused) {
     // Half kick and drift in one pass: a constrained dof takes its prescribed velocity (the
@@ -238,6 +245,48 @@ void Integrator::kick_nodes(Real h) {
 #pragma omp parallel for schedule(static) if (nn > 4096)
   for (long i = 0; i < nn; ++i)
     for (int d = 0; d < 3; ++d) v[3 * i + d] += h * f[3 * i + d] * im[i];
+}
+
+void Integrator::retie(bool average) {
+  ties_ = joint::build_ties(m_.joints, m_.fem.n_nodes);
+  const Real* mass = m_.fem.mass.data();
+  for (Index i = 0; i < m_.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / mass[i];
+  group_mass_.assign(static_cast<std::size_t>(ties_.groups()), 0.0);
+  for (Index g = 0; g < ties_.groups(); ++g) {
+    const Index b = ties_.ptr[g], e = ties_.ptr[g + 1];
+    Real M = 0;
+    for (Index q = b; q < e; ++q) M += mass[ties_.node[q]];
+    group_mass_[g] = M;
+    for (Index q = b; q < e; ++q) inv_mass_[ties_.node[q]] = 1.0 / M;
+    // One point moves one way: a support must hold all of its copies or none.
+    for (int d = 0; d < 3; ++d)
+      for (Index q = b + 1; q < e; ++q)
+        if (constrained_[3 * ties_.node[q] + d] != constrained_[3 * ties_.node[b] + d])
+          fail(
+              "nodes {} and {} are tied across closed joints (extrinsic insertion) but only one is constrained in "
+              "{}: constrain the whole group or neither",
+              m_.mesh.node_tag[ties_.node[b]], m_.mesh.node_tag[ties_.node[q]], "xyz"[d]);
+    if (average)
+      for (int d = 0; d < 3; ++d) {
+        Real p = 0;
+        for (Index q = b; q < e; ++q) p += mass[ties_.node[q]] * v_[3 * ties_.node[q] + d];
+        for (Index q = b; q < e; ++q) v_[3 * ties_.node[q] + d] = p / M;
+      }
+  }
+}
+
+void Integrator::tie_forces() {
+  const Index ng = ties_.groups();
+  const Index* node = ties_.node.data();
+  const Index* ptr = ties_.ptr.data();
+  Real* f = f_.data();
+#pragma omp parallel for schedule(static) if (ng > 2048)
+  for (Index g = 0; g < ng; ++g)
+    for (int d = 0; d < 3; ++d) {
+      Real F = f[3 * static_cast<std::size_t>(node[ptr[g]]) + d];
+      for (Index q = ptr[g] + 1; q < ptr[g + 1]; ++q) F += f[3 * static_cast<std::size_t>(node[q]) + d];
+      for (Index q = ptr[g]; q < ptr[g + 1]; ++q) f[3 * static_cast<std::size_t>(node[q]) + d] = F;
+    }
 }
 
 void Integrator::non_finite_state() const {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "joint/ties.hpp"
 #include "time/model.hpp"
 
 namespace dspdem {
@@ -52,6 +53,11 @@ class Integrator {
   Real monitor(const MonitorSet& ms) const;
   /// Cauchy stress of every element at the current state (6 per element).
   void stresses(std::vector<Real>& out);
+  /// Rebuilds the groups of tied nodes from the joints' closed flags (joint/ties.hpp), after
+  /// joints opened: each copy then takes its new group's inverse mass. Groups only split
+  /// while a run goes on, and a split group's copies move alike already, so nothing jumps.
+  void retie() { retie(false); }
+  const joint::Ties& ties() const { return ties_; }
   /// Gmsh tag of a global element, for messages.
   std::size_t element_tag(Index e) const { return m_.fem.elem_tag[e]; }
 
@@ -67,6 +73,11 @@ class Integrator {
   void kick_nodes(Real h);                    ///< v += h f / m at every node
   void kick_nonnodal(Real h, Real t_target);  ///< constraints, rigid bodies, walls
   [[noreturn]] void non_finite_state() const;
+  /// average: give each group its copies' mean velocity (momentum kept), at the start.
+  void retie(bool average);
+  /// Every copy of a tied group gets the group's force (its copies' forces summed in node
+  /// order): with the group's inverse mass they then move alike to the bit.
+  void tie_forces();
 
   Model& m_;
   Real dt_, t_ = 0;
@@ -82,7 +93,9 @@ class Integrator {
   /// no nodal force besides f_ (its weight and damping are exactly +-0).
   bool quiet_ = false;
   Real w_ext_ = 0, damp_ = 0, e0_ = 0;
-  Real dpower_ = 0;  ///< dissipation rate at the last force evaluation
+  Real dpower_ = 0;               ///< dissipation rate at the last force evaluation
+  joint::Ties ties_;              ///< nodes tied through closed joints (none: no groups)
+  std::vector<Real> group_mass_;  ///< per tied group, its copies' mass [kg]
 };
 
 }  // namespace dspdem

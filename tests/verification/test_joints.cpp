@@ -8,6 +8,7 @@
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
 #include "joint/joint_forces.hpp"
+#include "joint/ties.hpp"
 #include "support/run_helpers.hpp"
 
 using namespace dspdem;
@@ -116,7 +117,8 @@ struct RelaxedBlock {
   Real dt;
 };
 
-RelaxedBlock relaxed_block(bool joints, Real penalty, joint::Quadrature rule = joint::Quadrature::Gauss) {
+RelaxedBlock relaxed_block(bool joints, Real penalty, joint::Quadrature rule = joint::Quadrature::Gauss,
+                           bool closed = false) {
   const Real E = 30e9, F = 1e4;  // 1 MPa on 0.01 m^2: well below f_t
   CaseConfig c = simple_case(E, 0.2, 2400, Kinematics::SmallStrain);
   if (joints) make_fracturable(c, 3e6, 100, 10e6, 30, 1000, penalty);
@@ -128,6 +130,7 @@ RelaxedBlock relaxed_block(bool joints, Real penalty, joint::Quadrature rule = j
   load.type = BoundaryConfig::Type::Force, load.group = "xmax", load.value = Vec3(F, 0, 0);
   c.boundaries.push_back(load);
   RelaxedBlock b{build_model(c, box_mesh(CellType::Tet4, 4, 4, 4, Vec3(0.1, 0.1, 0.1))), {}, 0};
+  if (closed) b.m.joints.closed.assign(b.m.joints.size(), 1);
   const Real L = 0.1, w1 = M_PI / 2 * std::sqrt(E / 2400) / L;  // first axial mode
   b.m.fem.node_alpha.assign(b.m.fem.n_nodes, 2 * w1);
   b.dt = critical_dt(b.m);
@@ -393,4 +396,76 @@ TEST(Joints, ZoneGroupsTakeTheZoneMaterialsJointParameters) {
   }
   c.bodies[0].zone_groups = {"nothing"};
   EXPECT_THROW(build_model(c, mesh), Error);
+}
+
+// Extrinsic insertion's closed joints (joint/ties.hpp): the copies of a node are tied into one
+// point while every face around it is closed.
+TEST(Joints, ClosedJointsTieEachNodesCopiesIntoOneGroup) {
+  CaseConfig c = simple_case(30e9, 0.2, 2400);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  Model m = build_model(c, box_mesh(CellType::Tet4, 4, 4, 4, Vec3(0.1, 0.1, 0.1)));
+  joint::JointSet& js = m.joints;
+  js.closed.assign(js.size(), 1);
+  const joint::Ties t = joint::build_ties(js, m.fem.n_nodes);
+  // One group per node of the mesh before insertion: its copies, ascending.
+  const auto& copies = m.joint_report.copies;
+  Index split = 0;
+  for (const auto& cp : copies) {
+    if (cp.size() < 2) continue;
+    ++split;
+    const Index g = t.group[cp.front()];
+    ASSERT_GE(g, 0);
+    std::vector<Index> want = cp, got(t.node.begin() + t.ptr[g], t.node.begin() + t.ptr[g + 1]);
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(got, want);
+  }
+  EXPECT_EQ(t.groups(), split);
+  EXPECT_EQ(split, 125);  // the 5 x 5 x 5 nodes of the box
+
+  // One open face frees no node (the closed faces around it still join its copies); all the
+  // faces of the plane x = 0.05 open split each of its 25 nodes in two.
+  auto on_plane = [&](Index j) {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(m.fem.x0[3 * static_cast<std::size_t>(js.a[4 * static_cast<std::size_t>(j) + k])] - 0.05) > 1e-12)
+        return false;
+    return true;
+  };
+  Index first = -1, plane = 0;
+  for (Index j = 0; j < js.size(); ++j)
+    if (on_plane(j)) first = first < 0 ? j : first, ++plane;
+  ASSERT_EQ(plane, 4 * 4 * 2);  // two triangles per cell face
+  js.closed[first] = 0;
+  EXPECT_EQ(joint::build_ties(js, m.fem.n_nodes).groups(), 125);
+  for (Index j = 0; j < js.size(); ++j)
+    if (on_plane(j)) js.closed[j] = 0;
+  EXPECT_EQ(joint::build_ties(js, m.fem.n_nodes).groups(), 125 + 25);
+}
+
+TEST(Joints, ClosedJointsAddNoComplianceAndLeaveTheStepToTheElements) {
+  // The block of AddedComplianceWithTheDefaultPenalty relaxed under 1 MPa: with its joints
+  // closed it is the block without joints. The step is the elements' to the bit (no joint
+  // spring), and every node's displacement the same to 1e-9 of the largest: the two runs may
+  // differ only in the order nodal forces are added (per element copy, then per tied group),
+  // rounding of 1e-16 per step, against the 1.5 % the open joints' penalty adds.
+  const RelaxedBlock plain = relaxed_block(false, 0);
+  const RelaxedBlock tied = relaxed_block(true, 100, joint::Quadrature::Gauss, true);
+  EXPECT_EQ(tied.dt, plain.dt);
+  // Each copy's displacement against its node's in the block without joints.
+  Real worst = 0, largest = 0;
+  const auto& copies = tied.m.joint_report.copies;
+  for (std::size_t n = 0; n < copies.size(); ++n)
+    for (int d = 0; d < 3; ++d) {
+      const Real u = plain.x[3 * n + d] - plain.m.fem.x0[3 * n + d];
+      largest = std::max(largest, std::abs(u));
+      for (Index k : copies[n]) worst = std::max(worst, std::abs(tied.x[3 * k + d] - tied.m.fem.x0[3 * k + d] - u));
+    }
+  EXPECT_GT(largest, 1e-7);  // the block is loaded: 1 MPa over 30 GPa on 0.1 m is 3.3e-6 m
+  EXPECT_LE(worst, 1e-9 * largest);
+  // Every copy of a group at the same place, to the bit.
+  const joint::Ties t = joint::build_ties(tied.m.joints, tied.m.fem.n_nodes);
+  ASSERT_EQ(t.groups(), 125);
+  for (Index g = 0; g < t.groups(); ++g)
+    for (Index q = t.ptr[g] + 1; q < t.ptr[g + 1]; ++q)
+      for (int d = 0; d < 3; ++d)
+        ASSERT_EQ(tied.x[3 * t.node[q] + d], tied.x[3 * t.node[t.ptr[g]] + d]) << "group " << g;
 }
