@@ -1,0 +1,51 @@
+// When a closed face opens (extrinsic insertion, issue 20): the traction the two elements
+// put on their common face, and how far it is along to the onset of the joint law that face
+// will follow once open. A face opens when the ratio reaches 1; the law then starts where its
+// own elastic branch ends, so that the criterion and the law agree on the strength.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "core/types.hpp"
+#include "joint/coupled_law.hpp"
+
+namespace dspdem::joint {
+
+/// Normal (tension positive) and shear (magnitude) traction on a face [Pa].
+struct FaceTraction {
+  Real tn = 0, ts = 0;
+};
+
+/// The traction on a face of unit normal n from the mean of its two elements' Cauchy stresses
+/// (6 each, xx yy zz xy yz xz, as fem's internal_forces writes them). The mean is the face's
+/// traction for a stress field linear across the face and the usual estimate otherwise.
+inline FaceTraction face_traction(const Real* sa, const Real* sb, const Vec3& n) {
+  Mat3 s;
+  s << sa[0] + sb[0], sa[3] + sb[3], sa[5] + sb[5],  //
+      sa[3] + sb[3], sa[1] + sb[1], sa[4] + sb[4],   //
+      sa[5] + sb[5], sa[4] + sb[4], sa[2] + sb[2];
+  const Vec3 t = 0.5 * (s * n);
+  const Real tn = t.dot(n);
+  return {tn, (t - tn * n).norm()};
+}
+
+/// Where the traction t stands against the onset of law p's damage: 1 on its elastic limit,
+/// below 1 inside. Mode I: tension over f_t. Paper (tension cut-off and Mohr-Coulomb, each
+/// softening alone): the larger of t_n / f_t and t_s / f_s(t_n), f_s = c - min(t_n, f_t) tan phi.
+/// Coupled: the onset ellipse, sqrt((<t_n> / f_t)^2 + (t_s / f_s)^2), f_s = c + <-t_n> tan phi.
+inline Real onset_ratio(const CohesiveParams& p, const FaceTraction& t) {
+  switch (p.law) {
+    case JointLaw::ModeI:
+      return t.tn / p.ft;
+    case JointLaw::Paper:
+      return std::max(t.tn / p.ft, t.ts / shear_strength(p, t.tn));
+    case JointLaw::Coupled: {
+      const Real un = std::max<Real>(0.0, t.tn) / p.ft;
+      const Real us = t.ts / (p.c + std::max<Real>(0.0, -t.tn) * p.tan_phi);
+      return std::sqrt(un * un + us * us);
+    }
+  }
+  return 0;
+}
+
+}  // namespace dspdem::joint
