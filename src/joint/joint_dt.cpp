@@ -18,7 +18,8 @@ StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const 
       }
     }
   for (Index j = 0; j < js.size(); ++j) {
-    if (!js.closed.empty() && js.closed[j]) continue;  // no spring: its nodes are tied
+    // A closed joint (extrinsic insertion) has no spring yet, but may open at any step: the
+    // step allows for it from the start, so that it never has to change.
     const CohesiveParams& p = js.params[js.param[j]];
     const Real k = max_stiffness(p) * js.area0[j] / js.npf[j];
     for (int s = 0; s < js.npf[j]; ++s) {

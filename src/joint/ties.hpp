@@ -6,8 +6,9 @@
 // it are one node. The copies joined this way, directly or through other closed faces, form
 // a group that moves as one point: the integrator gives every copy of a group the group's
 // summed force and inverse mass, so that all keep the same position and velocity to the bit
-// (time/integrator.cpp). A closed joint has no penalty spring (nothing opens it), so it
-// neither sets the time step nor adds compliance. Opening joints splits the groups of their
+// (time/integrator.cpp). A closed joint applies no force, so it adds no compliance: its
+// penalty acts only once it is open (the step allows for that from the start, joint_dt.cpp),
+// and can be low, where an intrinsic joint's must be high. Opening joints splits the groups of their
 // nodes where no closed face joins the copies any more: a crack frees a node only once it
 // has cut all the way around it.
 #pragma once
