@@ -39,6 +39,9 @@ struct WallConfig {
 struct BodyConfig {
   std::string name;
   enum class Fracture { None, All, Groups } fracture = Fracture::None;
+  /// Intrinsic: every joint acts from the start (the paper's). Extrinsic: a joint stays closed
+  /// (its two sides one material) until the traction on its face reaches the strength.
+  bool extrinsic = false;
   std::vector<std::string> fracture_groups;
   std::vector<std::string> zone_groups;  ///< their joints take zone_material's joint parameters
   std::string zone_material;
@@ -102,7 +105,8 @@ struct CaseConfig {
   Real t_end = 0, dt = 0, safety = 0.9;
   bool allow_unstable = false;
   long max_steps = 0;
-  std::string stop_series;  ///< empty: run to t_end
+  long insertion_interval = 1;  ///< extrinsic insertion: steps between checks of the closed faces
+  std::string stop_series;      ///< empty: run to t_end
   Real stop_fraction = 0.3, stop_min_peak = 0, stop_delay = 0;
   // output
   Real frame_interval = 0, series_interval = 0;

@@ -443,6 +443,10 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
                    : fr == "groups" ? BodyConfig::Fracture::Groups
                                     : BodyConfig::Fracture::None;
       b.fracture_groups = s.strings("fracture_groups");
+      b.extrinsic = s.str("fracture_insertion") == "extrinsic";
+      if (b.extrinsic && b.fracture == BodyConfig::Fracture::None)
+        fail("{}: [[bodies]] '{}' has fracture_insertion = \"extrinsic\" but no joints (fracture = \"none\")",
+             s.where("fracture_insertion"), b.name);
       if (b.fracture == BodyConfig::Fracture::Groups && b.fracture_groups.empty())
         fail("{}: [[bodies]] '{}' has fracture = \"groups\" but no fracture_groups", s.where("fracture"), b.name);
       if (b.fracture != BodyConfig::Fracture::None && b.kinematics == Kinematics::Rigid)
@@ -615,6 +619,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     c.safety = s.real("safety");
     c.allow_unstable = s.boolean("allow_unstable");
     c.max_steps = s.integer("max_steps");
+    c.insertion_interval = s.integer("insertion_interval");
     if (s.has("stop_series")) c.stop_series = s.str("stop_series");
     c.stop_fraction = s.real("stop_fraction");
     c.stop_min_peak = s.real("stop_min_peak");

@@ -270,6 +270,13 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
         js.params.push_back(p);
         js.quadrature.push_back(jm.nodal_quadrature ? joint::Quadrature::Nodal : joint::Quadrature::Gauss);
       }
+      // Extrinsic bodies: their joints start closed (joint/ties.hpp), with room for the
+      // offsets their laws start from when they open.
+      if (std::any_of(c.bodies.begin(), c.bodies.end(), [](const BodyConfig& b) { return b.extrinsic; })) {
+        js.closed.assign(js.size(), 0);
+        js.offset.assign(16 * static_cast<std::size_t>(js.size()), 0.0);
+        for (Index j = 0; j < js.size(); ++j) js.closed[j] = c.bodies[cfg_body[js.ea[j]]].extrinsic;
+      }
     }
   }
 

@@ -126,6 +126,8 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       }
       dn[b][g] = jump.dot(n[b]);
       sv[b][g] = jump - dn[b][g] * n[b];
+      if (!js.offset.empty())
+        apply_offset(&js.offset[16 * static_cast<std::size_t>(j0 + b) + 4 * g], n[b], dn[b][g], sv[b][g]);
       ds[b][g] = sv[b][g].norm();
     }
   Real sn[B][NPF], ss[B][NPF];
@@ -187,6 +189,7 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
 bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&w)[4], Real* out) {
   using lane::V4;
   const std::size_t p0 = 4 * static_cast<std::size_t>(j0);
+  if (!js.offset.empty()) return false;  // extrinsic joints: the scalar kernel adds the offsets
   const JointLaw law = js.params[js.param[j0]].law;
   for (int b = 0; b < 4; ++b) {
     if (js.params[js.param[j0 + b]].law != law) return false;

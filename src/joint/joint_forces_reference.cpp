@@ -31,8 +31,9 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
     for (int g = 0; g < ng; ++g) {
       Vec3 jump = Vec3::Zero();
       for (int k = 0; k < npf; ++k) jump += N[g][k] * (xb[k] - xa[k]);
-      const Real dn = jump.dot(n);
-      const Vec3 sv = jump - dn * n;
+      Real dn = jump.dot(n);
+      Vec3 sv = jump - dn * n;
+      if (!js.offset.empty()) apply_offset(&js.offset[4 * (js4 + g)], n, dn, sv);
       const Real ds = sv.norm();
       CohesiveState& st = js.full_point(js4 + g);  // the oracle keeps every point in full
       joint_law_update(p, dn, ds, st);

@@ -46,6 +46,11 @@ struct JointSet {
   /// Per joint: closed (extrinsic insertion, joint/ties.hpp): its two sides are still one
   /// material, their node pairs tied, and the joint applies no force. Empty: none closed.
   std::vector<char> closed;
+  /// Per point, 4 numbers (16 per joint): where its law started when its joint opened
+  /// (extrinsic insertion), the opening and the slip vector (global axes) of the elastic
+  /// traction the face carried then. The law runs on the face's jump plus this offset, so the
+  /// traction is continuous at insertion (apply_offset). Empty: no extrinsic joints.
+  std::vector<Real> offset;
   /// Derived from a and b, built by the first force evaluation (the topology never changes
   /// after insertion): for each node a joint touches, the force slots that add to it, in joint
   /// order. A joint keeps side A's forces only (12 numbers, 3 per node; side B's are exactly
@@ -70,6 +75,15 @@ struct JointSet {
   bool inactive(Index j) const { return released[j] || (!closed.empty() && closed[j]); }
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };
+
+/// The law's opening dn and slip vector sv at a point of an extrinsic joint: the face's own
+/// plus the offset o (JointSet::offset) of its insertion, the slip part taken in the face's
+/// current plane (of unit normal n).
+inline void apply_offset(const Real* o, const Vec3& n, Real& dn, Vec3& sv) {
+  dn += o[0];
+  const Vec3 s0(o[1], o[2], o[3]);
+  sv += s0 - s0.dot(n) * n;
+}
 
 /// Which faces get joints: interior faces whose two elements are both marked fracturable
 /// and in the same body.

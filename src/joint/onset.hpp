@@ -16,15 +16,21 @@ struct FaceTraction {
   Real tn = 0, ts = 0;
 };
 
-/// The traction on a face of unit normal n from the mean of its two elements' Cauchy stresses
-/// (6 each, xx yy zz xy yz xz, as fem's internal_forces writes them). The mean is the face's
-/// traction for a stress field linear across the face and the usual estimate otherwise.
-inline FaceTraction face_traction(const Real* sa, const Real* sb, const Vec3& n) {
+/// The traction vector on a face of unit normal n from the mean of its two elements' Cauchy
+/// stresses (6 each, xx yy zz xy yz xz, as fem's internal_forces writes them). The mean is
+/// the face's traction for a stress field linear across the face and the usual estimate
+/// otherwise.
+inline Vec3 face_traction_vector(const Real* sa, const Real* sb, const Vec3& n) {
   Mat3 s;
   s << sa[0] + sb[0], sa[3] + sb[3], sa[5] + sb[5],  //
       sa[3] + sb[3], sa[1] + sb[1], sa[4] + sb[4],   //
       sa[5] + sb[5], sa[4] + sb[4], sa[2] + sb[2];
-  const Vec3 t = 0.5 * (s * n);
+  return 0.5 * (s * n);
+}
+
+/// Its normal part (tension positive) and the magnitude of its shear part.
+inline FaceTraction face_traction(const Real* sa, const Real* sb, const Vec3& n) {
+  const Vec3 t = face_traction_vector(sa, sb, n);
   const Real tn = t.dot(n);
   return {tn, (t - tn * n).norm()};
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -19,6 +20,7 @@
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
 #include "mesh/locality.hpp"
+#include "time/extrinsic.hpp"
 #include "run/case_mesh.hpp"
 #include "time/integrator.hpp"
 #include "time/stop_rule.hpp"
@@ -167,6 +169,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const std::string pvd = (fs::path(stage.path()) / "run.pvd").string();
 
   Integrator it(model, dt);
+  std::optional<ExtrinsicInsertion> extrinsic;
+  if (!model.joints.closed.empty()) {
+    extrinsic.emplace(c.insertion_interval);
+    log::info("  extrinsic insertion: {} joint(s) closed until their faces reach the strength, checked every {} step(s)",
+              std::count(model.joints.closed.begin(), model.joints.closed.end(), 1), c.insertion_interval);
+  }
   std::vector<Real> stress;
   std::vector<Real> elem_mass(fem.n_elements, 0.0);
   for (const auto& b : fem.blocks)
@@ -257,6 +265,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     double last_report = 0;
     for (long s = 0; s < n_steps; ++s) {
       it.step();
+      if (extrinsic) extrinsic->check(model, it);
       bool last = s + 1 == n_steps;
       const Real t = it.time();
       if (t >= next_series - 1e-12 * c.t_end || last) {
@@ -297,6 +306,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     throw NumericalError(fmt::format("{}\n  partial results (frames up to the failure) kept in {}", e.what(), kept),
                          e.step, e.time);
   }
+  if (extrinsic) log::info("  extrinsic insertion: {} joint(s) opened", extrinsic->opened());
   write_summary(stage.path(), "completed", stop_message);
   stage.commit();
   const Energy e = it.energy();

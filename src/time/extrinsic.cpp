@@ -1,0 +1,66 @@
+#include "time/extrinsic.hpp"
+
+#include "joint/onset.hpp"
+
+namespace dspdem {
+
+Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
+  joint::JointSet& js = m.joints;
+  if (js.closed.empty() || it.steps() % interval_ != 0) return 0;
+  it.stresses(stress_);
+  const Real* x = it.x().data();
+  const Index nj = js.size();
+  open_.assign(static_cast<std::size_t>(nj), 0);
+  traction_.resize(4 * static_cast<std::size_t>(nj));
+#pragma omp parallel for schedule(static) if (nj > 1024)
+  for (Index j = 0; j < nj; ++j) {
+    if (!js.closed[j]) continue;
+    const std::size_t j4 = 4 * static_cast<std::size_t>(j);
+    // The face's current normal from A to B, as the joint kernel takes it (a closed face's
+    // two sides coincide).
+    Vec3 xm[4];
+    for (int k = 0; k < js.npf[j]; ++k) xm[k] = node_pos_ptr(x, js.a[j4 + k]);
+    Vec3 n = js.npf[j] == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
+    const Real nl = n.norm();
+    if (!(nl > 0)) continue;
+    n /= nl;
+    const Real* sa = &stress_[6 * static_cast<std::size_t>(js.ea[j])];
+    const Real* sb = &stress_[6 * static_cast<std::size_t>(js.eb[j])];
+    const Vec3 tv = joint::face_traction_vector(sa, sb, n);
+    const Real tn = tv.dot(n);
+    const Vec3 ts = tv - tn * n;
+    if (joint::onset_ratio(js.params[js.param[j]], {tn, ts.norm()}) < 1) continue;
+    open_[j] = 1;
+    traction_[j4] = tn;
+    for (int d = 0; d < 3; ++d) traction_[j4 + 1 + d] = ts(d);
+  }
+  Index count = 0;
+  for (Index j = 0; j < nj; ++j) {
+    if (!open_[j]) continue;
+    ++count;
+    js.closed[j] = 0;
+    const std::size_t j4 = 4 * static_cast<std::size_t>(j);
+    const joint::CohesiveParams& p = js.params[js.param[j]];
+    const Real tn = traction_[j4];
+    const Vec3 ts(traction_[j4 + 1], traction_[j4 + 2], traction_[j4 + 3]);
+    // Every point of the face starts where its law's elastic branch gives the face's traction.
+    joint::CohesiveState s;
+    s.dn = tn / p.kn;
+    s.ds = ts.norm() / p.ks;
+    s.dn_max = std::max<Real>(0.0, s.dn);
+    s.ds_max = s.ds;
+    s.sn = p.kn * s.dn, s.ss = p.ks * s.ds;
+    for (int g = 0; g < js.npf[j]; ++g) {
+      Real* o = &js.offset[4 * (j4 + g)];
+      o[0] = s.dn;
+      for (int d = 0; d < 3; ++d) o[1 + d] = ts(d) / p.ks;
+      js.state[j4 + g] = s;
+      js.full[j4 + g] = 1;
+    }
+  }
+  if (count > 0) it.retie();
+  opened_ += count;
+  return count;
+}
+
+}  // namespace dspdem

@@ -1,0 +1,33 @@
+// Extrinsic insertion (issue 20): closed faces open when the traction on them reaches the
+// strength of their joint law (joint/onset.hpp). Until then their two sides' nodes are tied
+// (joint/ties.hpp) and the faces carry the elements' stresses as a continuum would; on
+// opening, the joint's law starts from the elastic state whose traction is the face's
+// (JointSet::offset), so the traction does not jump, and it books no energy for that
+// skipped elastic branch (its work integrals start at zero: the stored energy the law reports
+// then is balanced by an equal negative dissipation until the joint has been opened by as
+// much, and the ledger stays exact).
+#pragma once
+#include <vector>
+
+#include "time/integrator.hpp"
+
+namespace dspdem {
+
+class ExtrinsicInsertion {
+ public:
+  /// Checks every `interval` steps.
+  explicit ExtrinsicInsertion(long interval) : interval_(interval) {}
+  /// After a step: on a checking step, opens the closed joints whose face traction has
+  /// reached their law's onset (decided in parallel, applied in joint order: the same on
+  /// any thread count) and reties the nodes. Returns how many opened.
+  Index check(Model& m, Integrator& it);
+  Index opened() const { return opened_; }
+
+ private:
+  long interval_;
+  Index opened_ = 0;
+  std::vector<Real> stress_, traction_;  ///< per element; per joint (t_n, then t_s as a vector)
+  std::vector<char> open_;
+};
+
+}  // namespace dspdem
