@@ -6,6 +6,7 @@ Real added_compliance(const JointSet& js, const std::vector<Real>& elem_E, const
   std::vector<char> jointed(elem_volume.size(), 0);
   Real sum = 0;
   for (Index j = 0; j < js.size(); ++j) {
+    if (!js.closed.empty() && js.closed[j]) continue;  // a closed face is continuous material
     const CohesiveParams& p = js.params[js.param[j]];
     const Real E = 0.5 * (elem_E[js.ea[j]] + elem_E[js.eb[j]]);
     sum += E * added_compliance_term(js.area0[j], p.kn, p.ks);

@@ -212,3 +212,14 @@ TEST(CaseReader, ModeIJointsTakeNoShearParameters) {
   expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\njoint_law = \"mode_I\"\ntensile_strength = 3.0e6"),
                {"come together", "friction_angle"});
 }
+
+TEST(CaseReader, ExtrinsicInsertionNeedsJoints) {
+  // The good case's body has no joints: extrinsic insertion there is an error naming the key;
+  // a wrong choice names it too; the check interval is read.
+  expect_error(kGood, {"fracture_insertion", "no joints"}, {"bodies.0.fracture_insertion=\"extrinsic\""});
+  expect_error(kGood, {"'fracture_insertion'"}, {"bodies.0.fracture_insertion=\"later\""});
+  expect_error(kGood, {"'insertion_interval'"}, {"time.insertion_interval=0"});
+  const CaseConfig c = read_case(write_case(kGood), {"time.insertion_interval=5"});
+  EXPECT_EQ(c.insertion_interval, 5);
+  EXPECT_FALSE(c.bodies[0].extrinsic);
+}
