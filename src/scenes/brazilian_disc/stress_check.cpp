@@ -21,6 +21,7 @@ CaseConfig stress_check_case(const CaseConfig& scene, Real t_target) {
                                 override_of("output.series_interval", scene.series_interval / rate)};
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     sets.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("none")));
+    sets.push_back(override_of(fmt::format("bodies.{}.fracture_insertion", i), std::string("intrinsic")));
     sets.push_back(fmt::format("bodies.{}.fracture_groups=[]", i));
     sets.push_back(fmt::format("bodies.{}.zone_groups=[]", i));
     sets.push_back(override_of(fmt::format("bodies.{}.zone_material", i), std::string("")));
