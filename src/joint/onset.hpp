@@ -54,4 +54,25 @@ inline Real onset_ratio(const CohesiveParams& p, const FaceTraction& t) {
   return 0;
 }
 
+/// A traction smaller than this in magnitude cannot reach law p's onset (a screen that
+/// spares the full test on faces far from it): mode I needs t_n >= f_t; the coupled ellipse
+/// needs t_n >= f_t or t_s >= f_s >= c somewhere on |t| >= min(f_t, c); the paper's law needs
+/// t_n >= f_t or t_s >= c - t_n tan(phi) >= c - |t| tan(phi), so |t| >= c / (1 + tan(phi)).
+inline Real onset_floor(const CohesiveParams& p) {
+  switch (p.law) {
+    case JointLaw::ModeI:
+      return p.ft;
+    case JointLaw::Coupled:
+      return std::min(p.ft, p.c);
+    case JointLaw::Paper:
+      return std::min(p.ft, std::max<Real>(0.0, p.c) / (1 + std::max<Real>(0.0, p.tan_phi)));
+  }
+  return 0;
+}
+
+/// An upper bound of |sigma n| over unit n: the Frobenius norm of a stress (6 components).
+inline Real stress_bound(const Real* s) {
+  return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+}
+
 }  // namespace dspdem::joint

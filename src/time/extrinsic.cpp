@@ -12,9 +12,19 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
   const Index nj = js.size();
   open_.assign(static_cast<std::size_t>(nj), 0);
   traction_.resize(4 * static_cast<std::size_t>(nj));
+  // The screen: a face whose elements' stresses are too small for any traction on it to
+  // reach its law's onset is not tested (most faces, most of the time).
+  if (static_cast<Index>(floor_.size()) != nj) {
+    floor_.resize(static_cast<std::size_t>(nj));
+    for (Index j = 0; j < nj; ++j) floor_[j] = joint::onset_floor(js.params[js.param[j]]);
+  }
+  const Index ne = static_cast<Index>(stress_.size() / 6);
+  bound_.resize(static_cast<std::size_t>(ne));
+#pragma omp parallel for schedule(static) if (ne > 4096)
+  for (Index e = 0; e < ne; ++e) bound_[e] = joint::stress_bound(&stress_[6 * static_cast<std::size_t>(e)]);
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
-    if (!js.closed[j]) continue;
+    if (!js.closed[j] || 0.5 * (bound_[js.ea[j]] + bound_[js.eb[j]]) < floor_[j]) continue;
     const std::size_t j4 = 4 * static_cast<std::size_t>(j);
     // The face's current normal from A to B, as the joint kernel takes it (a closed face's
     // two sides coincide).

@@ -28,6 +28,7 @@ class ExtrinsicInsertion {
   Index opened_ = 0;
   std::vector<Real> stress_, traction_;  ///< per element; per joint (t_n, then t_s as a vector)
   std::vector<char> open_;
+  std::vector<Real> floor_, bound_;  ///< per joint, its law's onset_floor; per element, stress_bound
 };
 
 }  // namespace dspdem

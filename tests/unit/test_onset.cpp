@@ -82,3 +82,26 @@ TEST(Onset, CompressionRaisesTheShearStrength) {
   }
   EXPECT_LT(onset_ratio(params(JointLaw::ModeI), {0, 1e9}), 1.0);
 }
+
+TEST(Onset, TheFloorScreensOnlyTractionsBelowTheOnset) {
+  // Tractions in every direction with magnitudes up to the floor: none may reach the onset;
+  // the floor is not far below it either (some direction at 1.5 x the floor opens).
+  for (JointLaw law : {JointLaw::ModeI, JointLaw::Paper, JointLaw::Coupled}) {
+    const CohesiveParams p = params(law);
+    const Real fl = onset_floor(p);
+    bool opens_above = false;
+    for (int i = 0; i <= 360; ++i) {
+      const Real a = i * M_PI / 360;  // t_s >= 0: angles 0 to pi
+      for (Real m : {0.999, 0.9, 0.5}) EXPECT_LT(onset_ratio(p, {m * fl * std::cos(a), m * fl * std::sin(a)}), 1.0);
+      opens_above = opens_above || onset_ratio(p, {1.5 * fl * std::cos(a), 1.5 * fl * std::sin(a)}) >= 1;
+    }
+    EXPECT_TRUE(opens_above) << static_cast<int>(law);
+  }
+  // The stress bound: |sigma n| for unit n never exceeds it.
+  const Real s[6] = {1e6, -2e6, 0.5e6, 0.7e6, -0.3e6, 1.1e6};
+  for (int i = 0; i < 50; ++i) {
+    const Vec3 n = Vec3(std::sin(i * 0.7), std::cos(i * 1.3), std::sin(i * 0.31 + 1)).normalized();
+    const Vec3 t = face_traction_vector(s, s, n);
+    EXPECT_LE(t.norm(), stress_bound(s) * (1 + 1e-12));
+  }
+}

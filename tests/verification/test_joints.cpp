@@ -1,6 +1,7 @@
 // Joints in a model: forces from the law through the kernel, energy, objectivity,
 // compliance against the penalty, a bar broken dynamically, stability.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <tuple>
 
@@ -551,4 +552,39 @@ TEST(Joints, BarWithExtrinsicJointsBreaksDissipatingGfTimesArea) {
           EXPECT_GT(b.dt_ratio, 2.5) << what;
         }
       }
+}
+
+TEST(Joints, ExtrinsicInsertionIsTheSameOnOneAndTwoThreads) {
+  // A tet block (3072 tets, some 6000 closed joints: the parallel paths run) pulled apart
+  // fast enough that faces open, soften and break within a few hundred steps: positions,
+  // the joints opened and the ledger the same to the bit on 1 and 2 threads.
+  auto run = [](int threads) {
+    omp_set_num_threads(threads);
+    CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
+    make_fracturable(c, 3e6, 10, 6e6, 30, 100, 1);
+    c.joint_materials[0].nodal_quadrature = true;
+    c.joint_materials[0].coupled = true;
+    c.bodies[0].extrinsic = true;
+    c.boundaries.push_back(fixed("xmin"));
+    BoundaryConfig pull;
+    pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(2.0, 0.3, 0);
+    c.boundaries.push_back(pull);
+    Model m = build_model(c, box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2));
+    Integrator it(m, 0.9 * critical_dt(m));
+    ExtrinsicInsertion ins(1);
+    for (int s = 0; s < 400; ++s) {
+      it.step();
+      ins.check(m, it);
+    }
+    return std::make_tuple(it.x(), ins.opened(), it.energy().broken_joints, it.energy().balance());
+  };
+  const auto [x1, opened1, broken1, bal1] = run(1);
+  const auto [x2, opened2, broken2, bal2] = run(2);
+  EXPECT_GT(opened1, 100);
+  EXPECT_GT(broken1, 0);
+  EXPECT_EQ(opened1, opened2);
+  EXPECT_EQ(broken1, broken2);
+  EXPECT_EQ(bal1, bal2);
+  ASSERT_EQ(x1.size(), x2.size());
+  for (std::size_t k = 0; k < x1.size(); ++k) ASSERT_EQ(x1[k], x2[k]) << "dof " << k;
 }
