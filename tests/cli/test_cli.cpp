@@ -378,7 +378,7 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   // The sweep's machinery on a 1083-tet disc for 0.2 ms with plates 10x faster (this checks
   // the variants run and are tabulated, not their numbers): the reference row reuses the
   // main run, the elastic row the stress check (run under stress_check/ on a finer mesh),
-  // the fourteen others run under study/, and study.csv has one row for each fracture run.
+  // the fifteen others run under study/, and study.csv has one row for each fracture run.
   const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
   const Result r = run("-q report " + disc + " --study --no-render --out " + (dir_ / "rep").string() +
                        " --set mesh.brazilian_disc.size=0.02 --set materials.rock.joint_penalty=30"
@@ -386,10 +386,10 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
                        " --set walls.0.velocity=[0,-0.2,0] --set walls.1.velocity=[0,0.2,0]");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
-  for (const char* row :
-       {"| size_32.0mm |", "| size_25.0mm |", "| size_20.0mm | reference |", "| penalty_100 |", "| graded_loads |",
-        "| elastic_fine |", "| gauss_joints |", "| rate_x4 |", "| corotational |", "| band_0.2D |", "| split_plane |",
-        "| paper_law |", "| paper_joints |", "| bearing_inter |", "| bearing_joint_free |", "| flat_plates |"})
+  for (const char* row : {"| size_32.0mm |", "| size_25.0mm |", "| size_20.0mm | reference |", "| penalty_100 |",
+                          "| graded_loads |", "| elastic_fine |", "| gauss_joints |", "| rate_x4 |", "| corotational |",
+                          "| band_0.2D |", "| split_plane |", "| paper_law |", "| paper_joints |", "| bearing_inter |",
+                          "| bearing_joint_free |", "| flat_plates |", "| extrinsic |"})
     EXPECT_NE(md.find(row), std::string::npos) << row;
   const auto row = md.find("| elastic_fine |");
   ASSERT_NE(row, std::string::npos);
@@ -406,7 +406,7 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   std::ifstream csv(dir_ / "rep" / "study" / "study.csv");
   int lines = 0;
   for (std::string l; std::getline(csv, l);) ++lines;
-  EXPECT_EQ(lines, 1 + 15);
+  EXPECT_EQ(lines, 1 + 16);
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
 }
 
