@@ -55,8 +55,9 @@ inline Real onset_ratio(const CohesiveParams& p, const FaceTraction& t) {
 }
 
 /// A traction smaller than this in magnitude cannot reach law p's onset (a screen that
-/// spares the full test on faces far from it): mode I needs t_n >= f_t; the coupled ellipse
-/// needs t_n >= f_t or t_s >= f_s >= c somewhere on |t| >= min(f_t, c); the paper's law needs
+/// spares the full test on faces far from it): mode I needs t_n >= f_t; for the coupled
+/// ellipse (<t_n> / f_t)^2 + (t_s / f_s)^2 <= |t|^2 / min(f_t, f_s)^2 and f_s >= c, so it needs
+/// |t| >= min(f_t, c); the paper's law needs
 /// t_n >= f_t or t_s >= c - t_n tan(phi) >= c - |t| tan(phi), so |t| >= c / (1 + tan(phi)).
 inline Real onset_floor(const CohesiveParams& p) {
   switch (p.law) {

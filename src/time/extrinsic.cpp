@@ -24,7 +24,8 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
   for (Index e = 0; e < ne; ++e) bound_[e] = joint::stress_bound(&stress_[6 * static_cast<std::size_t>(e)]);
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
-    if (!js.closed[j] || 0.5 * (bound_[js.ea[j]] + bound_[js.eb[j]]) < floor_[j]) continue;
+    // (A margin of 1e-9 keeps rounding in the bound from screening a face at its onset.)
+    if (!js.closed[j] || 0.5 * (bound_[js.ea[j]] + bound_[js.eb[j]]) * (1 + 1e-9) < floor_[j]) continue;
     const std::size_t j4 = 4 * static_cast<std::size_t>(j);
     // The face's current normal from A to B, as the joint kernel takes it (a closed face's
     // two sides coincide).

@@ -54,9 +54,16 @@ class Integrator {
   /// Cauchy stress of every element at the current state (6 per element).
   void stresses(std::vector<Real>& out);
   /// Rebuilds the groups of tied nodes from the joints' closed flags (joint/ties.hpp), after
-  /// joints opened: each copy then takes its new group's inverse mass. Groups only split
-  /// while a run goes on, and a split group's copies move alike already, so nothing jumps.
-  void retie() { retie(false); }
+  /// joints opened: each copy then takes its new group's inverse mass, and the forces are
+  /// evaluated again so that each new group gets its own copies' forces (and the opened
+  /// joints'), not the old group's total. Groups only split while a run goes on, and a split
+  /// group's copies have the same position and velocity already, so these do not jump. The
+  /// forces are taken at the end-of-step velocity (the step's own used the mid-step one for
+  /// damping), and contact histories do not advance (no time passes).
+  void retie() {
+    retie(false);
+    compute_forces(v_, 0.0, false);
+  }
   const joint::Ties& ties() const { return ties_; }
   /// Gmsh tag of a global element, for messages.
   std::size_t element_tag(Index e) const { return m_.fem.elem_tag[e]; }

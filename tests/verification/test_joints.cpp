@@ -588,3 +588,44 @@ TEST(Joints, ExtrinsicInsertionIsTheSameOnOneAndTwoThreads) {
   ASSERT_EQ(x1.size(), x2.size());
   for (std::size_t k = 0; k < x1.size(); ++k) ASSERT_EQ(x1[k], x2[k]) << "dof " << k;
 }
+
+TEST(Joints, InsertionKeepsTheTractionAndMakesNoEnergy) {
+  // The bar of BarWithExtrinsicJointsBreaksDissipatingGfTimesArea (mode I, penalty 10, 4
+  // cells): at the step a face opens, its joint starts with the face's normal traction, and
+  // one step later (the face now free to open) the joint carries it still, within 1 % (one
+  // step of loading at 0.01 m/s moves the traction by far less; a jump to the softened or
+  // to zero traction would be 100 %). The opening itself changes no term of the ledger's
+  // balance (the law's skipped elastic energy is booked with an equal negative dissipation).
+  CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000, 10);
+  c.joint_materials[0].nodal_quadrature = true;
+  c.joint_materials[0].mode_i = true;
+  c.bodies[0].extrinsic = true;
+  c.boundaries.push_back(fixed("xmin"));
+  BoundaryConfig pull;
+  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
+  pull.dof[1] = pull.dof[2] = false;
+  pull.ramp = 2e-5;
+  c.boundaries.push_back(pull);
+  Model m = build_model(c, box_mesh(CellType::Hex8, 4, 1, 1, Vec3(0.1, 0.02, 0.02)));
+  Integrator it(m, 0.9 * critical_dt(m));
+  ExtrinsicInsertion ins(1);
+  Index j = -1;
+  Real tn = 0;
+  while (j < 0 && it.time() < 0.05) {
+    it.step();
+    const Real before = it.energy().balance();
+    if (ins.check(m, it) == 0) continue;
+    const Energy e = it.energy();
+    EXPECT_NEAR(e.balance(), before, 1e-12 * e.largest());
+    for (Index k = 0; k < m.joints.size() && j < 0; ++k)
+      if (!m.joints.closed[k]) j = k;
+    tn = m.joints.point_state(4 * static_cast<std::size_t>(j)).sn;
+    EXPECT_NEAR(tn / 3e6, 1.0, 0.01);  // opened at f_t (within the step's increment)
+  }
+  ASSERT_GE(j, 0) << "no face opened";
+  it.step();
+  ins.check(m, it);
+  for (int g = 0; g < 4; ++g)
+    EXPECT_NEAR(m.joints.point_state(4 * static_cast<std::size_t>(j) + g).sn / tn, 1.0, 0.01) << "point " << g;
+}
