@@ -20,8 +20,8 @@
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
 #include "mesh/locality.hpp"
-#include "time/extrinsic.hpp"
 #include "run/case_mesh.hpp"
+#include "time/extrinsic.hpp"
 #include "time/integrator.hpp"
 #include "time/stop_rule.hpp"
 
@@ -172,8 +172,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
     extrinsic.emplace(c.insertion_interval);
-    log::info("  extrinsic insertion: {} joint(s) closed until their faces reach the strength, checked every {} step(s)",
-              std::count(model.joints.closed.begin(), model.joints.closed.end(), 1), c.insertion_interval);
+    log::info(
+        "  extrinsic insertion: {} joint(s) closed until their faces reach the strength, checked every {} step(s)",
+        std::count(model.joints.closed.begin(), model.joints.closed.end(), 1), c.insertion_interval);
   }
   std::vector<Real> stress;
   std::vector<Real> elem_mass(fem.n_elements, 0.0);
