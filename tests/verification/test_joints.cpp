@@ -477,26 +477,30 @@ namespace {
 // The bar of break_bar with extrinsic joints (penalty 1: it acts only once a face opens):
 // {fracture energy / (G_fI x broken area), broken area, largest ledger error, opened joints,
 // the step over the intrinsic bar's (penalty 100)}.
+// The hex bar of break_bar (G_fI 100, nodal joints), fixed at x = 0 and pulled slowly at
+// x = L; extrinsic: its joints start closed.
+Model pulled_bar(int n, bool mode_i, bool extrinsic, Real penalty) {
+  CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000, penalty);
+  c.joint_materials[0].nodal_quadrature = true;
+  c.joint_materials[0].mode_i = mode_i;
+  c.bodies[0].extrinsic = extrinsic;
+  c.boundaries.push_back(fixed("xmin"));
+  BoundaryConfig pull;
+  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
+  pull.dof[1] = pull.dof[2] = false;
+  pull.ramp = 2e-5;
+  c.boundaries.push_back(pull);
+  return build_model(c, box_mesh(CellType::Hex8, n, 1, 1, Vec3(0.1, 0.02, 0.02)));
+}
+
 struct ExtrinsicBar {
   Real ratio, area, balance, dt_ratio;
   Index opened, broken;
 };
 ExtrinsicBar break_bar_extrinsic(int n, bool mode_i, Real penalty) {
   const Real GfI = 100;
-  auto bar = [&](bool extrinsic) {
-    CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
-    make_fracturable(c, 3e6, GfI, 10e6, 30, 1000, extrinsic ? penalty : 100);
-    c.joint_materials[0].nodal_quadrature = true;
-    c.joint_materials[0].mode_i = mode_i;
-    c.bodies[0].extrinsic = extrinsic;
-    c.boundaries.push_back(fixed("xmin"));
-    BoundaryConfig pull;
-    pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
-    pull.dof[1] = pull.dof[2] = false;
-    pull.ramp = 2e-5;
-    c.boundaries.push_back(pull);
-    return build_model(c, box_mesh(CellType::Hex8, n, 1, 1, Vec3(0.1, 0.02, 0.02)));
-  };
+  auto bar = [&](bool extrinsic) { return pulled_bar(n, mode_i, extrinsic, extrinsic ? penalty : 100); };
   const Real dt_intrinsic = critical_dt(bar(false));
   Model m = bar(true);
   EXPECT_EQ(std::count(m.joints.closed.begin(), m.joints.closed.end(), 1), n - 1);
@@ -596,18 +600,7 @@ TEST(Joints, InsertionKeepsTheTractionAndMakesNoEnergy) {
   // step of loading at 0.01 m/s moves the traction by far less; a jump to the softened or
   // to zero traction would be 100 %). The opening itself changes no term of the ledger's
   // balance (the law's skipped elastic energy is booked with an equal negative dissipation).
-  CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
-  make_fracturable(c, 3e6, 100, 10e6, 30, 1000, 10);
-  c.joint_materials[0].nodal_quadrature = true;
-  c.joint_materials[0].mode_i = true;
-  c.bodies[0].extrinsic = true;
-  c.boundaries.push_back(fixed("xmin"));
-  BoundaryConfig pull;
-  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
-  pull.dof[1] = pull.dof[2] = false;
-  pull.ramp = 2e-5;
-  c.boundaries.push_back(pull);
-  Model m = build_model(c, box_mesh(CellType::Hex8, 4, 1, 1, Vec3(0.1, 0.02, 0.02)));
+  Model m = pulled_bar(4, true, true, 10);
   Integrator it(m, 0.9 * critical_dt(m));
   ExtrinsicInsertion ins(1);
   Index j = -1;
