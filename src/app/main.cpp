@@ -14,6 +14,7 @@
 #include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "render/image_compare.hpp"
+#include "run/checkpoint.hpp"
 #include "run/montage.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
@@ -37,9 +38,23 @@ int main(int argc, char** argv) {
   std::string case_file, out_dir;
   std::vector<std::string> sets;
   bool progress = false, no_progress = false;
-  run->add_option("case", case_file, "Case file (TOML)")->required();
-  run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
-  run->add_option("--set", sets, "Override a case key: section.key=value (repeatable; value in TOML syntax)");
+  std::string restart_dir;
+  double checkpoint_every = 0;
+  auto* run_case_opt = run->add_option("case", case_file, "Case file (TOML); none with --restart");
+  auto* run_out_opt = run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
+  auto* run_set_opt =
+      run->add_option("--set", sets, "Override a case key: section.key=value (repeatable; value in TOML syntax)");
+  auto* restart_opt = run->add_option("--restart", restart_dir,
+                                      "Continue the run whose output folder is RUN_DIR from its newest checkpoint, "
+                                      "with the case and --set it was started with (outputs: RUN_DIR unless --out)");
+  restart_opt->excludes(run_case_opt)->excludes(run_set_opt)->type_name("RUN_DIR");
+  auto* ckpt_opt =
+      run->add_option("--checkpoint-every", checkpoint_every,
+                      "Write DIR/checkpoint.bin every T of simulated time (atomically, over the last one); "
+                      "SIGINT/SIGTERM write one anyway. Default with --restart: the interrupted run's")
+          ->check(CLI::NonNegativeNumber)
+          ->type_name("T");
+  (void)run_out_opt;
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
 
@@ -175,13 +190,30 @@ int main(int argc, char** argv) {
                           mesh_out.empty() ? (std::filesystem::path("results") / c.name / "mesh").string() : mesh_out);
     }
     if (*run) {
-      const CaseConfig c = read_case(case_file, sets);
       RunOptions opt;
+      opt.checkpoint_every = checkpoint_every;
+      if (!restart_dir.empty()) {
+        // The case and overrides come from the checkpoint; run_case checks that the case
+        // still reads as it did then.
+        opt.restart_file = find_checkpoint(restart_dir);
+        StateArchive body;
+        const CheckpointHeader h = read_checkpoint(opt.restart_file, body);
+        case_file = h.case_path, sets = h.sets;
+        if (ckpt_opt->count() == 0) opt.checkpoint_every = h.checkpoint_every;
+        if (out_dir.empty()) out_dir = restart_dir;
+        log::info("dspdem run --restart: {} (step {}, t = {:.6g} s)", opt.restart_file, h.steps, h.time);
+      }
+      DSPDEM_CHECK(!case_file.empty(), "run: give a case file, or --restart RUN_DIR");
+      const CaseConfig c = read_case(case_file, sets);
+      opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;
       const bool in_ci = std::getenv("CI") != nullptr;
       opt.progress = !no_progress && (progress || (isatty(STDERR_FILENO) && !in_ci && !quiet));
       return run_case(c, opt);
     }
+  } catch (const Interrupted& e) {
+    fmt::print(stderr, "stopped by a signal: {}\n", e.what());
+    return kExitInterrupted;
   } catch (const NumericalError& e) {
     fmt::print(stderr, "error: numerical failure: {}\n", e.what());
     return 3;

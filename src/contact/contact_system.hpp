@@ -81,6 +81,17 @@ class ContactSystem {
   std::vector<Wall>& walls() { return walls_; }
   /// Skeleton error for the first element whose radius empties it ("" when none).
   const std::string& setup_error() const { return setup_error_; }
+  /// What changes during a run, for checkpoints (core/archive.hpp): candidates, pairs and
+  /// their histories, the state of the last build, walls and the energy accumulators.
+  /// Per-evaluation scratch (skeleton cache, records) is sized again on load.
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar.parts(walls_, "walls");
+    ar(surface_, surface_list_, fragment_, fragment_prev_, born_offset_, watch_, x_build_, wall_build_, wall_q_build_,
+       failed_seen_, built_, pairs_, wall_pairs_, history_.offset, history_.entry, skel_slot_, totals_, elastic_,
+       wall_power_, fdamp_, fdamp_prev_);
+    if (ar.loading()) skel_cache_.resize(surface_list_.size());
+  }
 
  private:
   /// One touch evaluated: what the ordered gather adds to nodes, walls, ledger and history.

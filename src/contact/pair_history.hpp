@@ -15,6 +15,10 @@ namespace dspdem::contact {
 struct HistoryEntry {
   int kind = 0, fa = 0, fb = 0;
   Vec3 xi = Vec3::Zero();
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(kind, fa, fb, xi);
+  }
 };
 
 /// A candidate pair's name: (ea, eb) for elements ea < eb; (n_elements + w, e) for element e

@@ -43,6 +43,11 @@ struct Wall {
   Vec3 force = Vec3::Zero();   ///< total contact force on the wall [N]
   Vec3 torque = Vec3::Zero();  ///< about its centre [N m]
 
+  /// What moves (core/archive.hpp); the shape and the settings come from the case.
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(centre, q, velocity, omega, momentum_angular, force, torque);
+  }
   Vec3 plane_normal() const { return q * normal0; }
   Vec3 jaw_axis() const { return q * axis0; }
   /// Box as a polytope (hexahedron topology, corners in gmsh order).

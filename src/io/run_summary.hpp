@@ -19,7 +19,7 @@ struct EnergySummary {
 
 struct RunSummary {
   std::string case_name, case_file;
-  std::string status;   ///< "completed" or "failed"
+  std::string status;   ///< "completed", "failed" or "interrupted"
   std::string message;  ///< why it failed, or why it ended before [time] end
   long steps = 0;
   double dt = 0, dt_critical = 0;

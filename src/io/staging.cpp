@@ -40,13 +40,14 @@ void Staging::commit() {
   }
   for (const auto& p : old) fs::remove_all(p);
   fs::remove_all(stage_);
-  // A successful run supersedes an earlier failure's partial outputs.
+  // A successful run supersedes an earlier failure's or interruption's partial outputs.
   fs::remove_all(fs::path(out_) / "failed_run");
+  fs::remove_all(fs::path(out_) / "interrupted_run");
   done_ = true;
 }
 
-std::string Staging::keep_failed() {
-  const fs::path dst = fs::path(out_) / "failed_run";
+std::string Staging::keep_as(const std::string& name) {
+  const fs::path dst = fs::path(out_) / name;
   fs::remove_all(dst);
   fs::rename(stage_, dst);
   done_ = true;

@@ -21,7 +21,9 @@ class Staging {
   /// of the same name (old ones are removed only after the new ones are in place).
   void commit();
   /// Renames the staging folder to DIR/failed_run (replacing an older one); returns its path.
-  std::string keep_failed();
+  std::string keep_failed() { return keep_as("failed_run"); }
+  /// Renames the staging folder to DIR/<name> (replacing an older one); returns its path.
+  std::string keep_as(const std::string& name);
 
  private:
   std::string out_, stage_;

@@ -72,6 +72,12 @@ struct JointSet {
     return state[i];
   }
   /// Joint j applies no force: released, or closed.
+  /// What changes during a run, for checkpoints (core/archive.hpp); the rest is built from
+  /// the mesh and the case, and the gather from the joint count alone.
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(lean, full, state, status, failed, released, released_energy, closed, offset);
+  }
   bool inactive(Index j) const { return released[j] || (!closed.empty() && closed[j]); }
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };

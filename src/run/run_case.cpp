@@ -1,6 +1,7 @@
 #include "run/run_case.hpp"
 
 #include <omp.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -21,6 +22,7 @@
 #include "joint/joint_compliance.hpp"
 #include "mesh/locality.hpp"
 #include "run/case_mesh.hpp"
+#include "run/checkpoint.hpp"
 #include "time/extrinsic.hpp"
 #include "time/integrator.hpp"
 #include "time/stop_rule.hpp"
@@ -30,7 +32,55 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_signal(int) { g_interrupted = 1; }
+// The first signal asks for a stop at the end of the step (checkpoint, outputs closed); a
+// second one exits at once. Every output file is written to a temporary name and renamed,
+// so what is on disk then is whole: the last checkpoint, frames and collections so far.
+extern "C" void on_signal(int) {
+  if (g_interrupted) _exit(kExitInterrupted);
+  g_interrupted = 1;
+}
+
+/// Where the time loop is, besides the model: output schedule, the files' lengths, the stop
+/// rule. Saved in checkpoints with the model's state.
+struct LoopState {
+  std::vector<std::pair<double, std::string>> frames, joint_frames;
+  Real next_frame = 0, next_series = 0, next_checkpoint = 0;
+  Real stop_at = -1;
+  std::string stop_message;
+  std::uint64_t series_bytes = 0, fragments_bytes = 0;
+  double wall_before = 0;  ///< wall time of the run before its last restart [s]
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(frames, joint_frames, next_frame, next_series, next_checkpoint, stop_at, stop_message, series_bytes,
+       fragments_bytes, wall_before);
+  }
+};
+
+// A restart's outputs so far: the frames up to the checkpoint (hard links: frames never
+// change once written, and a link costs no space), series.csv and fragments.csv cut back to
+// their length then, the collections written again. The source folder is left as it is, so
+// a restart that fails can be tried again.
+void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& ls) {
+  fs::create_directories(to / "frames");
+  auto link = [&](const std::string& rel) {
+    std::error_code ec;
+    fs::create_hard_link(from / rel, to / rel, ec);
+    if (ec) fs::copy_file(from / rel, to / rel, fs::copy_options::overwrite_existing);
+  };
+  for (const auto& [t, rel] : ls.frames) link(rel);
+  for (const auto& [t, rel] : ls.joint_frames) link(rel);
+  auto cut = [&](const char* name, std::uint64_t bytes) {
+    DSPDEM_CHECK(fs::exists(from / name) && fs::file_size(from / name) >= bytes,
+                 "restart: '{}' is shorter than when the checkpoint was written ({} bytes)", (from / name).string(),
+                 bytes);
+    fs::copy_file(from / name, to / name, fs::copy_options::overwrite_existing);
+    fs::resize_file(to / name, bytes);
+  };
+  cut("series.csv", ls.series_bytes);
+  cut("fragments.csv", ls.fragments_bytes);
+  write_pvd((to / "run.pvd").string(), ls.frames);
+  if (!ls.joint_frames.empty()) write_pvd((to / "joints.pvd").string(), ls.joint_frames);
+}
 
 std::string format_duration(double s) {
   if (!std::isfinite(s)) return "?";
@@ -41,8 +91,11 @@ std::string format_duration(double s) {
 
 class Series {
  public:
-  Series(const std::string& path, const Model& m) : f_(path) {
+  /// append: a restart's series, cut back to the checkpoint (its header is there).
+  Series(const std::string& path, const Model& m, bool append)
+      : f_(path, append ? std::ios::app | std::ios::binary : std::ios::out | std::ios::binary) {
     DSPDEM_CHECK(f_.good(), "cannot write '{}'", path);
+    if (append) return;
     f_ << "time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,"
           "crack_area";
     if (m.contact.enabled()) f_ << ",contact_elastic,friction,contact_damping,contacts";
@@ -74,6 +127,7 @@ class Series {
     f_ << '\n';
     f_.flush();
   }
+  std::uint64_t bytes() { return static_cast<std::uint64_t>(f_.tellp()); }
 
  private:
   std::ofstream f_;
@@ -161,12 +215,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   if (c.max_steps > 0) n_steps = std::min(n_steps, c.max_steps);
 
   Staging stage(opt.out_dir);
-  const std::string frames_dir = (fs::path(stage.path()) / "frames").string();
+  const fs::path sdir(stage.path());
+  const std::string frames_dir = (sdir / "frames").string();
   fs::create_directories(frames_dir);
-  write_file_atomic((fs::path(stage.path()) / "case.resolved.toml").string(), c.resolved_toml);
-  Series series((fs::path(stage.path()) / "series.csv").string(), model);
-  std::vector<std::pair<double, std::string>> frames;
-  const std::string pvd = (fs::path(stage.path()) / "run.pvd").string();
+  write_file_atomic((sdir / "case.resolved.toml").string(), c.resolved_toml);
+  const std::string pvd = (sdir / "run.pvd").string();
+  const std::string joints_pvd = (sdir / "joints.pvd").string();
+  const std::string ckpt = (sdir / "checkpoint.bin").string();
 
   Integrator it(model, dt);
   std::optional<ExtrinsicInsertion> extrinsic;
@@ -182,14 +237,59 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     for (Index e = 0; e < b.size(); ++e)
       elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
   joint::Fragments frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+  PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
+  LoopState ls;
+  ls.next_frame = c.frame_interval, ls.next_series = c.series_interval, ls.next_checkpoint = opt.checkpoint_every;
+
+  CheckpointHeader head;
+  head.build = checkpoint_build_id();
+  head.case_path = fs::absolute(c.path).lexically_normal().string();
+  head.sets = opt.sets, head.resolved_toml = c.resolved_toml;
+  head.nodes = fem.n_nodes, head.elements = fem.n_elements, head.joints = model.joints.size();
+  head.dt = dt, head.checkpoint_every = opt.checkpoint_every;
+  // The same list saves and loads (core/archive.hpp).
+  auto persist = [&](StateArchive& ar) {
+    ar.section("loop");
+    ar(ls, stop_rule);
+    it.persist(ar);
+    ar.section("insertion");
+    Index opened = extrinsic ? extrinsic->opened() : 0;
+    if (extrinsic)
+      ar(*extrinsic);
+    else
+      ar(opened);
+  };
+  if (!opt.restart_file.empty()) {
+    StateArchive body;
+    const CheckpointHeader h = read_checkpoint(opt.restart_file, body);
+    DSPDEM_CHECK(h.resolved_toml == c.resolved_toml,
+                 "restart: checkpoint '{}' was written for case {} as it was then; it has changed since ({}): run it "
+                 "again, or restore the case",
+                 opt.restart_file, h.case_path, first_difference(h.resolved_toml, c.resolved_toml));
+    DSPDEM_CHECK(
+        h.nodes == fem.n_nodes && h.elements == fem.n_elements && h.joints == model.joints.size() && h.dt == dt,
+        "restart: checkpoint '{}' is of a model with {} nodes, {} elements, {} joints and dt {:.17g}; the "
+        "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
+        opt.restart_file, h.nodes, h.elements, h.joints, h.dt, fem.n_nodes, fem.n_elements, model.joints.size(), dt);
+    persist(body);
+    DSPDEM_CHECK(body.remaining() == 0, "checkpoint '{}': {} bytes left after the state (corrupt file)",
+                 opt.restart_file, body.remaining());
+    restore_outputs(fs::path(opt.restart_file).parent_path(), sdir, ls);
+    frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+    log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", opt.restart_file, it.steps(),
+              it.time(), ls.frames.size());
+  }
+  Series series((sdir / "series.csv").string(), model, !opt.restart_file.empty());
   // fragments.csv: per frame the count and the largest pieces (mass, size, where), so that
   // any scene's report can follow the break-up without reading the frames back.
-  std::ofstream frag_csv(fs::path(stage.path()) / "fragments.csv");
-  DSPDEM_CHECK(frag_csv.good(), "cannot write '{}'", (fs::path(stage.path()) / "fragments.csv").string());
-  frag_csv << "frame,time,count,rank,id,mass,elements,x,y,z\n";  // id: the frames' fragment field
+  std::ofstream frag_csv(sdir / "fragments.csv", opt.restart_file.empty() ? std::ios::out | std::ios::binary
+                                                                          : std::ios::app | std::ios::binary);
+  DSPDEM_CHECK(frag_csv.good(), "cannot write '{}'", (sdir / "fragments.csv").string());
+  if (opt.restart_file.empty())
+    frag_csv << "frame,time,count,rank,id,mass,elements,x,y,z\n";  // id: the frames' fragment field
   constexpr std::size_t kFragmentRows = 20;
-  std::vector<std::pair<double, std::string>> joint_frames;
-  const std::string joints_pvd = (fs::path(stage.path()) / "joints.pvd").string();
+  auto& frames = ls.frames;
+  auto& joint_frames = ls.joint_frames;
   auto write_frame = [&]() {
     it.stresses(stress);
     FrameData fd;
@@ -223,6 +323,17 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       write_pvd(joints_pvd, joint_frames);
     }
   };
+  auto write_ckpt = [&]() {
+    ls.series_bytes = series.bytes();
+    ls.fragments_bytes = static_cast<std::uint64_t>(frag_csv.tellp());
+    const double before = ls.wall_before;
+    ls.wall_before += wall.seconds();
+    StateArchive body;
+    persist(body);
+    ls.wall_before = before;
+    head.steps = it.steps(), head.time = it.time();
+    write_checkpoint(ckpt, head, body);
+  };
 
   auto write_summary = [&](const std::string& dir, const std::string& status, const std::string& message) {
     const Energy e = it.energy();
@@ -230,7 +341,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     s.case_name = c.name, s.case_file = c.path, s.status = status, s.message = message;
     s.steps = it.steps(), s.dt = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
     s.dt_limiting_element = static_cast<long>(lim_tag);
-    s.t_end = it.time(), s.wall_s = wall.seconds(), s.threads = omp_get_max_threads();
+    s.t_end = it.time(), s.wall_s = ls.wall_before + wall.seconds(), s.threads = omp_get_max_threads();
     s.nodes = fem.n_nodes, s.elements = fem.n_elements, s.frames = static_cast<long>(frames.size());
     s.joints = model.joints.size(), s.joint_added_compliance = joint_compliance;
     s.broken_joints = e.broken_joints, s.crack_area = e.crack_area;
@@ -245,60 +356,79 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   };
 
   g_interrupted = 0;
-  auto old_int = std::signal(SIGINT, on_signal);
-  auto old_term = std::signal(SIGTERM, on_signal);
+  struct sigaction act {};
+  act.sa_handler = on_signal;
+  sigemptyset(&act.sa_mask);
+  struct sigaction old_int {
+  }, old_term{};
+  sigaction(SIGINT, &act, &old_int);
+  sigaction(SIGTERM, &act, &old_term);
   struct Restore {
-    decltype(old_int) a, b;
-    ~Restore() { std::signal(SIGINT, a), std::signal(SIGTERM, b); }
+    struct sigaction a, b;
+    ~Restore() { sigaction(SIGINT, &a, nullptr), sigaction(SIGTERM, &b, nullptr); }
   } restore{old_int, old_term};
 
   const bool tty_progress = opt.progress;
   std::function<Real()> stop_value;
   if (!c.stop_series.empty()) stop_value = series_column(c, model, it);
-  PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
-  std::string stop_message;
-  Real stop_at = -1;
+  const long s0 = it.steps();  // 0, or where a restart begins
   try {
-    write_frame();
-    series.row(it, model);
-    Real next_frame = c.frame_interval, next_series = c.series_interval;
+    if (opt.restart_file.empty()) {
+      write_frame();
+      series.row(it, model);
+    }
     Timer loop;
     double last_report = 0;
-    for (long s = 0; s < n_steps; ++s) {
+    for (long s = s0; s < n_steps; ++s) {
       it.step();
       if (extrinsic) extrinsic->check(model, it);
       bool last = s + 1 == n_steps;
       const Real t = it.time();
-      if (t >= next_series - 1e-12 * c.t_end || last) {
+      if (t >= ls.next_series - 1e-12 * c.t_end || last) {
         it.check_energy(c.energy_blowup_factor);
-        if (stop_value && stop_at < 0 && stop_rule.update(stop_value())) {
-          stop_at = t + c.stop_delay;
-          stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",
-                                     c.stop_series, c.stop_fraction, stop_rule.peak(), t);
+        if (stop_value && ls.stop_at < 0 && stop_rule.update(stop_value())) {
+          ls.stop_at = t + c.stop_delay;
+          ls.stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",
+                                        c.stop_series, c.stop_fraction, stop_rule.peak(), t);
         }
-        if (stop_at >= 0 && t >= stop_at - 1e-12 * c.t_end && !last) {
+        if (ls.stop_at >= 0 && t >= ls.stop_at - 1e-12 * c.t_end && !last) {
           last = true;  // this row and a last frame, then stop
-          stop_message += fmt::format("t = {:.6g} s", t);
-          log::info("  {}", stop_message);
+          ls.stop_message += fmt::format("t = {:.6g} s", t);
+          log::info("  {}", ls.stop_message);
         }
         series.row(it, model);
-        while (next_series <= t + 1e-12 * c.t_end) next_series += c.series_interval;
+        while (ls.next_series <= t + 1e-12 * c.t_end) ls.next_series += c.series_interval;
       }
-      if (t >= next_frame - 1e-12 * c.t_end || last) {
+      if (t >= ls.next_frame - 1e-12 * c.t_end || last) {
         write_frame();
-        while (next_frame <= t + 1e-12 * c.t_end) next_frame += c.frame_interval;
+        while (ls.next_frame <= t + 1e-12 * c.t_end) ls.next_frame += c.frame_interval;
       }
-      if (g_interrupted)
-        throw Interrupted(fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t), it.steps(), t);
       if (last) break;
+      if (it.steps() == opt.interrupt_at_step) g_interrupted = 1;
+      if (g_interrupted) {
+        write_ckpt();
+        write_summary(stage.path(), "interrupted", fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t));
+        const std::string kept = stage.keep_as("interrupted_run");
+        throw Interrupted(fmt::format("interrupted at step {}, t = {:.6g} s; outputs so far and a checkpoint in {}; "
+                                      "continue with: dspdem run --restart {}",
+                                      it.steps(), t, kept, opt.out_dir),
+                          it.steps(), t);
+      }
+      if (opt.checkpoint_every > 0 && t >= ls.next_checkpoint - 1e-12 * c.t_end) {
+        while (ls.next_checkpoint <= t + 1e-12 * c.t_end) ls.next_checkpoint += opt.checkpoint_every;
+        write_ckpt();
+      }
       if (tty_progress && loop.seconds() - last_report > 0.5) {
         last_report = loop.seconds();
-        const double rate = static_cast<double>(s + 1) / last_report;
+        const double rate = static_cast<double>(s + 1 - s0) / last_report;
         fmt::print(stderr, "\r  step {}/{}  t = {:.4g} s  {:.0f} steps/s  ETA {}   ", s + 1, n_steps, t, rate,
                    format_duration(static_cast<double>(n_steps - s - 1) / rate));
       }
     }
     if (tty_progress) fmt::print(stderr, "\n");
+  } catch (const Interrupted&) {
+    if (tty_progress) fmt::print(stderr, "\n");
+    throw;
   } catch (const NumericalError& e) {
     if (tty_progress) fmt::print(stderr, "\n");
     write_summary(stage.path(), "failed", e.what());
@@ -308,12 +438,21 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                          e.step, e.time);
   }
   if (extrinsic) log::info("  extrinsic insertion: {} joint(s) opened", extrinsic->opened());
-  write_summary(stage.path(), "completed", stop_message);
+  write_summary(stage.path(), "completed", ls.stop_message);
+  fs::remove(ckpt);  // a finished run needs none
   stage.commit();
+  // The folder a restart came from (an interrupted run, or the staging folder of a killed
+  // one) is superseded by these results.
+  if (!opt.restart_file.empty()) {
+    const fs::path src = fs::path(opt.restart_file).parent_path();
+    const std::string name = src.filename().string();
+    if (name.rfind(".staging-", 0) == 0 || name == "interrupted_run") fs::remove_all(src);
+  }
   const Energy e = it.energy();
   log::info("  {} steps to t = {:.6g} s in {:.2f} s ({:.3g} element-steps/s, {} threads); energy balance error {:.2e}",
-            it.steps(), it.time(), wall.seconds(), static_cast<double>(it.steps()) * fem.n_elements / wall.seconds(),
-            omp_get_max_threads(), e.balance_error());
+            it.steps(), it.time(), wall.seconds(),
+            static_cast<double>(it.steps() - s0) * fem.n_elements / wall.seconds(), omp_get_max_threads(),
+            e.balance_error());
   log::info("  results in {}/ (run.pvd, {} frames, series.csv, summary.json)", opt.out_dir, frames.size());
   return 0;
 }

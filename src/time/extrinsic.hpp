@@ -24,6 +24,10 @@ class ExtrinsicInsertion {
   /// any thread count) and reties the nodes. Returns how many opened.
   Index check(Model& m, Integrator& it);
   Index opened() const { return opened_; }
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(opened_);
+  }
 
  private:
   long interval_;

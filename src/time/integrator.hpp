@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "joint/ties.hpp"
 #include "time/model.hpp"
 
@@ -65,6 +66,28 @@ class Integrator {
     compute_forces(v_, 0.0, false);
   }
   const joint::Ties& ties() const { return ties_; }
+  /// The run's whole changing state, this integrator's and its model's, for checkpoints
+  /// (core/archive.hpp): a run loaded from it goes on as the saved one would have, to the bit.
+  /// Tied groups are rebuilt from the joints' closed flags; scratch is not stored.
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar.section("integrator");
+    ar(t_, n_, x_, v_, f_, f_ext_, reaction_, w_ext_, damp_, e0_, dpower_);
+    ar.section("elements");
+    ar(m_.fem.elem_energy, m_.fem.elem_dpower);
+    ar.section("joints");
+    ar(m_.joints);
+    ar.section("contact");
+    ar(m_.contact);
+    ar.section("rigid bodies");
+    ar.parts(m_.rigid, "rigid bodies");
+    ar.section("end of model");
+    if (!ar.loading()) return;
+    const std::size_t nd = 3 * static_cast<std::size_t>(m_.fem.n_nodes);
+    DSPDEM_CHECK(x_.size() == nd && v_.size() == nd && f_.size() == nd && f_ext_.size() == nd && reaction_.size() == nd,
+                 "checkpoint: {} nodal values for a model of {} dofs", x_.size(), nd);
+    if (!m_.joints.closed.empty()) retie(false);
+  }
   /// Gmsh tag of a global element, for messages.
   std::size_t element_tag(Index e) const { return m_.fem.elem_tag[e]; }
 

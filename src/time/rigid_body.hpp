@@ -28,6 +28,11 @@ struct RigidBody {
   Vec3 angular_momentum = Vec3::Zero(), omega = Vec3::Zero();
   Eigen::Quaternion<Real> q = Eigen::Quaternion<Real>::Identity();
 
+  /// What moves (core/archive.hpp).
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(centre, velocity, angular_momentum, omega, q);
+  }
   Mat3 inertia_world() const;
   void update_omega() { omega = inertia_world().ldlt().solve(angular_momentum); }
 };

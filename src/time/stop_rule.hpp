@@ -22,6 +22,10 @@ class PeakDropStop {
     return peak_ > 0 && peak_ >= min_peak_ && a < fraction_ * peak_;
   }
   Real peak() const { return peak_; }
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(peak_);
+  }
 
  private:
   Real fraction_, min_peak_;

@@ -1,0 +1,145 @@
+#include "run/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace dspdem {
+
+namespace {
+namespace fs = std::filesystem;
+const std::string kMagic = "DSPDEM-CHECKPOINT\n";
+
+std::uint32_t crc_of(const char* p, std::size_t n) {
+  uLong c = crc32(0L, Z_NULL, 0);
+  while (n > 0) {  // zlib takes uInt lengths
+    const uInt k = static_cast<uInt>(std::min<std::size_t>(n, 1u << 30));
+    c = crc32(c, reinterpret_cast<const Bytef*>(p), k);
+    p += k, n -= k;
+  }
+  return static_cast<std::uint32_t>(c);
+}
+
+// Reads a whole file; Error naming it if it cannot be read.
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  DSPDEM_CHECK(f.good(), "cannot read checkpoint '{}'", path);
+  std::string s((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return s;
+}
+
+// The header alone, checked for magic and CRC (body follows in the returned archive).
+CheckpointHeader open_checked(const std::string& path, StateArchive& body) {
+  std::string s = slurp(path);
+  DSPDEM_CHECK(s.size() >= kMagic.size() + 4 && s.compare(0, kMagic.size(), kMagic) == 0,
+               "'{}' is not a dspdem checkpoint (no '{}' at its start)", path, kMagic.substr(0, kMagic.size() - 1));
+  std::uint32_t stored;
+  std::memcpy(&stored, s.data() + s.size() - 4, 4);
+  const std::uint32_t crc = crc_of(s.data(), s.size() - 4);
+  DSPDEM_CHECK(crc == stored, "checkpoint '{}' is corrupt or was cut short (CRC-32 {:08x}, stored {:08x})", path, crc,
+               stored);
+  body = StateArchive(s.substr(kMagic.size(), s.size() - 4 - kMagic.size()), path);
+  CheckpointHeader h;
+  body(h);
+  return h;
+}
+}  // namespace
+
+std::string checkpoint_build_id() {
+#ifndef DSPDEM_BUILD_ID
+#define DSPDEM_BUILD_ID "unknown"
+#endif
+  return DSPDEM_BUILD_ID;
+}
+
+void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body) {
+  StateArchive head;
+  CheckpointHeader hc = h;
+  head(hc);
+  std::string s = kMagic;
+  s.reserve(kMagic.size() + head.bytes().size() + body.bytes().size() + 4);
+  s += head.bytes();
+  s += body.bytes();
+  const std::uint32_t crc = crc_of(s.data(), s.size());
+  s.append(reinterpret_cast<const char*>(&crc), 4);
+  // Temporary name, on disk before the rename: a crash leaves the old file or the new one.
+  const std::string tmp = path + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  DSPDEM_CHECK(fd >= 0, "cannot write checkpoint '{}': {}", tmp, std::strerror(errno));
+  std::size_t done = 0;
+  while (done < s.size()) {
+    const ssize_t w = ::write(fd, s.data() + done, s.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      const int err = errno;
+      ::close(fd);
+      fail("error while writing checkpoint '{}': {}", tmp, std::strerror(err));
+    }
+    done += static_cast<std::size_t>(w);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  ::close(fd);
+  DSPDEM_CHECK(synced, "cannot flush checkpoint '{}' to disk: {}", tmp, std::strerror(errno));
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  DSPDEM_CHECK(!ec, "cannot move checkpoint '{}' into place: {}", path, ec.message());
+}
+
+CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body) {
+  CheckpointHeader h = open_checked(path, body);
+  DSPDEM_CHECK(h.format == CheckpointHeader{}.format, "checkpoint '{}' has format {}; this dspdem reads format {}",
+               path, h.format, CheckpointHeader{}.format);
+  // Another build may round differently or store its state differently: no bitwise restart.
+  DSPDEM_CHECK(h.build == checkpoint_build_id(),
+               "checkpoint '{}' was written by another build of dspdem ({}); this one is {}: restart it with that "
+               "build, or run the case again",
+               path, h.build, checkpoint_build_id());
+  return h;
+}
+
+std::string find_checkpoint(const std::string& run_dir) {
+  DSPDEM_CHECK(fs::is_directory(run_dir), "--restart {}: no such run folder", run_dir);
+  std::vector<fs::path> cands = {fs::path(run_dir) / "checkpoint.bin",
+                                 fs::path(run_dir) / "interrupted_run" / "checkpoint.bin"};
+  for (const auto& e : fs::directory_iterator(run_dir))
+    if (e.is_directory() && e.path().filename().string().rfind(".staging-", 0) == 0)
+      cands.push_back(e.path() / "checkpoint.bin");
+  std::string best, errors;
+  long best_steps = -1;
+  for (const auto& p : cands) {
+    if (!fs::is_regular_file(p)) continue;
+    try {
+      StateArchive body;
+      const CheckpointHeader h = open_checked(p.string(), body);
+      if (h.steps > best_steps) best_steps = h.steps, best = p.string();
+    } catch (const Error& e) {
+      errors += fmt::format("\n  {}", e.what());  // a damaged one does not hide a good one
+    }
+  }
+  DSPDEM_CHECK(!best.empty(),
+               "--restart {}: no usable checkpoint in the run folder (looked for checkpoint.bin there, in "
+               "interrupted_run/ and in the .staging-* folder of a run that was killed){}",
+               run_dir, errors);
+  return best;
+}
+
+std::string first_difference(const std::string& a, const std::string& b) {
+  std::istringstream sa(a), sb(b);
+  std::string la, lb;
+  for (int line = 1;; ++line) {
+    const bool ea = !std::getline(sa, la), eb = !std::getline(sb, lb);
+    if (ea && eb) return "";
+    if (ea != eb || la != lb)
+      return fmt::format("line {}: '{}' then, '{}' now", line, ea ? "<end>" : la, eb ? "<end>" : lb);
+  }
+}
+
+}  // namespace dspdem

@@ -1,0 +1,53 @@
+// Checkpoint files of a run (`dspdem run --checkpoint-every T`, SIGINT/SIGTERM, `--restart`).
+//
+// One file, <run folder>/checkpoint.bin: a magic line, a header (which build and which case
+// wrote it, and where the run was), the state (core/archive.hpp), and a CRC-32 of all of it.
+// It is written to a temporary name, flushed to disk and renamed over the previous one, so
+// the last good checkpoint survives a crash at any moment. A restart checks the build and
+// the case (its resolved text) before it builds anything, and the model's sizes before it
+// loads: a checkpoint of another case or build is refused with the reason.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/archive.hpp"
+#include "core/types.hpp"
+
+namespace dspdem {
+
+struct CheckpointHeader {
+  int format = 1;
+  std::string build;              ///< dspdem version, commit, compiler and build type
+  std::string case_path;          ///< absolute path of the case file
+  std::vector<std::string> sets;  ///< the run's --set overrides
+  std::string resolved_toml;      ///< the case with every default filled in, as run
+  Index nodes = 0, elements = 0, joints = 0;
+  Real dt = 0;
+  long steps = 0;  ///< where the run was
+  Real time = 0;
+  Real checkpoint_every = 0;  ///< the run's interval [s] (0: signals only)
+
+  template <class Ar>
+  void persist(Ar& ar) {
+    ar(format, build, case_path, sets, resolved_toml, nodes, elements, joints, dt, steps, time, checkpoint_every);
+  }
+};
+
+/// This build's identity, as written into checkpoints.
+std::string checkpoint_build_id();
+
+/// Writes header then body (the archive's bytes) to path atomically.
+void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body);
+
+/// Reads and checks (magic, CRC, format, build) a checkpoint; returns its header and leaves
+/// `body` positioned at the state.
+CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body);
+
+/// The newest checkpoint (most steps) a run folder holds: its own checkpoint.bin, an
+/// interrupted run's (interrupted_run/) or a killed run's (.staging-*/). Error if none.
+std::string find_checkpoint(const std::string& run_dir);
+
+/// The first line where two case texts differ, for messages ("" if equal).
+std::string first_difference(const std::string& a, const std::string& b);
+
+}  // namespace dspdem
