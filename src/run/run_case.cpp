@@ -154,6 +154,18 @@ std::function<Real()> series_column(const CaseConfig& c, const Model& m, const I
 
 int run_case(const CaseConfig& c, const RunOptions& opt) {
   Timer wall;
+  // From the start: a signal during the set-up (meshing can take minutes) then stops the run
+  // after its first step, with a checkpoint, instead of killing it half-written.
+  g_interrupted = 0;
+  struct sigaction act = {}, old_int = {}, old_term = {};
+  act.sa_handler = on_signal;
+  sigemptyset(&act.sa_mask);
+  sigaction(SIGINT, &act, &old_int);
+  sigaction(SIGTERM, &act, &old_term);
+  struct Restore {
+    struct sigaction a, b;
+    ~Restore() { sigaction(SIGINT, &a, nullptr), sigaction(SIGTERM, &b, nullptr); }
+  } restore{old_int, old_term};
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
   Mesh mesh = load_case_mesh(c);
   // Elements and nodes in a spatial order before anything numbers them (joints, contact,
@@ -355,19 +367,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     write_run_summary((fs::path(dir) / "summary.json").string(), s);
   };
 
-  g_interrupted = 0;
-  struct sigaction act {};
-  act.sa_handler = on_signal;
-  sigemptyset(&act.sa_mask);
-  struct sigaction old_int {
-  }, old_term{};
-  sigaction(SIGINT, &act, &old_int);
-  sigaction(SIGTERM, &act, &old_term);
-  struct Restore {
-    struct sigaction a, b;
-    ~Restore() { sigaction(SIGINT, &a, nullptr), sigaction(SIGTERM, &b, nullptr); }
-  } restore{old_int, old_term};
-
+  // Again before the loop: the set-up's libraries (gmsh) may have put in their own.
+  sigaction(SIGINT, &act, nullptr);
+  sigaction(SIGTERM, &act, nullptr);
   const bool tty_progress = opt.progress;
   std::function<Real()> stop_value;
   if (!c.stop_series.empty()) stop_value = series_column(c, model, it);
