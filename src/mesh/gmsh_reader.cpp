@@ -38,6 +38,11 @@ GmshSession::GmshSession() : omp_threads_(omp_get_max_threads()) {
   }();
   (void)initialised;
   gmsh::option::setNumber("General.Terminal", log::level() >= log::Level::Debug ? 1 : 0);
+  // One meshing thread, every session: otherwise gmsh meshes a .geo with the solver's
+  // OpenMP threads (the first session of a process had 1, from initialise; later ones 2),
+  // and its threaded mesher is not deterministic: the same .geo gave 7758 nodes, then 7755
+  // and 7672 in one process, and a restart found another model than its checkpoint's.
+  gmsh::option::setNumber("General.NumThreads", 1);
   gmsh::clear();
 }
 
