@@ -21,9 +21,9 @@ int mesh_command(const CaseConfig& c, const std::string& out_dir) {
   Mesh m;
   std::string source;
   if (c.mesh_generator.empty()) {
-    m = read_gmsh(c.mesh_file);
-    fs::copy_file(c.mesh_file, msh + ".tmp", fs::copy_options::overwrite_existing);
-    fs::rename(msh + ".tmp", msh);
+    // The mesh gmsh made or read, not the source file: a .geo copied under the name .msh
+    // was its script, which no mesh reader takes.
+    m = read_gmsh(c.mesh_file, msh);
     source = c.mesh_file;
   } else {
     // Inverted elements are refused inside (check_element_volumes); nothing is written then.

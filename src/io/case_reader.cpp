@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "io/case_config.hpp"
@@ -17,10 +18,16 @@ namespace {
 namespace fs = std::filesystem;
 using schema::Type;
 
+// The source name of values given by --set (toml++ keeps a node's source when it is moved).
+constexpr std::string_view kOverrideSource = "--set";
+
 struct Ctx {
   std::string file;
   std::string where(const toml::source_region& src) const {
-    if (src.begin.line == 0) return file + " (--set)";
+    if (src.path && *src.path == kOverrideSource) return file + " (--set)";
+    // Not from the file nor --set: a table the file leaves out, filled in here. (Every such
+    // place used to read "(--set)", naming an override that was never given.)
+    if (src.begin.line == 0) return file;
     return fmt::format("{}:{}", file, src.begin.line);
   }
 };
@@ -49,7 +56,9 @@ class Section {
   bool has(const std::string& key) const { return t_.contains(key); }
   std::string where(const std::string& key) const {
     const toml::node* n = t_.get(key);
-    return ctx_.where(n ? n->source() : t_.source());
+    // A key the file leaves out (its default filled in) is placed at its table.
+    const bool given = n && (n->source().begin.line > 0 || n->source().path);
+    return ctx_.where(given ? n->source() : t_.source());
   }
   std::string where() const { return ctx_.where(t_.source()); }
 
@@ -58,6 +67,10 @@ class Section {
     const toml::node* n = get_or_default(k);
     if (!n) return NAN;
     std::optional<double> v = n->value<double>();
+    // toml++ gives no double for an integer beyond 2^53, which a double cannot hold exactly.
+    if (!v && n->is_integer())
+      fail("{}: {} key '{}' = {} is too large an integer to convert exactly: write it as a float (e.g. {:.3e})",
+           where(key), label_, key, *n->value<int64_t>(), static_cast<double>(*n->value<int64_t>()));
     if (!v || !(n->is_integer() || n->is_floating_point()))
       fail("{}: {} key '{}' must be a number, got {}", where(key), label_, key, type_of(*n));
     check_range(k, *v, key);
@@ -146,9 +159,13 @@ class Section {
   void check_range(const schema::Key& k, double v, const std::string& key) const {
     const bool lo_ok = k.lo_open ? v > k.lo : v >= k.lo;
     const bool hi_ok = k.hi_open ? v < k.hi : v <= k.hi;
-    if (!std::isfinite(v) || !lo_ok || !hi_ok)
-      fail("{}: {} key '{}' = {} is out of range: must be {}{}", where(key), label_, key, v, schema::range_text(k),
+    if (!std::isfinite(v) || !lo_ok || !hi_ok) {
+      // A vector's entries take its range: range_text gives none for a [x, y, z] key.
+      schema::Key scalar = k;
+      scalar.type = Type::Real;
+      fail("{}: {} key '{}' = {} is out of range: must be {}{}", where(key), label_, key, v, schema::range_text(scalar),
            k.unit[0] ? fmt::format(" ({})", k.unit) : "");
+    }
   }
   void check_choice(const schema::Key& k, const std::string& v, const std::string& key) const {
     if (!k.choices) return;
@@ -212,9 +229,10 @@ void apply_override(toml::table& root, const std::string& ov) {
   toml::node* value = nullptr;
   toml::table holder;
   try {
-    holder = toml::parse("v = " + text);
+    holder = toml::parse("v = " + text, kOverrideSource);
   } catch (const toml::parse_error&) {
-    holder.insert("v", text);  // a bare word is a string
+    holder = toml::parse("v = \"\"", kOverrideSource);  // a bare word is a string
+    *holder.get_as<std::string>("v") = text;
   }
   value = holder.get("v");
   toml::node* cur = &root;
@@ -238,12 +256,12 @@ void apply_override(toml::table& root, const std::string& ov) {
     const long idx = std::strtol(parts.back().c_str(), &end, 10);
     DSPDEM_CHECK(*end == '\0' && idx >= 0 && static_cast<std::size_t>(idx) < a->size(),
                  "--set '{}': '{}' is not an index of that array (size {})", ov, parts.back(), a->size());
-    a->replace(a->cbegin() + idx, *value);
+    a->replace(a->cbegin() + idx, std::move(*value));  // moved: keeps its --set source
     return;
   }
   toml::table* t = cur->as_table();
   DSPDEM_CHECK(t != nullptr, "--set '{}': the parent of the key is not a table", ov);
-  t->insert_or_assign(parts.back(), *value);
+  t->insert_or_assign(parts.back(), std::move(*value));  // moved: keeps its --set source
 }
 
 int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 : c == "z" ? 2 : 3; }

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <unordered_map>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "mesh/msh_check.hpp"
 
 namespace dspdem {
 
@@ -25,6 +28,19 @@ std::string gmsh_last_error() {
   } catch (...) {
   }
   return err;
+}
+
+// A gmsh error thrown from inside its file reader (the API sets General.AbortOnError = 2)
+// leaves the reader's "busy" lock set: every later open in the process is then ignored ("I'm
+// busy! Ask me that later") and reads an empty model, so one unreadable file (a .geo with a
+// syntax error, say) broke every mesh read after it. Restarting the library clears it.
+void restart_gmsh() {
+  try {
+    gmsh::finalize();
+  } catch (...) {
+  }
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", log::level() >= log::Level::Debug ? 1 : 0);
 }
 }  // namespace
 
@@ -186,16 +202,27 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
   return mesh;
 }
 
-Mesh read_gmsh(const std::string& path) {
+Mesh read_gmsh(const std::string& path, const std::string& save_as) {
   namespace fs = std::filesystem;
   DSPDEM_CHECK(fs::exists(path), "mesh file '{}' does not exist", path);
   const auto ext = fs::path(path).extension().string();
   DSPDEM_CHECK(ext == ".msh" || ext == ".geo", "mesh file '{}': expected a .msh or .geo file", path);
+  if (ext == ".msh") {
+    // gmsh trusts the file (a missing node crashes it): the text is checked first, and
+    // its faults are named by line.
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    DSPDEM_CHECK(in.good() || in.eof(), "mesh file '{}' cannot be read", path);
+    check_msh_text(path, text.str());
+  }
   GmshSession session;
   try {
     gmsh::open(path);
   } catch (...) {
-    fail("mesh file '{}': gmsh could not read it: {}", path, gmsh_last_error());
+    const std::string err = gmsh_last_error();
+    restart_gmsh();
+    fail("mesh file '{}': gmsh could not read it: {}", path, err);
   }
   const std::string err = gmsh_last_error();
   DSPDEM_CHECK(err.empty(), "mesh file '{}': gmsh reported: {}", path, err);
@@ -207,7 +234,18 @@ Mesh read_gmsh(const std::string& path) {
     gmsh::model::mesh::getNodes(t, c, p, 3, -1, true, false);
     if (t.empty()) gmsh::model::mesh::generate(3);
   }
-  return mesh_from_gmsh_model(path);
+  Mesh mesh = mesh_from_gmsh_model(path);
+  if (!save_as.empty()) {
+    // gmsh picks the format from the extension: the temporary name ends in .msh too.
+    const fs::path dst(save_as), tmp = dst.parent_path() / fmt::format(".{}.tmp.msh", dst.stem().string());
+    try {
+      gmsh::write(tmp.string());
+    } catch (...) {
+      fail("cannot write mesh '{}': {}", tmp.string(), gmsh_last_error());
+    }
+    fs::rename(tmp, dst);
+  }
+  return mesh;
 }
 
 }  // namespace dspdem

@@ -7,8 +7,11 @@
 
 namespace dspdem {
 
-/// Loads `path`; throws Error naming the file for anything unreadable or unsupported.
-Mesh read_gmsh(const std::string& path);
+/// Loads `path`; throws Error naming the file for anything unreadable or unsupported (the
+/// text of a .msh file is checked first, its faults named by line: mesh/msh_check.hpp).
+/// save_as: also write the model gmsh read (a .geo's mesh) as a .msh file there, through a
+/// temporary name.
+Mesh read_gmsh(const std::string& path, const std::string& save_as = "");
 
 /// Converts the model currently loaded in the gmsh API into a Mesh (used by the reader
 /// and by the generators in meshing/). `source` names the origin in messages.

@@ -228,6 +228,22 @@ TEST_F(Cli, MeshCommandWritesMshAndQuality) {
           "/cases/galvez_beam.toml --set mesh.galvez_beam.notch_depth=0.3 --out " + (dir_ / "m2").string());
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.out.find("mesh.galvez_beam.notch_depth"), std::string::npos) << bad.out;
+  // A case meshed from a .geo: the .msh written is gmsh's mesh of it (it was the script
+  // copied under the new name), and a run on it has the .geo's nodes and elements.
+  const std::string nb = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
+  ASSERT_EQ(run("-q mesh " + nb + " --out " + (dir_ / "m3").string()).code, 0);
+  EXPECT_EQ(slurp(dir_ / "m3/notched_bar.msh").rfind("$MeshFormat", 0), 0u);
+  const std::string once = " --set time.end=1e-9 --out ";
+  ASSERT_EQ(run("-q run " + nb + once + (dir_ / "geo").string()).code, 0);
+  ASSERT_EQ(run("-q run " + nb + " --set 'mesh.file=\"" + (dir_ / "m3/notched_bar.msh").string() + "\"'" + once +
+                (dir_ / "msh").string())
+                .code,
+            0);
+  auto counts = [&](const char* d) {
+    const std::string s = slurp(dir_ / d / "summary.json");
+    return s.substr(s.find("\"nodes\""), 40);
+  };
+  EXPECT_EQ(counts("geo"), counts("msh"));
 }
 
 TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {

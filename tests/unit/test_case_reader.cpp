@@ -223,3 +223,38 @@ TEST(CaseReader, ExtrinsicInsertionNeedsJoints) {
   EXPECT_EQ(c.insertion_interval, 5);
   EXPECT_FALSE(c.bodies[0].extrinsic);
 }
+
+// Defects the fuzz test (tests/robustness/test_fuzz_inputs.cpp) found, one input each.
+
+TEST(CaseReader, AMissingSectionIsNotBlamedOnSet) {
+  // Fuzz: with [time] gone, the error read "case.toml (--set): [time] is missing required key
+  // 'end'", naming an override that was never given; and a default filled in (a box's
+  // half_size) was placed the same way. Now: the file alone, or the table's line.
+  const std::string no_time = replace(kGood, "[time]\nend = 1.0e-3\n", "");
+  expect_error(no_time, {"[time]", "'end'"});
+  try {
+    read_case(write_case(no_time));
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("--set"), std::string::npos) << e.what();
+  }
+  const std::string box = std::string(kGood) + "[contact]\nenabled = true\n[[walls]]\nname = \"w\"\ntype = \"box\"\n";
+  expect_error(box, {":17:", "half_size"});
+  // Values that do come from --set are still named so, bare words included.
+  expect_error(kGood, {"(--set)", "'kinematics'"}, {"bodies.0.kinematics=stiff"});
+  expect_error(kGood, {"(--set)", "'nu'"}, {"materials.rock.nu=0.7"});
+}
+
+TEST(CaseReader, AVectorOutOfRangeSaysItsRange) {
+  // Fuzz: "[[walls]] #1 key 'half_size' = -1 is out of range: must be  (m)" (no range).
+  const std::string box = std::string(kGood) +
+                          "[contact]\nenabled = true\n[[walls]]\nname = \"w\"\ntype = \"box\"\n"
+                          "half_size = [-1.0, 1.0, 1.0]\n";
+  expect_error(box, {":20:", "'half_size'", "must be >= 0 (m)"});
+  expect_error(std::string(kGood) + "[render]\nbackground = [2.0, 0.0, 0.0]\n", {":16:", "'background'", "[0, 1]"});
+}
+
+TEST(CaseReader, AnIntegerTooLargeForADoubleIsNamedSo) {
+  // Fuzz: E = 9223372036854775807 read "key 'E' must be a number, got an integer".
+  expect_error(replace(kGood, "E = 30.0e9", "E = 9223372036854775807"),
+               {":7:", "'E'", "too large an integer", "9.223e+18"});
+}

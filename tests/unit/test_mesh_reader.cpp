@@ -1,0 +1,144 @@
+// Mesh reading (read_gmsh): broken .msh files are refused by line before gmsh sees them, and
+// one unreadable file does not break the reads after it. Regression tests for the defects
+// the fuzz test (tests/robustness/test_fuzz_inputs.cpp) found.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "mesh/gmsh_reader.hpp"
+
+using namespace dspdem;
+
+namespace {
+namespace fs = std::filesystem;
+
+// One tet4 in the volume group "solid" and its bottom face in the surface group "bottom".
+const char* kTetV2 = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+2 1 "bottom"
+3 2 "solid"
+$EndPhysicalNames
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0 0 1
+$EndNodes
+$Elements
+2
+1 2 2 1 1 1 3 2
+2 4 2 2 1 1 2 3 4
+$EndElements
+)";
+
+// The same tet in format 4.0 (gmsh 4.0's: entity tags before dimensions, a node per line).
+const char* kTetV40 = R"($MeshFormat
+4 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+2 1 "bottom"
+3 2 "solid"
+$EndPhysicalNames
+$Entities
+0 0 1 1
+1 0 0 0 1 1 0 1 1 0
+1 0 0 0 1 1 1 1 2 1 1
+$EndEntities
+$Nodes
+2 4
+1 2 0 3
+1 0 0 0
+2 1 0 0
+3 0 1 0
+1 3 0 1
+4 0 0 1
+$EndNodes
+$Elements
+2 2
+1 2 2 1
+1 1 3 2
+1 3 4 1
+2 1 2 3 4
+$EndElements
+)";
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_reader";
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return s.replace(p, from.size(), to);
+}
+
+// Expects read_gmsh to throw Error naming the file and every fragment.
+void expect_error(const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
+  const std::string path = write_file(name, text);
+  try {
+    read_gmsh(path);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << "file not named: " << msg;
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+  }
+}
+
+void expect_tet(const Mesh& m) {
+  EXPECT_EQ(m.n_nodes(), 4);
+  EXPECT_EQ(m.n_elements(), 1);
+  ASSERT_NE(m.find_group("solid"), nullptr);
+  ASSERT_NE(m.find_group("bottom"), nullptr);
+  EXPECT_EQ(m.find_group("bottom")->tri.size(), 3u);
+}
+}  // namespace
+
+TEST(MeshReader, ReadsFormats2And40) {
+  expect_tet(read_gmsh(write_file("tet_v2.msh", kTetV2)));
+  expect_tet(read_gmsh(write_file("tet_v40.msh", kTetV40)));
+}
+
+TEST(MeshReader, ElementWithAMissingNodeIsRefusedByLine) {
+  // Fuzz: an element naming a node that $Nodes does not list crashed the process (SIGSEGV
+  // in gmsh's GModel::_associateEntityWithMeshVertices).
+  expect_error("dangling.msh", replace(kTetV2, "2 4 2 2 1 1 2 3 4", "2 4 2 2 1 1 2 3 5"),
+               {"line 19", "element 2 refers to node 5"});
+  expect_error("dangling_v40.msh", replace(kTetV40, "2 1 2 3 4", "2 1 2 3 9"),
+               {"line 28", "element 2 refers to node 9"});
+}
+
+TEST(MeshReader, BrokenStructureIsNamedByLine) {
+  // Fuzz: these reached gmsh, whose refusal named no line ("Error loading '<file>'").
+  expect_error("count.msh", replace(kTetV2, "$Nodes\n4\n", "$Nodes\n5\n"),
+               {"line 15", "$Nodes declares 5 nodes but lists 4"});
+  expect_error("nan.msh", replace(kTetV2, "3 0 1 0", "3 0 nan 0"), {"line 13", "node coordinate", "nan"});
+  expect_error("section.msh", replace(kTetV2, "$EndNodes", "$EndNode"), {"line 15", "expected $EndNodes"});
+  expect_error("type.msh", replace(kTetV2, "2 4 2 2 1 1 2 3 4", "2 99 2 2 1 1 2 3 4"),
+               {"line 19", "element type", "'99'"});
+  expect_error("garbage.msh", std::string(kTetV2) + "$NodeData\n1\n$EndNodeData\n", {"line 21", "$NodeData"});
+  // gmsh runs a file that does not start with $MeshFormat as a .geo script.
+  expect_error("blank_first.msh", std::string(1, '\n').append(kTetV2), {"line 1", "must start with $MeshFormat"});
+  // A text file marked binary (a flipped bit in the file type) would be read as bytes.
+  expect_error("binary.msh", replace(kTetV2, "2.2 0 8", "2.2 1 8"), {"line 3", "binary"});
+  expect_error("surface_only.msh", replace(kTetV2, "2\n1 2 2 1 1 1 3 2\n2 4 2 2 1 1 2 3 4\n", "1\n1 2 2 1 1 1 3 2\n"),
+               {"line 16", "no volume (3D) elements"});
+}
+
+TEST(MeshReader, AnUnreadableFileDoesNotBreakLaterReads) {
+  // A gmsh error inside its file reader left the reader's lock set: every later read in the
+  // process got an empty model ("no volume entities"), even of a good file.
+  expect_error("bad.geo", "Point(1) = {0, 0, 0, ;\n", {"line 1", "syntax error"});
+  expect_tet(read_gmsh(write_file("after_bad.msh", kTetV2)));
+}
