@@ -113,6 +113,9 @@ class ContactSystem {
 
   void rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x);
   bool needs_rebuild(const joint::JointSet& js, const Real* x) const;
+  /// At the first build: Error if two pieces start with their skeletons crossed (a vertex
+  /// of one inside the other), which no contact force can resolve.
+  void refuse_crossed_skeletons(const Real* x) const;
   LawParams pair_params(Index ea, Index eb, const Wall* w) const;
   /// Evaluates pair p (element pair or wall pair) at x, v into `out`.
   void evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,
