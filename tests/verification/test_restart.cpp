@@ -194,7 +194,8 @@ TEST_F(Restart, SigtermLeavesAValidCollectionAndARestartableCheckpoint) {
     }
     return pid;
   };
-  // Waits until the running job's collection lists `frames` frames (at most 120 s).
+  // Waits until the running job's collection lists `frames` frames (at most 120 s); if it
+  // does not, the job is killed (a failed test must not leave it running).
   auto wait_frames = [&](pid_t pid, int frames) {
     const fs::path pvd = dir / fmt::format(".staging-{}", pid) / "run.pvd";
     for (int k = 0; k < 2400; ++k) {
@@ -204,6 +205,8 @@ TEST_F(Restart, SigtermLeavesAValidCollectionAndARestartableCheckpoint) {
       if (n >= frames) return true;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
     return false;
   };
   const pid_t pid = spawn();
