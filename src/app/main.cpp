@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   std::string restart_dir;
   double checkpoint_every = 0;
   auto* run_case_opt = run->add_option("case", case_file, "Case file (TOML); none with --restart");
-  auto* run_out_opt = run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
+  run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
   auto* run_set_opt =
       run->add_option("--set", sets, "Override a case key: section.key=value (repeatable; value in TOML syntax)");
   auto* restart_opt = run->add_option("--restart", restart_dir,
@@ -54,7 +54,6 @@ int main(int argc, char** argv) {
                       "SIGINT/SIGTERM write one anyway. Default with --restart: the interrupted run's")
           ->check(CLI::NonNegativeNumber)
           ->type_name("T");
-  (void)run_out_opt;
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
 

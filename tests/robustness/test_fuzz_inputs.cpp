@@ -883,6 +883,26 @@ std::vector<fs::path> sorted_files(const fs::path& dir, const std::string& ext) 
   return out;
 }
 
+// Runs n mutants of randomly chosen seeds through the fuzzer (same seed, same mutants),
+// reports them and checks that each was either accepted or refused; returns n.
+int run_mutants(Fuzzer& fuzz, const std::vector<std::pair<std::string, std::string>>& seeds, std::uint64_t seed,
+                Format format, int n) {
+  Guard guard;
+  Rng rng(seed);
+  Mutator mut(rng, format);
+  const auto t0 = Clock::now();
+  for (int i = 0; i < n; ++i) {
+    const auto& [name, text] = seeds[rng.below(seeds.size())];
+    std::string how;
+    const std::string m = mut.mutate(text, how);
+    fuzz.run(i, name, how, m);
+  }
+  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+  fuzz.report(n, s);
+  EXPECT_EQ(fuzz.tally().accepted + fuzz.tally().rejected, n);
+  return n;
+}
+
 }  // namespace
 
 TEST(FuzzInputs, CaseFiles) {
@@ -901,20 +921,7 @@ TEST(FuzzInputs, CaseFiles) {
   }
   fs::remove(fs::temp_directory_path() / "dspdem_fuzz_seed.toml");
 
-  Guard guard;
-  Rng rng(kSeed);
-  Mutator mut(rng, Format::Toml);
-  const auto t0 = Clock::now();
-  const int n = scaled(kCaseMutants);
-  for (int i = 0; i < n; ++i) {
-    const auto& [name, text] = seeds[rng.below(seeds.size())];
-    std::string how;
-    const std::string m = mut.mutate(text, how);
-    fuzz.run(i, name, how, m);
-  }
-  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-  fuzz.report(n, s);
-  EXPECT_EQ(fuzz.tally().accepted + fuzz.tally().rejected, n);
+  const int n = run_mutants(fuzz, seeds, kSeed, Format::Toml, scaled(kCaseMutants));
   // The mutations must reach past the TOML parser into the schema, and some must survive it.
   EXPECT_GT(fuzz.tally().accepted, n / 20);
   EXPECT_GT(fuzz.tally().rejected, n / 2);
@@ -943,20 +950,7 @@ TEST(FuzzInputs, GmshMeshes) {
 
   Fuzzer fuzz(
       "mesh", ".msh", [](const std::string& p) { read_gmsh(p); }, mesh_places());
-  Guard guard;
-  Rng rng(kSeed + 1);
-  Mutator mut(rng, Format::Msh);
-  const auto t0 = Clock::now();
-  const int n = scaled(kMeshMutants);
-  for (int i = 0; i < n; ++i) {
-    const auto& [name, text] = seeds[rng.below(seeds.size())];
-    std::string how;
-    const std::string m = mut.mutate(text, how);
-    fuzz.run(i, name, how, m);
-  }
-  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-  fuzz.report(n, s);
-  EXPECT_EQ(fuzz.tally().accepted + fuzz.tally().rejected, n);
+  const int n = run_mutants(fuzz, seeds, kSeed + 1, Format::Msh, scaled(kMeshMutants));
   // Mesh mutants break structure more often than case mutants break meaning.
   EXPECT_GT(fuzz.tally().accepted, n / 100);
   EXPECT_GT(fuzz.tally().rejected, n / 2);
