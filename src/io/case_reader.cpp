@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "contact/restitution.hpp"
 #include "core/error.hpp"
 #include "io/case_config.hpp"
 #include "io/case_schema.hpp"
@@ -427,7 +428,14 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       if (s.has("contact_kn")) cm.kn = s.real("contact_kn");
       cm.kt_ratio = s.real("contact_kt_ratio");
       cm.friction = s.real("friction");
-      cm.damping_ratio = s.real("contact_damping");
+      // The default is a restitution, not a damping ratio: a damped contact lets a resting
+      // contact settle (an elastic one bounces for ever on its spring), and e is what a user
+      // of DEM knows (cases/README.md, "Contacts that come to rest").
+      if (s.has("contact_damping") && s.has("contact_restitution"))
+        fail("{}: [materials.{}] give contact_restitution or contact_damping, not both (one sets the other)",
+             s.where("contact_damping"), mname);
+      cm.damping_ratio = s.has("contact_damping") ? s.real("contact_damping")
+                                                  : contact::damping_for_restitution(s.real("contact_restitution"));
       s.finish();
       c.materials.push_back(m);
       c.joint_materials.push_back(jm);

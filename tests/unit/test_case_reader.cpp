@@ -258,3 +258,20 @@ TEST(CaseReader, AnIntegerTooLargeForADoubleIsNamedSo) {
   expect_error(replace(kGood, "E = 30.0e9", "E = 9223372036854775807"),
                {":7:", "'E'", "too large an integer", "9.223e+18"});
 }
+
+// Contact damping is given as a restitution (default 0.5) or as a fraction of critical,
+// never both; restitution 1 is an elastic contact.
+TEST(CaseReader, ContactRestitutionOrDampingNotBoth) {
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\ncontact_restitution = 0.6\ncontact_damping = 0.1"),
+               {":10:", "contact_restitution", "contact_damping", "not both"});
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\ncontact_restitution = 0.1"),
+               {":9:", "contact_restitution", "range"});
+  EXPECT_EQ(read_case(write_case(replace(kGood, "nu = 0.2", "nu = 0.2\ncontact_restitution = 1.0")))
+                .contact_materials.at(0)
+                .damping_ratio,
+            0.0);
+  EXPECT_EQ(read_case(write_case(replace(kGood, "nu = 0.2", "nu = 0.2\ncontact_damping = 0.3")))
+                .contact_materials.at(0)
+                .damping_ratio,
+            0.3);
+}

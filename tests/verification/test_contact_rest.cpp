@@ -1,0 +1,123 @@
+// Contacts that come to rest (issue 21), with the case file's default contact settings
+// (read from a case file, so a change of default is tested here): a block sliding down
+// inclines a little steeper than its friction angle accelerates at g (sin - mu cos), a
+// block put on a floor comes to rest and carries its weight, and the energy ledger closes.
+//
+// The block is deformable, 2 x 2 x 2 hexahedra of 0.1 m, E = 1e7 Pa, rho = 1000 kg/m^3, with
+// stiffness-proportional body damping beta = 3e-5 s: 4.7 % of critical at 500 Hz, the
+// block's first axial mode (c / 2L = 100 m/s / 0.2 m), the order of a rock's or concrete's
+// material damping. Without body damping nothing damps the block's own modes: the contacts
+// set it ringing, it touches in part of every period only, and slides 4-33 % too fast
+// whatever the contact damping (measured up to 0.3 of critical; cases/README.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "contact/restitution.hpp"
+#include "io/case_config.hpp"
+#include "support/run_helpers.hpp"
+#include "support/scene.hpp"
+
+using namespace dspdem;
+using namespace dspdem::testsupport;
+
+namespace {
+namespace fs = std::filesystem;
+constexpr Real kE = 1e7, kNu = 0.25, kRho = 1000, kSide = 0.1, kG = 9.81, kBeta = 3e-5;
+
+/// The contact settings of a case file that gives only the friction coefficient.
+contact::ContactMaterial default_contact(Real mu) {
+  const fs::path p = fs::temp_directory_path() / "dspdem_contact_rest.toml";
+  std::ofstream(p) << "[case]\nname = \"t\"\n[mesh]\nfile = \"box.msh\"\n[materials.rock]\ndensity = 1000.0\n"
+                   << "E = 1.0e7\nnu = 0.25\nfriction = " << mu << "\n[[bodies]]\nname = \"b\"\ngroups = [\"all\"]\n"
+                   << "material = \"rock\"\n[contact]\nenabled = true\n[time]\nend = 1.0\n";
+  return read_case(p.string()).contact_materials.at(0);
+}
+
+struct Slide {
+  Real accel_ratio;           ///< mean acceleration along the slope / g (sin - mu cos)
+  Real ledger;                ///< largest balance error over the run
+  Real force_min, force_max;  ///< floor force / weight over the window
+  Real kinetic;               ///< at the end [J]
+};
+
+/// The block on a plane z = 0 under gravity tilted by theta (the slope's frame), starting
+/// `lift` above it at rest; mean acceleration along x over [t1, t2].
+Slide run(Real theta_deg, Real mu, Real t1, Real t2, Real lift) {
+  Mesh mesh;
+  add_part(mesh, cube(CellType::Hex8, 2, kSide), "block", Vec3::Constant(kSide / 2), Vec3(0, 0, kSide / 2 + lift));
+  CaseConfig c = simple_case(kE, kNu, kRho, Kinematics::Corotational);
+  c.contact.enabled = true;
+  c.contact_materials = {default_contact(mu)};
+  c.materials[0].beta = kBeta;
+  WallConfig w;
+  w.wall.name = "slope";
+  w.wall.type = contact::Wall::Type::Plane;
+  c.walls.push_back(w);
+  const Real th = theta_deg * M_PI / 180;
+  c.gravity = kG * Vec3(std::sin(th), 0, -std::cos(th));
+  Model m = build_model(c, mesh);
+  Integrator it(m, 0.9 * critical_dt(m));
+  auto mean_vx = [&] {
+    Real s = 0;
+    for (Index n = 0; n < m.fem.n_nodes; ++n) s += it.v()[3 * n];
+    return s / static_cast<Real>(m.fem.n_nodes);
+  };
+  const Real weight = kRho * std::pow(kSide, 3) * kG * std::cos(th);
+  Slide out{0, 0, 1e30, -1e30, 0};
+  Real v1 = 0, tt1 = 0;
+  bool started = false;
+  while (it.time() < t2) {
+    it.step();
+    // Sampled every 10 steps after the first millisecond (before it every term is near 0).
+    if (it.steps() % 10 == 0 && it.time() > 1e-3) out.ledger = std::max(out.ledger, it.energy().balance_error());
+    if (!started && it.time() >= t1) started = true, v1 = mean_vx(), tt1 = it.time();
+    if (started) {
+      const Real fz = -m.contact.walls()[0].force(2) / weight;
+      out.force_min = std::min(out.force_min, fz), out.force_max = std::max(out.force_max, fz);
+    }
+  }
+  const Real a = (mean_vx() - v1) / (it.time() - tt1), a_ref = kG * (std::sin(th) - mu * std::cos(th));
+  out.accel_ratio = a_ref != 0 ? a / a_ref : a;
+  out.kinetic = it.energy().kinetic;
+  return out;
+}
+}  // namespace
+
+// The default is a damped contact: restitution 0.8 (cases/README.md says why not lower).
+TEST(ContactRest, TheDefaultContactIsDampedToRestitutionPointEight) {
+  EXPECT_NEAR(default_contact(0.5).damping_ratio, contact::damping_for_restitution(0.8), 1e-12);
+  EXPECT_GT(default_contact(0.5).damping_ratio, 0.07);
+}
+
+// Three (mu, angle above the friction angle) pairs within 3 degrees: the block accelerates
+// within 2 % of g (sin - mu cos) over 0.05-0.15 s (measured 0.25-0.52 %), the floor carries
+// its weight within 15 % at every step, and the ledger closes within 0.5 % (measured 0.7-1.6e-3).
+TEST(ContactRest, BlockSlidesDownInclinesAtCoulombAcceleration) {
+  for (auto [mu, above] : {std::pair{0.3, 1.0}, {0.5, 2.0}, {0.7, 3.0}}) {
+    SCOPED_TRACE(fmt::format("mu {} angle {} deg above the friction angle", mu, above));
+    const Real theta = std::atan(mu) * 180 / M_PI + above;
+    const Slide s = run(theta, mu, 0.05, 0.15, 0.0);
+    RecordProperty(fmt::format("accel_ratio_mu{}", mu), sci(s.accel_ratio));
+    RecordProperty(fmt::format("ledger_mu{}", mu), sci(s.ledger));
+    EXPECT_NEAR(s.accel_ratio, 1.0, 0.02);
+    EXPECT_LT(s.ledger, 5e-3);
+    EXPECT_GT(s.force_min, 0.85);
+    EXPECT_LT(s.force_max, 1.15);
+  }
+}
+
+// Put on a floor (touching, at rest) the block settles: after 0.3 s the floor force equals
+// its weight within 0.1 % and its kinetic energy is below 1e-12 of m g L (measured 3e-22);
+// the ledger closes within 0.5 % (measured 3.6e-4).
+TEST(ContactRest, BlockPutOnAFloorComesToRest) {
+  const Slide s = run(0.0, 0.5, 0.3, 0.5, 0.0);
+  RecordProperty("ledger", sci(s.ledger));
+  RecordProperty("kinetic", sci(s.kinetic));
+  EXPECT_NEAR(s.force_min, 1.0, 1e-3);
+  EXPECT_NEAR(s.force_max, 1.0, 1e-3);
+  EXPECT_LT(s.kinetic, 1e-12 * kRho * std::pow(kSide, 4) * kG);
+  EXPECT_LT(s.ledger, 5e-3);
+}
