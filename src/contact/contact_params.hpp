@@ -18,6 +18,10 @@ struct ContactMaterial {
 
 struct ContactSettings {
   Real skin = 0;  ///< broad-phase skin [m]; 0: 0.2 x the mean radius-inflated element size
+  /// Stop the run when a contact's overlap / (r_a + r_b) exceeds this (0: never). Beyond 1
+  /// the skeletons themselves cross: the narrow phase then loses the deep features and the
+  /// pieces can pass through each other, so 1 is where the contact stops being a model.
+  Real overlap_limit = 1.0;
 };
 
 }  // namespace dspdem::contact

@@ -375,12 +375,24 @@ bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, cons
   return true;
 }
 
+std::string ContactSystem::deepest_contact() const {
+  if (totals_.deepest_wall >= 0)
+    return fmt::format("element {} and wall '{}'", totals_.deepest_a,
+                       walls_[static_cast<std::size_t>(totals_.deepest_wall)].name);
+  return fmt::format("elements {} and {}", totals_.deepest_a, totals_.deepest_b);
+}
+
 void ContactSystem::gather(const TouchOut& o, Real* f) {
   history_next_.entry.push_back(o.hist);
   elastic_ += o.elastic;
   totals_.friction += o.slip_work;
   ++totals_.contacts;
-  totals_.max_overlap = std::max(totals_.max_overlap, o.overlap_ratio);
+  if (o.overlap_ratio > totals_.max_overlap) {
+    totals_.max_overlap = o.overlap_ratio;
+    totals_.deepest_a = elems_[o.ea].tag;
+    totals_.deepest_b = o.eb < 0 ? 0 : elems_[o.eb].tag;
+    totals_.deepest_wall = o.eb < 0 ? static_cast<int>(-1 - o.eb) : -1;
+  }
   // Normal force at the skeleton points pa, pb with their own weights: the exact gradient of
   // the overlap energy (energy-conserving). Tangential force at the common point c with
   // the element's shape functions (eq. 16): equal, opposite and collinear, so angular
@@ -460,6 +472,8 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
   }
   totals_.contacts = 0;
   totals_.max_overlap = 0;
+  totals_.deepest_a = totals_.deepest_b = 0;
+  totals_.deepest_wall = -1;
   for (Wall& w : walls_) w.force.setZero(), w.torque.setZero();
 
   // Evaluate every pair into its own records (any thread, any order)...

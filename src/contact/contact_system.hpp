@@ -36,12 +36,19 @@ struct ContactTotals {
   Real wall_work = 0;     ///< work of prescribed walls on the model so far [J]
   Real wall_kinetic = 0;  ///< kinetic energy of free walls [J]
   Index contacts = 0, pairs = 0, surface_elements = 0, rebuilds = 0;
-  Real max_overlap = 0;  ///< largest overlap / (r_a + r_b) in the last evaluation (> 1: skeletons touch)
+  Real max_overlap = 0;  ///< largest overlap / (r_a + r_b) in the last evaluation (> 1: skeletons cross)
+  std::size_t deepest_a = 0, deepest_b = 0;  ///< element tags of that contact (deepest_b 0: a wall)
+  int deepest_wall = -1;                     ///< the wall's index when it is one
 };
 
 class ContactSystem {
  public:
   bool enabled() const { return enabled_; }
+  /// True when the last evaluation's deepest contact exceeds ContactSettings::overlap_limit.
+  bool overlap_exceeded() const { return settings_.overlap_limit > 0 && totals_.max_overlap > settings_.overlap_limit; }
+  /// The deepest contact of the last evaluation, for messages: "elements 12 and 40".
+  std::string deepest_contact() const;
+  Real overlap_limit() const { return settings_.overlap_limit; }
 
   /// Prepares the contact data of a model. `E` per global element (for the penalty),
   /// `mat` per global element into `materials`, `mass` lumped nodal masses.

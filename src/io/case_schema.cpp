@@ -136,6 +136,7 @@ const std::vector<Key>& general_keys() {
     {"render", "fps", T::Int, "10", 1, 120, false, false, "1/s", nullptr, "Animation frame rate."},
     {"render", "plots", T::StringList, "[]", 0, 0, false, false, "", nullptr, "Extra plots of series.csv, each \"x:y1,y2\" (e.g. \"cmod:load\"); energies and monitors against time are always plotted."},
     {"render", "plot_reference", T::String, "\"\"", 0, 0, false, false, "", nullptr, "CSV with the same column names, drawn dashed over the extra plots (e.g. a test curve)."},
+    {"checks", "contact_overlap_limit", T::Real, "1.0", 0, inf, false, false, "", nullptr, "Stop, naming the step, time and both elements, when a contact's overlap exceeds this fraction of the two contact radii r_a + r_b. Beyond 1 the contact skeletons cross: the narrow phase loses the deep features and the pieces can pass through each other unnoticed. 0: no check."},
     {"checks", "energy_blowup_factor", T::Real, "10.0", 1, inf, true, false, "", nullptr, "Stop when kinetic + internal energy exceeds this factor times (initial energy + work done on the body + a floor)."},
   };
   return k;

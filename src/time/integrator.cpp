@@ -195,6 +195,7 @@ void Integrator::step() {
   t_ += h;
   ++n_;
   compute_forces(v_, h, fused);  // v_ holds the mid-step velocity: damping is lagged by h/2
+  if (contact && m_.contact.overlap_exceeded()) contact_crossed();
   // The last pass: (fused) the damping and external forces of the dofs compute_forces left,
   // and the damping power; the end of the step's external work (at the mid-step velocity);
   // the half kick; a check that the velocities are finite (v - v is 0 unless v is not).
@@ -302,6 +303,17 @@ void Integrator::non_finite_state() const {
                                    "the time step is probably too large",
                                    node >= 0 ? m_.mesh.node_tag[node] : 0, elem_tag, n_, t_),
                        n_, t_);
+}
+
+void Integrator::contact_crossed() const {
+  const contact::ContactTotals t = m_.contact.totals();
+  throw NumericalError(
+      fmt::format("contact too deep at step {}, t = {:.6g} s: {} overlap by {:.4g} times the sum of their contact "
+                  "radii (limit {:g}; beyond 1 the contact skeletons cross and the pieces can pass through each "
+                  "other unnoticed); the contact is too soft or too thin for this impact: raise contact_penalty or "
+                  "contact_radius_fraction, or [checks] contact_overlap_limit to accept it",
+                  n_, t_, m_.contact.deepest_contact(), t.max_overlap, m_.contact.overlap_limit()),
+      n_, t_);
 }
 
 Energy Integrator::energy() const {

@@ -103,6 +103,7 @@ class Integrator {
   void kick_nodes(Real h);                    ///< v += h f / m at every node
   void kick_nonnodal(Real h, Real t_target);  ///< constraints, rigid bodies, walls
   [[noreturn]] void non_finite_state() const;
+  [[noreturn]] void contact_crossed() const;  ///< throws the diagnosis of a too-deep contact
   /// average: give each group its copies' mean velocity (momentum kept), at the start.
   void retie(bool average);
   /// Every copy of a tied group gets the group's force (its copies' forces summed in node

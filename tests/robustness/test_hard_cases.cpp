@@ -580,20 +580,17 @@ TEST(HardCases, TinyContactRadiusSlowImpactBounces) {
   note("tiny_radius_slow_wall_s", wall.seconds());
 }
 
-// DISABLED: the defect below is open (issue 21); enable it with the fix.
-TEST(HardCases, DISABLED_TinyContactRadiusFastImpactIsNotPassedThroughSilently) {
+TEST(HardCases, TinyContactRadiusFastImpactIsNotPassedThroughSilently) {
   // The same cubes at 2 x 1 m/s: the penalty would need about 1.5-2e-4 m of overlap (the
   // slow impact's, times the speed), 1.5-2 times r_a + r_b = 1e-4 m. The skeletons must cross; once a vertex is deeper
   // than r_a + r_b inside the other skeleton the narrow phase drops it, and the cubes pass through each other. The
   // model cannot carry this impact, so the right outcome is a diagnosis (a NumericalError naming step, time, the
   // element and the contact), or, if the code could carry it, a bounce with the ledger closed.
   //
-  // OPEN DEFECT: the run completes with the cubes through each other (separation
-  // speed -1.96 / -1.94 m/s for tet / hex: still moving as before), the overlap ratio at
-  // its cap 2.0 and the energy doubled (x2.1 / x1.95, ledger final 0.74 / 0.69); as a
-  // case, summary.json would say "completed" and only its balance error hints at it. The
-  // overlap is measured (ContactTotals::max_overlap) but nothing checks it. (With the
-  // narrow phase fixed for the slow impact the outcome is the same.)
+  // Before the overlap check ([checks] contact_overlap_limit, default 1) the run completed
+  // with the cubes through each other (separation speed -1.96 / -1.94 m/s for tet / hex),
+  // the energy doubled and only the balance error hinting at it. Now it stops at the step
+  // where the deepest contact passes r_a + r_b (step 18 / 23), naming both elements.
   Timer wall;
   for (CellType t : {CellType::Tet4, CellType::Hex8}) {
     SCOPED_TRACE(cell_name(t));
