@@ -12,7 +12,7 @@ namespace dspdem {
 Real Energy::largest() const {
   return std::max({std::abs(kinetic), std::abs(internal), std::abs(external_work), std::abs(damping), std::abs(initial),
                    std::abs(joint_elastic), std::abs(fracture_I), std::abs(fracture_II), std::abs(contact_elastic),
-                   std::abs(friction), std::abs(contact_damping)});
+                   std::abs(friction), std::abs(contact_damping), peak_work});
 }
 
 Real Energy::balance_error() const {
@@ -229,6 +229,7 @@ void Integrator::step() {
   damp_ += h * dpower_;
   w += tail[0];
   w_ext_ += w;
+  w_peak_ = std::max(w_peak_, std::abs(w_ext_));
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
   kick_nonnodal(hh, t_);
   bool finite = std::isfinite(w) && bad == 0 && tail[1] == 0;
@@ -327,6 +328,7 @@ Energy Integrator::energy() const {
   e.kinetic = deterministic_sum(ke);
   e.internal = deterministic_sum(m_.fem.elem_energy);
   e.external_work = w_ext_;
+  e.peak_work = w_peak_;
   e.damping = damp_;
   e.initial = e0_;
   if (m_.joints.size() > 0) {

@@ -6,7 +6,8 @@
 // Energy ledger (all in J): kinetic and internal energy are state functions; external work
 // (loads, gravity, support reactions) is integrated with the trapezoidal rule over each
 // drift; damping dissipation as dt times the dissipation rate at the mid-step velocity.
-// The balance error is |KE + IE + D - (E0 + W_ext)| over the largest of those terms.
+// The balance error is |KE + IE + D - (E0 + W_ext)| over the largest of those terms and of
+// the largest |W_ext| reached so far.
 #pragma once
 #include <string>
 #include <vector>
@@ -23,11 +24,15 @@ struct Energy {
   Index broken_joints = 0;
   Real crack_area = 0;
   Real contact_elastic = 0, friction = 0, contact_damping = 0;  ///< contact (zero without)
+  /// Largest |external_work| reached so far in the run: the scale of the balance error
+  /// too, so that a body that bounces back to where it started (every term near 0 again)
+  /// is not judged by the rounding of its terms at the top of its bounce.
+  Real peak_work = 0;
   Real balance() const {
     return kinetic + internal + joint_elastic + contact_elastic + damping + fracture_I + fracture_II + friction +
            contact_damping - initial - external_work;
   }
-  Real largest() const;
+  Real largest() const;        ///< the largest term, peak_work included
   Real balance_error() const;  ///< |balance| / largest term
 };
 
@@ -72,7 +77,7 @@ class Integrator {
   template <class Ar>
   void persist(Ar& ar) {
     ar.section("integrator");
-    ar(t_, n_, x_, v_, f_, f_ext_, reaction_, w_ext_, damp_, e0_, dpower_);
+    ar(t_, n_, x_, v_, f_, f_ext_, reaction_, w_ext_, w_peak_, damp_, e0_, dpower_);
     ar.section("elements");
     ar(m_.fem.elem_energy, m_.fem.elem_dpower);
     ar.section("joints");
@@ -123,7 +128,7 @@ class Integrator {
   /// No rigid bodies, no gravity, no mass damping: a dof without a load or a constraint has
   /// no nodal force besides f_ (its weight and damping are exactly +-0).
   bool quiet_ = false;
-  Real w_ext_ = 0, damp_ = 0, e0_ = 0;
+  Real w_ext_ = 0, w_peak_ = 0, damp_ = 0, e0_ = 0;
   Real dpower_ = 0;               ///< dissipation rate at the last force evaluation
   joint::Ties ties_;              ///< nodes tied through closed joints (none: no groups)
   std::vector<Real> group_mass_;  ///< per tied group, its copies' mass [kg]
