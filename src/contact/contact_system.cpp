@@ -391,7 +391,7 @@ void ContactSystem::gather(const TouchOut& o, Real* f) {
     totals_.max_overlap = o.overlap_ratio;
     totals_.deepest_a = elems_[o.ea].tag;
     totals_.deepest_b = o.eb < 0 ? 0 : elems_[o.eb].tag;
-    totals_.deepest_wall = o.eb < 0 ? static_cast<int>(-1 - o.eb) : -1;
+    totals_.deepest_wall = o.eb < 0 ? static_cast<std::int64_t>(-1 - o.eb) : -1;
   }
   // Normal force at the skeleton points pa, pb with their own weights: the exact gradient of
   // the overlap energy (energy-conserving). Tangential force at the common point c with

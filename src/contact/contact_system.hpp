@@ -38,7 +38,7 @@ struct ContactTotals {
   Index contacts = 0, pairs = 0, surface_elements = 0, rebuilds = 0;
   Real max_overlap = 0;  ///< largest overlap / (r_a + r_b) in the last evaluation (> 1: skeletons cross)
   std::size_t deepest_a = 0, deepest_b = 0;  ///< element tags of that contact (deepest_b 0: a wall)
-  int deepest_wall = -1;                     ///< the wall's index when it is one
+  std::int64_t deepest_wall = -1;            ///< the wall's index when it is one (64 bits: no padding in checkpoints)
 };
 
 class ContactSystem {
@@ -69,6 +69,7 @@ class ContactSystem {
   /// Power of the prescribed walls on the model at the last force evaluation [W].
   Real wall_power() const { return wall_power_; }
   void add_wall_work(Real w) { totals_.wall_work += w; }
+  Real wall_work() const { return totals_.wall_work; }
 
   /// Step of the contact springs: sqrt(m / (n kn)), m the smallest nodal mass of a candidate
   /// element, n = 4 simultaneous contacts per node. That is half the stability limit

@@ -5,7 +5,7 @@
 // that pulls (zeta 0.2155 gives 0.550, not 0.500). The closed form for the cut-off law is
 // Schwager and Poeschel, "Coefficient of restitution and linear-dashpot model revisited",
 // Granular Matter 9 (2007) 465-469; both branches (zeta below and above 1/sqrt 2) are one
-// expression with atan2. Pure functions, tested in tests/unit/test_restitution.cpp.
+// expression with atan2. Pure functions, tested in tests/unit/test_contact_law.cpp.
 #pragma once
 #include <cmath>
 

@@ -432,8 +432,10 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       // contact settle (an elastic one bounces for ever on its spring), and e is what a user
       // of DEM knows (cases/README.md, "Contacts that come to rest").
       if (s.has("contact_damping") && s.has("contact_restitution"))
-        fail("{}: [materials.{}] give contact_restitution or contact_damping, not both (one sets the other)",
-             s.where("contact_damping"), mname);
+        fail(
+            "{}: [materials.{}] give contact_restitution or contact_damping, not both (one sets the other; to "
+            "change a case that gives contact_restitution, set contact_restitution)",
+            s.where("contact_damping"), mname);
       cm.damping_ratio = s.has("contact_damping") ? s.real("contact_damping")
                                                   : contact::damping_for_restitution(s.real("contact_restitution"));
       s.finish();

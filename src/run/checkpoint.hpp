@@ -16,7 +16,7 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  int format = 1;
+  int format = 2;                 // 2: ContactTotals names the deepest contact, the integrator keeps peak work
   std::string build;              ///< dspdem version, commit, compiler and build type
   std::string case_path;          ///< absolute path of the case file
   std::vector<std::string> sets;  ///< the run's --set overrides

@@ -195,7 +195,6 @@ void Integrator::step() {
   t_ += h;
   ++n_;
   compute_forces(v_, h, fused);  // v_ holds the mid-step velocity: damping is lagged by h/2
-  if (contact && m_.contact.overlap_exceeded()) contact_crossed();
   // The last pass: (fused) the damping and external forces of the dofs compute_forces left,
   // and the damping power; the end of the step's external work (at the mid-step velocity);
   // the half kick; a check that the velocities are finite (v - v is 0 unless v is not).
@@ -229,14 +228,17 @@ void Integrator::step() {
   damp_ += h * dpower_;
   w += tail[0];
   w_ext_ += w;
-  w_peak_ = std::max(w_peak_, std::abs(w_ext_));
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
+  // The reported external work is the integrator's plus the walls' (energy()).
+  w_peak_ = std::max(w_peak_, std::abs(w_ext_ + (contact ? m_.contact.wall_work() : 0.0)));
   kick_nonnodal(hh, t_);
   bool finite = std::isfinite(w) && bad == 0 && tail[1] == 0;
   // Rigid bodies and constraints wrote velocities after the check's pass: check them all.
   for (std::size_t k = 0; k < v_.size() && finite && !m_.rigid.empty(); ++k) finite = std::isfinite(v_[k]);
   for (const auto& c : m_.constraints) finite = finite && std::isfinite(v_[c.dof]);
   if (!finite) non_finite_state();
+  // At the end of the step, so a stopped run's state and ledger are those of a whole step.
+  if (contact && m_.contact.overlap_exceeded()) contact_crossed();
 }
 
 void Integrator::kick_nodes(Real h) {
@@ -310,8 +312,9 @@ void Integrator::contact_crossed() const {
   const contact::ContactTotals t = m_.contact.totals();
   throw NumericalError(
       fmt::format("contact too deep at step {}, t = {:.6g} s: {} overlap by {:.4g} times the sum of their contact "
-                  "radii (limit {:g}; beyond 1 the contact skeletons cross and the pieces can pass through each "
-                  "other unnoticed); the contact is too soft or too thin for this impact: raise contact_penalty or "
+                  "radii (limit {:g}; beyond 1 the contact skeletons cross, the contact loses the features inside the "
+                  "other piece and the pieces can pass through each other); the contact is too soft or too thin for "
+                  "this impact: raise contact_penalty or "
                   "contact_radius_fraction, or [checks] contact_overlap_limit to accept it",
                   n_, t_, m_.contact.deepest_contact(), t.max_overlap, m_.contact.overlap_limit()),
       n_, t_);

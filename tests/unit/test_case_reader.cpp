@@ -259,7 +259,7 @@ TEST(CaseReader, AnIntegerTooLargeForADoubleIsNamedSo) {
                {":7:", "'E'", "too large an integer", "9.223e+18"});
 }
 
-// Contact damping is given as a restitution (default 0.5) or as a fraction of critical,
+// Contact damping is given as a restitution (default 0.8) or as a fraction of critical,
 // never both; restitution 1 is an elastic contact.
 TEST(CaseReader, ContactRestitutionOrDampingNotBoth) {
   expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\ncontact_restitution = 0.6\ncontact_damping = 0.1"),

@@ -10,6 +10,7 @@
 // set it ringing, it touches in part of every period only, and slides 4-33 % too fast
 // whatever the contact damping (measured up to 0.3 of critical; cases/README.md).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -29,11 +30,15 @@ constexpr Real kE = 1e7, kNu = 0.25, kRho = 1000, kSide = 0.1, kG = 9.81, kBeta 
 
 /// The contact settings of a case file that gives only the friction coefficient.
 contact::ContactMaterial default_contact(Real mu) {
-  const fs::path p = fs::temp_directory_path() / "dspdem_contact_rest.toml";
+  // One file per process and test: ctest runs the tests of this file side by side.
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path p = fs::temp_directory_path() / fmt::format("dspdem_contact_rest_{}_{}.toml", getpid(), info->name());
   std::ofstream(p) << "[case]\nname = \"t\"\n[mesh]\nfile = \"box.msh\"\n[materials.rock]\ndensity = 1000.0\n"
                    << "E = 1.0e7\nnu = 0.25\nfriction = " << mu << "\n[[bodies]]\nname = \"b\"\ngroups = [\"all\"]\n"
                    << "material = \"rock\"\n[contact]\nenabled = true\n[time]\nend = 1.0\n";
-  return read_case(p.string()).contact_materials.at(0);
+  const contact::ContactMaterial cm = read_case(p.string()).contact_materials.at(0);
+  fs::remove(p);
+  return cm;
 }
 
 struct Slide {
