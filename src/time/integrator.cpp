@@ -311,7 +311,7 @@ void Integrator::non_finite_state() const {
 void Integrator::contact_crossed() const {
   const contact::ContactTotals t = m_.contact.totals();
   throw NumericalError(
-      fmt::format("contact too deep at step {}, t = {:.6g} s: {} overlap by {:.4g} times the sum of their contact "
+      fmt::format("contact too deep at step {}, t = {:.6g} s: {} overlap by {:.4f} times the sum of their contact "
                   "radii (limit {:g}; beyond 1 the contact skeletons cross, the contact loses the features inside the "
                   "other piece and the pieces can pass through each other); the contact is too soft or too thin for "
                   "this impact: raise contact_penalty or "
