@@ -157,7 +157,7 @@ class Checker {
     fail("mesh file '{}': line {}: {}", path_, no_, fmt::format(f, std::forward<Args>(args)...));
   }
 
-  long long integer(std::size_t i, const char* what, long long lo, long long hi) const {
+  long long integer(std::size_t i, std::string_view what, long long lo, long long hi) const {
     const std::string_view t = tok_[i];
     long long v = 0;
     const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
@@ -167,7 +167,7 @@ class Checker {
     }
     return v;
   }
-  double real(std::size_t i, const char* what) const {
+  double real(std::size_t i, std::string_view what) const {
     const std::string_view t = tok_[i];
     double v = 0;
     const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
@@ -175,7 +175,7 @@ class Checker {
       error("{} is '{}': expected a finite number", what, shown(t));
     return v;
   }
-  void tokens(std::size_t n, const char* what) const {
+  void tokens(std::size_t n, std::string_view what) const {
     if (tok_.size() != n) error("{} must have {} fields, it has {}", what, n, tok_.size());
   }
   void once(bool& seen) const {
@@ -266,28 +266,65 @@ class Checker {
     close("$Nodes", "$EndNodes");
   }
 
+  /// What the 4.x $Nodes and $Elements share: the section's header (blocks, count and, in
+  /// 4.1, the smallest and largest tag), each block's dimension and entity, each tag against
+  /// the header's range, and at the end the count and range against what the blocks held.
+  /// `one` is "node" or "element", `block` "a node block" or "an element block".
+  struct Blocks4 {
+    const char* section;
+    const char* one;
+    long long blocks = 0, n = 0, lo = 1, hi = kBig;
+    int header = 0;
+    long long read = 0, min_tag = kBig, max_tag = 0;
+  };
+  Blocks4 header4(const char* section, const char* one) {
+    Blocks4 b{section, one};
+    tokens(v40_ ? 2 : 4, v40_ ? fmt::format("the header of {} (blocks, {}s)", section, one)
+                              : fmt::format("the header of {} (blocks, {}s, smallest and largest tag)", section, one));
+    b.blocks = integer(0, fmt::format("the count of {} blocks", one), 0, kBig);
+    b.n = integer(1, fmt::format("the count of {}s", one), 0, kBig);
+    if (!v40_) {
+      b.lo = integer(2, fmt::format("the smallest {} tag", one), 0, kBig);
+      b.hi = integer(3, fmt::format("the largest {} tag", one), 0, kBig);
+    }
+    b.header = no_;
+    return b;
+  }
+  /// A block header's dimension (its entity must be in $Entities).
+  int block_dimension(const char* block) {
+    const int dim = static_cast<int>(integer(v40_ ? 1 : 0, fmt::format("the dimension of {}", block), 0, 3));
+    const long long ent = integer(v40_ ? 0 : 1, fmt::format("the entity of {}", block), 1, kIntMax);
+    if (!entities_[dim].count(ent))
+      error("{} on entity {} of dimension {}, which $Entities does not list", block, ent, dim);
+    return dim;
+  }
+  void block_tag(Blocks4& b, long long tag) {
+    if (tag < b.lo || tag > b.hi)
+      error("{} tag {} is outside the range {} to {} of the header", b.one, tag, b.lo, b.hi);
+    b.min_tag = std::min(b.min_tag, tag), b.max_tag = std::max(b.max_tag, tag);
+  }
+  void close4(const Blocks4& b, const char* end) {
+    if (b.read != b.n || (!v40_ && b.n > 0 && (b.min_tag != b.lo || b.max_tag != b.hi))) {
+      no_ = b.header;
+      if (v40_) error("the header of {} says {} {}s; its blocks hold {}", b.section, b.n, b.one, b.read);
+      error("the header of {} says {} {}s tagged {} to {}; its blocks hold {} tagged {} to {}", b.section, b.n, b.one,
+            b.lo, b.hi, b.read, b.read ? b.min_tag : 0, b.read ? b.max_tag : 0);
+    }
+    close(b.section, end);
+  }
+
   /// Format 4: blocks of nodes, one block per entity. 4.1 lists a block's tags, then their
   /// coordinates, and gives the smallest and largest tag in the header; 4.0 lists each node
   /// as 'tag x y z' and puts the entity's tag before its dimension.
   void nodes4() {
     need("$Nodes");
-    tokens(v40_ ? 2 : 4, v40_ ? "the header of $Nodes (blocks, nodes)"
-                              : "the header of $Nodes (blocks, nodes, smallest and largest tag)");
-    const long long blocks = integer(0, "the count of node blocks", 0, kBig);
-    const long long n = integer(1, "the count of nodes", 0, kBig);
-    const long long lo = v40_ ? 1 : integer(2, "the smallest node tag", 0, kBig);
-    const long long hi = v40_ ? kBig : integer(3, "the largest node tag", 0, kBig);
-    const int header = no_;
-    long long read = 0, min_tag = kBig, max_tag = 0;
+    Blocks4 bl = header4("$Nodes", "node");
     std::vector<long long> tags;
-    for (long long b = 0; b < blocks; ++b) {
-      entry("$Nodes", "entity blocks", blocks, b);
+    for (long long b = 0; b < bl.blocks; ++b) {
+      entry("$Nodes", "entity blocks", bl.blocks, b);
       tokens(4, v40_ ? "a node block header ('entity dimension parametric count')"
                      : "a node block header ('dimension entity parametric count')");
-      const int dim = static_cast<int>(integer(v40_ ? 1 : 0, "the dimension of a node block", 0, 3));
-      const long long ent = integer(v40_ ? 0 : 1, "the entity of a node block", 1, kIntMax);
-      if (!entities_[dim].count(ent))
-        error("a node block on entity {} of dimension {}, which $Entities does not list", ent, dim);
+      const int dim = block_dimension("a node block");
       const bool parametric = integer(2, "the parametric flag", 0, 1) == 1;
       const long long m = integer(3, "the node count of a block", 0, kBig);
       const std::size_t coords = 3 + (parametric ? static_cast<std::size_t>(dim) : 0);
@@ -298,11 +335,10 @@ class Checker {
         if (v40_ && tok_.size() != 1 + coords)
           error("node {} must read 'tag' and {} coordinates, it has {} fields", tag, coords, tok_.size());
         if (!v40_) tokens(1, "a node tag line");
-        if (tag < lo || tag > hi) error("node tag {} is outside the range {} to {} of the header", tag, lo, hi);
+        block_tag(bl, tag);
         if (!nodes_.insert(tag).second) error("node {} is listed twice", tag);
         for (std::size_t k = 1; k < tok_.size(); ++k) real(k, "a node coordinate");
         tags.push_back(tag);
-        min_tag = std::min(min_tag, tag), max_tag = std::max(max_tag, tag);
       }
       for (long long i = 0; i < m && !v40_; ++i) {
         entry("$Nodes", "node coordinates in this block", m, i);
@@ -310,15 +346,9 @@ class Checker {
           error("node {} must have {} coordinates, it has {}", tags[static_cast<std::size_t>(i)], coords, tok_.size());
         for (std::size_t k = 0; k < coords; ++k) real(k, "a node coordinate");
       }
-      read += m;
+      bl.read += m;
     }
-    if (read != n || (!v40_ && n > 0 && (min_tag != lo || max_tag != hi))) {
-      no_ = header;
-      if (v40_) error("the header of $Nodes says {} nodes; its blocks hold {}", n, read);
-      error("the header of $Nodes says {} nodes tagged {} to {}; its blocks hold {} tagged {} to {}", n, lo, hi, read,
-            read ? min_tag : 0, read ? max_tag : 0);
-    }
-    close("$Nodes", "$EndNodes");
+    close4(bl, "$EndNodes");
   }
 
   /// The node tags of an element, from token `first` on, must be listed in $Nodes.
@@ -361,22 +391,12 @@ class Checker {
   /// its dimension, and no tag range in the header).
   void elements4() {
     need("$Elements");
-    tokens(v40_ ? 2 : 4, v40_ ? "the header of $Elements (blocks, elements)"
-                              : "the header of $Elements (blocks, elements, smallest and largest tag)");
-    const long long blocks = integer(0, "the count of element blocks", 0, kBig);
-    const long long n = integer(1, "the count of elements", 0, kBig);
-    const long long lo = v40_ ? 1 : integer(2, "the smallest element tag", 0, kBig);
-    const long long hi = v40_ ? kBig : integer(3, "the largest element tag", 0, kBig);
-    const int header = no_;
-    long long read = 0, min_tag = kBig, max_tag = 0;
-    for (long long b = 0; b < blocks; ++b) {
-      entry("$Elements", "entity blocks", blocks, b);
+    Blocks4 bl = header4("$Elements", "element");
+    for (long long b = 0; b < bl.blocks; ++b) {
+      entry("$Elements", "entity blocks", bl.blocks, b);
       tokens(4, v40_ ? "an element block header ('entity dimension type count')"
                      : "an element block header ('dimension entity type count')");
-      const int dim = static_cast<int>(integer(v40_ ? 1 : 0, "the dimension of an element block", 0, 3));
-      const long long ent = integer(v40_ ? 0 : 1, "the entity of an element block", 1, kIntMax);
-      if (!entities_[dim].count(ent))
-        error("an element block on entity {} of dimension {}, which $Entities does not list", ent, dim);
+      const int dim = block_dimension("an element block");
       const Kind& k = kind(2);
       if (k.dim != dim) error("element type {} has dimension {}, the block dimension {}", shown(tok_[2]), k.dim, dim);
       const long long m = integer(3, "the element count of a block", 0, kBig);
@@ -386,21 +406,14 @@ class Checker {
         if (static_cast<long long>(tok_.size()) != 1 + k.nodes)
           error("element {} must have {} fields (its tag and {} nodes), it has {}", tag, 1 + k.nodes, k.nodes,
                 tok_.size());
-        if (tag < lo || tag > hi) error("element tag {} is outside the range {} to {} of the header", tag, lo, hi);
+        block_tag(bl, tag);
         element_nodes(tag, 1);
         if (!element_tags_.insert(tag).second) error("element {} is listed twice", tag);
-        min_tag = std::min(min_tag, tag), max_tag = std::max(max_tag, tag);
       }
-      read += m;
+      bl.read += m;
       volume_elements_ += dim == 3 ? m : 0;
     }
-    if (read != n || (!v40_ && n > 0 && (min_tag != lo || max_tag != hi))) {
-      no_ = header;
-      if (v40_) error("the header of $Elements says {} elements; its blocks hold {}", n, read);
-      error("the header of $Elements says {} elements tagged {} to {}; its blocks hold {} tagged {} to {}", n, lo, hi,
-            read, read ? min_tag : 0, read ? max_tag : 0);
-    }
-    close("$Elements", "$EndElements");
+    close4(bl, "$EndElements");
   }
 
   void skip_comments() {
