@@ -154,21 +154,30 @@ void Integrator::step() {
     Real* vt = v_target_.data();
     for (const auto& c : m_.constraints) vt[c.dof] = c.value * ramp_factor(t_ + hh, c.ramp);
     const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
-      Real s = 0, nf = 0;
+      // The arrays in locals: through the closure's references they were reloaded after
+      // every store. The finite check is a flag, not a sum: a sum is a chain of dependent
+      // adds, one per dof, and its latency was most of this pass's time.
+      Real* const xl = x;
+      Real* const vl = v;
+      const Real *const fl = f, *const iml = im, *const vtl = vt, *const fel = fe, *const ml = mass;
+      const char *const cl = cons, *const sl = special;
+      const bool quiet = quiet_;
+      Real s = 0;
+      bool finite = true;
       for (std::size_t i = b; i < e; ++i)
         for (int d = 0; d < 3; ++d) {
           const std::size_t k = 3 * i + d;
-          const Real vk = cons[k] ? vt[k] : v[k] + hh * f[k] * im[i];
-          v[k] = vk;
+          const Real vk = cl[k] ? vtl[k] : vl[k] + hh * fl[k] * iml[i];
+          vl[k] = vk;
           const Real dx = h * vk;
-          x[k] += dx;
-          nf += x[k] - x[k];  // 0 unless x is not finite (NaN then)
-          if (special[k])
-            s += 0.5 * fe[k] * dx;
-          else if (!quiet_)
-            s += 0.5 * (mass[i] * g(d)) * dx;
+          xl[k] += dx;
+          finite &= xl[k] - xl[k] == 0;  // false once x is not finite
+          if (sl[k])
+            s += 0.5 * fel[k] * dx;
+          else if (!quiet)
+            s += 0.5 * (ml[i] * g(d)) * dx;
         }
-      return std::array<Real, 2>{s, nf};
+      return std::array<Real, 2>{s, finite ? 0.0 : 1.0};
     });
     w = r[0], bad = r[1];
     if (m_.contact.enabled()) m_.contact.kick_walls(hh, t_ + hh, m_.gravity);
@@ -177,14 +186,15 @@ void Integrator::step() {
     kick_nodes(hh);
     kick_nonnodal(hh, t_ + hh);
     const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
-      Real s = 0, nf = 0;
+      Real s = 0;
+      bool finite = true;
       for (std::size_t k = 3 * b; k < 3 * e; ++k) {
         const Real dx = h * v[k];
         x[k] += dx;
-        nf += x[k] - x[k];
+        finite &= x[k] - x[k] == 0;
         s += 0.5 * fe[k] * dx;
       }
-      return std::array<Real, 2>{s, nf};
+      return std::array<Real, 2>{s, finite ? 0.0 : 1.0};
     });
     w = r[0], bad = r[1];
     for (RigidBody& b : m_.rigid) w += 0.5 * rigid_drift(b, h, f_ext_.data(), x_.data(), v_.data());
@@ -201,28 +211,34 @@ void Integrator::step() {
   // Quiet: no damping and no weight, so f = (f + (+-0)) + (+0) is f + 0 (which only turns
   // -0 into +0) and the work and power terms are +-0, which change no sum.
   const std::array<Real, 3> tail = chunked_sums<3>(nn, [&](std::size_t b, std::size_t e) {
-    Real s = 0, nf = 0, dp = 0;
+    Real* const fl = f;  // locals and a flag, as in the first pass
+    Real* const vl = v;
+    const Real *const fel = fe, *const iml = im;
+    const char *const cl = cons, *const sl = special;
+    const bool quiet = quiet_;
+    Real s = 0, dp = 0;
+    bool finite = true;
     for (std::size_t i = b; i < e; ++i)
       for (int d = 0; d < 3; ++d) {
         const std::size_t k = 3 * i + d;
-        const Real vk = v[k];
-        if (special[k] || !fused) {
-          s += 0.5 * fe[k] * h * vk;
+        const Real vk = vl[k];
+        if (sl[k] || !fused) {
+          s += 0.5 * fel[k] * h * vk;
           if (fused) {
-            Real fk = f[k];
+            Real fk = fl[k];
             nodal_force(i, d, vk, fk, dp);  // the damping power only: f[k] is complete
           }
-        } else if (quiet_) {
-          f[k] = f[k] + 0.0;
+        } else if (quiet) {
+          fl[k] = fl[k] + 0.0;
         } else {
-          Real fk = f[k];
+          Real fk = fl[k];
           s += 0.5 * nodal_force(i, d, vk, fk, dp) * h * vk;
-          f[k] = fk;
+          fl[k] = fk;
         }
-        v[k] = vk + hh * f[k] * im[i];
-        nf += cons[k] ? 0.0 : v[k] - v[k];  // constrained: checked below
+        vl[k] = vk + hh * fl[k] * iml[i];
+        finite &= cl[k] || vl[k] - vl[k] == 0;  // constrained: checked below
       }
-    return std::array<Real, 3>{s, nf, dp};
+    return std::array<Real, 3>{s, finite ? 0.0 : 1.0, dp};
   });
   if (fused) dpower_ = tail[2] + element_dpower();
   damp_ += h * dpower_;
