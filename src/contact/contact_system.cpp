@@ -91,6 +91,7 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   born_offset_.clear();
   fragment_prev_.clear();
   skel_slot_.assign(ne, -1);
+  slots_from_map();
   totals_ = {};
 }
 
@@ -248,8 +249,12 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   for (const Wall& wl : walls_) wall_build_.push_back(wl.centre), wall_q_build_.push_back(wl.q);
   history_ = remap_history(history_, old_keys, pair_keys());
   skel_slot_.assign(ne, -1);
-  for (Index i = 0; i < ns; ++i) skel_slot_[surface_list_[i]] = i;
-  skel_cache_.resize(ns);
+  for (auto [ea, eb] : pairs_) skel_slot_[ea] = skel_slot_[eb] = 0;
+  for (auto [w, e] : wall_pairs_) skel_slot_[e] = 0;
+  Index slots = 0;
+  for (Index e = 0; e < ne; ++e)
+    if (skel_slot_[e] >= 0) skel_slot_[e] = slots++;
+  slots_from_map();
   failed_seen_ = js.failed.size();
   built_ = true;
   ++totals_.rebuilds;
@@ -419,10 +424,19 @@ void ContactSystem::gather(const TouchOut& o, Real* f) {
     }
 }
 
+void ContactSystem::slots_from_map() {
+  Index n = 0;
+  for (Index s : skel_slot_) n = std::max(n, s + 1);
+  skel_elems_.assign(static_cast<std::size_t>(n), -1);
+  for (Index e = 0; e < static_cast<Index>(skel_slot_.size()); ++e)
+    if (skel_slot_[e] >= 0) skel_elems_[skel_slot_[e]] = e;
+  skel_cache_.resize(static_cast<std::size_t>(n));
+}
+
 void ContactSystem::cache_skeletons(const Real* x) {
-  const Index ns = static_cast<Index>(surface_list_.size());
+  const Index ns = static_cast<Index>(skel_elems_.size());
 #pragma omp parallel for schedule(static) if (ns > 1024)
-  for (Index i = 0; i < ns; ++i) skel_cache_[i] = skeleton_poly(surface_list_[i], x);
+  for (Index i = 0; i < ns; ++i) skel_cache_[i] = skeleton_poly(skel_elems_[i], x);
 }
 
 void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,

@@ -98,7 +98,7 @@ class ContactSystem {
     ar(surface_, surface_list_, fragment_, fragment_prev_, born_offset_, watch_, x_build_, wall_build_, wall_q_build_,
        failed_seen_, built_, pairs_, wall_pairs_, history_.offset, history_.entry, skel_slot_, totals_, elastic_,
        wall_power_, fdamp_, fdamp_prev_);
-    if (ar.loading()) skel_cache_.resize(surface_list_.size());
+    if (ar.loading()) slots_from_map();
   }
 
  private:
@@ -162,9 +162,15 @@ class ContactSystem {
   PairList pairs_;
   std::vector<std::pair<Index, Index>> wall_pairs_;  ///< (wall, element)
   GridBroadPhase grid_;
-  PairHistory history_, history_next_;        ///< by index into pairs_ then wall_pairs_
-  std::vector<Index> skel_slot_;              ///< per element: index into skel_cache_ (-1: not surface)
-  std::vector<Poly> skel_cache_;              ///< skeletons of the surface elements at this step
+  PairHistory history_, history_next_;  ///< by index into pairs_ then wall_pairs_
+  /// Per element: index into skel_cache_ (-1: in no pair). Only the elements some pair
+  /// names have their skeleton computed each step: on an intact body under loading platens
+  /// that is a few hundred of its thousands of surface elements (issue 19).
+  std::vector<Index> skel_slot_;
+  std::vector<Index> skel_elems_;  ///< the elements with a slot, in slot order
+  std::vector<Poly> skel_cache_;   ///< their skeletons at this step
+  /// skel_elems_ and the cache's size from skel_slot_ (after a checkpoint is read).
+  void slots_from_map();
   std::vector<std::vector<TouchOut>> arena_;  ///< per thread
   std::vector<int> rec_thread_;               ///< per pair: whose arena holds its records
   std::vector<Index> rec_off_, rec_n_;        ///< per pair: where, how many
