@@ -8,8 +8,8 @@ per element-step. With --vs OTHER_DSPDEM the same runs alternate with another bi
 ...), and the ratio is taken pair by pair, so that a box whose speed drifts still gives a
 fair ratio; the median of the pairs is reported. Results go to a Markdown table on stdout.
 
-  tests/bench/disc_step.py [--bin build/dspdem] [--vs /path/to/old/dspdem] [--pairs 3]
-                           [--threads 1 2] [--end 3.16e-4]
+  tests/bench/disc_step.py [--bin build/dspdem] [--vs /path/to/old/dspdem] [--vs-case OLD.toml]
+                           [--pairs 3] [--threads 1 2] [--end 3.16e-4]
 
 Run it on a quiet box: a second heavy process on a 2-core machine halves what it measures.
 """
@@ -24,8 +24,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def run(binary, threads, end, out):
-    cmd = [binary, "-q", "-t", str(threads), "run", str(ROOT / "cases/brazilian_disc.toml"),
+def run(binary, threads, end, out, case=None):
+    cmd = [binary, "-q", "-t", str(threads), "run", str(case or ROOT / "cases/brazilian_disc.toml"),
            "--set", f"time.end={end}", "--set", "output.frame_interval=1", "--out", str(out), "--no-progress"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
@@ -39,6 +39,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bin", default=str(ROOT / "build/dspdem"), help="dspdem to measure (A)")
     ap.add_argument("--vs", help="another dspdem to compare with (B), run in turn with A")
+    ap.add_argument("--vs-case", help="the disc case B reads (an older binary may not know every key of the "
+                    "shipped one; give it the case of its own commit)")
     ap.add_argument("--pairs", type=int, default=3, help="runs of each binary per thread count")
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--end", type=float, default=3.16e-4, help="simulated time to run [s]")
@@ -50,7 +52,7 @@ def main():
             for i in range(a.pairs):
                 A.append(run(a.bin, t, a.end, Path(tmp) / f"a{t}_{i}"))
                 if a.vs:
-                    B.append(run(a.vs, t, a.end, Path(tmp) / f"b{t}_{i}"))
+                    B.append(run(a.vs, t, a.end, Path(tmp) / f"b{t}_{i}", a.vs_case))
             rows[t] = (A, B)
     first = rows[a.threads[0]][0][0]
     print(f"Brazilian disc, first {first['steps']} steps: {first['elements']} elements, {first['joints']} joints; "
