@@ -164,8 +164,8 @@ class ContactSystem {
   GridBroadPhase grid_;
   PairHistory history_, history_next_;  ///< by index into pairs_ then wall_pairs_
   /// Per element: index into skel_cache_ (-1: in no pair). Only the elements some pair
-  /// names have their skeleton computed each step: on an intact body under loading platens
-  /// that is a few hundred of its thousands of surface elements (issue 19).
+  /// names have their skeleton computed each step: on the intact Brazilian disc, only the
+  /// elements near its jaws, not its thousands of surface elements (issue 19).
   std::vector<Index> skel_slot_;
   std::vector<Index> skel_elems_;  ///< the elements with a slot, in slot order
   std::vector<Poly> skel_cache_;   ///< their skeletons at this step
