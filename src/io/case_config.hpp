@@ -105,8 +105,9 @@ struct CaseConfig {
   Real t_end = 0, dt = 0, safety = 0.9;
   bool allow_unstable = false;
   long max_steps = 0;
-  long insertion_interval = 1;  ///< extrinsic insertion: steps between checks of the closed faces
-  std::string stop_series;      ///< empty: run to t_end
+  long insertion_interval = 1;         ///< extrinsic insertion: steps between checks of the closed faces
+  bool insertion_mean_stress = false;  ///< extrinsic insertion: insertion_stress = "mean" (else "larger")
+  std::string stop_series;             ///< empty: run to t_end
   Real stop_fraction = 0.3, stop_min_peak = 0, stop_delay = 0;
   // output
   Real frame_interval = 0, series_interval = 0;

@@ -238,7 +238,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   Integrator it(model, dt);
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
-    extrinsic.emplace(c.insertion_interval);
+    extrinsic.emplace(c.insertion_interval,
+                      c.insertion_mean_stress ? joint::FaceStress::Mean : joint::FaceStress::Larger);
     log::info(
         "  extrinsic insertion: {} joint(s) closed until their faces reach the strength, checked every {} step(s)",
         std::count(model.joints.closed.begin(), model.joints.closed.end(), 1), c.insertion_interval);

@@ -1,6 +1,6 @@
 #include "time/extrinsic.hpp"
 
-#include "joint/onset.hpp"
+#include <algorithm>
 
 namespace dspdem {
 
@@ -25,7 +25,9 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index j = 0; j < nj; ++j) {
     // (A margin of 1e-9 keeps rounding in the bound from screening a face at its onset.)
-    if (!js.closed[j] || 0.5 * (bound_[js.ea[j]] + bound_[js.eb[j]]) * (1 + 1e-9) < floor_[j]) continue;
+    const Real ba = bound_[js.ea[j]], bb = bound_[js.eb[j]];
+    const Real bound = stress_rule_ == joint::FaceStress::Mean ? 0.5 * (ba + bb) : std::max(ba, bb);
+    if (!js.closed[j] || bound * (1 + 1e-9) < floor_[j]) continue;
     const std::size_t j4 = 4 * static_cast<std::size_t>(j);
     // The face's current normal from A to B, as the joint kernel takes it (a closed face's
     // two sides coincide).
@@ -37,10 +39,10 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
     n /= nl;
     const Real* sa = &stress_[6 * static_cast<std::size_t>(js.ea[j])];
     const Real* sb = &stress_[6 * static_cast<std::size_t>(js.eb[j])];
-    const Vec3 tv = joint::face_traction_vector(sa, sb, n);
-    const Real tn = tv.dot(n);
-    const Vec3 ts = tv - tn * n;
-    if (joint::onset_ratio(js.params[js.param[j]], {tn, ts.norm()}) < 1) continue;
+    const joint::FaceOnset fo = joint::face_onset(js.params[js.param[j]], sa, sb, n, stress_rule_);
+    if (fo.ratio < 1) continue;
+    const Real tn = fo.t.dot(n);
+    const Vec3 ts = fo.t - tn * n;
     open_[j] = 1;
     traction_[j4] = tn;
     for (int d = 0; d < 3; ++d) traction_[j4 + 1 + d] = ts(d);

@@ -11,14 +11,15 @@
 #pragma once
 #include <vector>
 
+#include "joint/onset.hpp"
 #include "time/integrator.hpp"
 
 namespace dspdem {
 
 class ExtrinsicInsertion {
  public:
-  /// Checks every `interval` steps.
-  explicit ExtrinsicInsertion(long interval) : interval_(interval) {}
+  /// Checks every `interval` steps, a face's traction taken by rule `stress`.
+  ExtrinsicInsertion(long interval, joint::FaceStress stress) : interval_(interval), stress_rule_(stress) {}
   /// After a step: on a checking step, opens the closed joints whose face traction has
   /// reached their law's onset (decided in parallel, applied in joint order: the same on
   /// any thread count) and reties the nodes. Returns how many opened.
@@ -31,6 +32,7 @@ class ExtrinsicInsertion {
 
  private:
   long interval_;
+  joint::FaceStress stress_rule_;
   Index opened_ = 0;
   std::vector<Real> stress_, traction_;  ///< per element; per joint (t_n, then t_s as a vector)
   std::vector<char> open_;

@@ -219,8 +219,11 @@ TEST(CaseReader, ExtrinsicInsertionNeedsJoints) {
   expect_error(kGood, {"fracture_insertion", "no joints"}, {"bodies.0.fracture_insertion=\"extrinsic\""});
   expect_error(kGood, {"'fracture_insertion'"}, {"bodies.0.fracture_insertion=\"later\""});
   expect_error(kGood, {"'insertion_interval'"}, {"time.insertion_interval=0"});
+  expect_error(kGood, {"'insertion_stress'"}, {"time.insertion_stress=\"median\""});
   const CaseConfig c = read_case(write_case(kGood), {"time.insertion_interval=5"});
   EXPECT_EQ(c.insertion_interval, 5);
+  EXPECT_FALSE(c.insertion_mean_stress);  // the default: "larger"
+  EXPECT_TRUE(read_case(write_case(kGood), {"time.insertion_stress=\"mean\""}).insertion_mean_stress);
   EXPECT_FALSE(c.bodies[0].extrinsic);
 }
 

@@ -105,3 +105,36 @@ TEST(Onset, TheFloorScreensOnlyTractionsBelowTheOnset) {
     EXPECT_LE(t.norm(), stress_bound(s) * (1 + 1e-12));
   }
 }
+
+TEST(Onset, TheLargerRuleTakesTheElementNearerItsOnsetAndTheMeanRuleTheirMean) {
+  // Two elements across a face of normal x, in tension along x: 4 MPa on side A, 1 MPa on
+  // side B (a stress peak on A's side). Mode I, f_t = 3 MPa: the mean (2.5 MPa) stays below
+  // the onset, A's own stress is past it.
+  const CohesiveParams p = params(JointLaw::ModeI);
+  const Real a[6] = {4e6, 0, 0, 0, 0, 0}, b[6] = {1e6, 0, 0, 0, 0, 0};
+  const Vec3 n(1, 0, 0);
+  const FaceOnset mean = face_onset(p, a, b, n, FaceStress::Mean);
+  EXPECT_NEAR(mean.ratio, 2.5 / 3.0, 1e-12);
+  EXPECT_NEAR(mean.t(0), 2.5e6, 1e-6);
+  const FaceOnset larger = face_onset(p, a, b, n, FaceStress::Larger);
+  EXPECT_NEAR(larger.ratio, 4.0 / 3.0, 1e-12);
+  EXPECT_NEAR(larger.t(0), 4e6, 1e-6);
+  // The same with the sides swapped: the rule does not depend on which side is A.
+  const FaceOnset swapped = face_onset(p, b, a, n, FaceStress::Larger);
+  EXPECT_EQ(swapped.ratio, larger.ratio);
+  EXPECT_EQ(swapped.t, larger.t);
+  // Under one uniform stress both rules give the traction of face_traction, bit for bit.
+  const FaceTraction u = face_traction(a, a, n);
+  for (FaceStress r : {FaceStress::Mean, FaceStress::Larger}) {
+    const FaceOnset o = face_onset(p, a, a, n, r);
+    EXPECT_EQ(o.t.dot(n), u.tn);
+    EXPECT_EQ(o.ratio, onset_ratio(p, u));
+  }
+  // The shear law picks by ratio, not by the size of the traction: side B carries more
+  // tension, side A a shear that is nearer the coupled ellipse's onset.
+  const CohesiveParams q = params(JointLaw::Coupled);
+  const Real sa[6] = {0, 0, 0, 8e6, 0, 0}, sb[6] = {2.0e6, 0, 0, 0, 0, 0};
+  const FaceOnset o = face_onset(q, sa, sb, n, FaceStress::Larger);
+  EXPECT_NEAR(o.ratio, 8.0 / 9.0, 1e-12);  // A: t_s / c = 8 / 9 > B: 2 / 3
+  EXPECT_NEAR(o.t(1), 8e6, 1e-6);
+}

@@ -506,7 +506,7 @@ ExtrinsicBar break_bar_extrinsic(int n, bool mode_i, Real penalty) {
   EXPECT_EQ(std::count(m.joints.closed.begin(), m.joints.closed.end(), 1), n - 1);
   const Real dt = critical_dt(m);
   Integrator it(m, 0.9 * dt);
-  ExtrinsicInsertion ins(1);
+  ExtrinsicInsertion ins(1, joint::FaceStress::Larger);
   Real balance = 0;
   while (it.energy().broken_joints == 0 && it.time() < 0.05) {
     it.step();
@@ -575,7 +575,7 @@ TEST(Joints, ExtrinsicInsertionIsTheSameOnOneAndTwoThreads) {
     c.boundaries.push_back(pull);
     Model m = build_model(c, box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2));
     Integrator it(m, 0.9 * critical_dt(m));
-    ExtrinsicInsertion ins(1);
+    ExtrinsicInsertion ins(1, joint::FaceStress::Larger);
     for (int s = 0; s < 400; ++s) {
       it.step();
       ins.check(m, it);
@@ -602,7 +602,7 @@ TEST(Joints, InsertionKeepsTheTractionAndMakesNoEnergy) {
   // balance (the law's skipped elastic energy is booked with an equal negative dissipation).
   Model m = pulled_bar(4, true, true, 10);
   Integrator it(m, 0.9 * critical_dt(m));
-  ExtrinsicInsertion ins(1);
+  ExtrinsicInsertion ins(1, joint::FaceStress::Larger);
   Index j = -1;
   Real tn = 0;
   while (j < 0 && it.time() < 0.05) {
