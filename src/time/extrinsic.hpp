@@ -2,7 +2,9 @@
 // strength of their joint law (joint/onset.hpp). Until then their two sides' nodes are tied
 // (joint/ties.hpp) and the faces carry the elements' stresses as a continuum would; on
 // opening, the joint's law starts from the elastic state whose traction is the face's
-// (JointSet::offset), so the traction does not jump (checked every step; with
+// (JointSet::offset), taken by the rule of joint::FaceStress: under one stress the traction
+// does not jump; under "larger" with two different stresses it starts from the more stressed
+// element's, up to half their difference from their mean (continuity checked every step; with
 // insertion_interval k > 1 the traction may overshoot the onset by up to k steps of loading,
 // and the law then drops to its softening curve at once), and it books no energy for that
 // skipped elastic branch (its work integrals start at zero: the stored energy the law reports

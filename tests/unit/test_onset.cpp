@@ -119,7 +119,8 @@ TEST(Onset, TheLargerRuleTakesTheElementNearerItsOnsetAndTheMeanRuleTheirMean) {
   const FaceOnset larger = face_onset(p, a, b, n, FaceStress::Larger);
   EXPECT_NEAR(larger.ratio, 4.0 / 3.0, 1e-12);
   EXPECT_NEAR(larger.t(0), 4e6, 1e-6);
-  // The same with the sides swapped: the rule does not depend on which side is A.
+  // The same with the sides swapped: where the ratios differ, the rule does not depend on
+  // which side is A (on a tie it keeps side A's traction).
   const FaceOnset swapped = face_onset(p, b, a, n, FaceStress::Larger);
   EXPECT_EQ(swapped.ratio, larger.ratio);
   EXPECT_EQ(swapped.t, larger.t);
@@ -130,11 +131,16 @@ TEST(Onset, TheLargerRuleTakesTheElementNearerItsOnsetAndTheMeanRuleTheirMean) {
     EXPECT_EQ(o.t.dot(n), u.tn);
     EXPECT_EQ(o.ratio, onset_ratio(p, u));
   }
-  // The shear law picks by ratio, not by the size of the traction: side B carries more
-  // tension, side A a shear that is nearer the coupled ellipse's onset.
+  // The choice is by ratio, not by the size of the traction: under the coupled law
+  // (f_t 3 MPa, c 9 MPa) side A's tension of 2.8 MPa is nearer the onset (ratio 0.933) than
+  // side B's larger shear of 8 MPa (ratio 0.889).
   const CohesiveParams q = params(JointLaw::Coupled);
-  const Real sa[6] = {0, 0, 0, 8e6, 0, 0}, sb[6] = {2.0e6, 0, 0, 0, 0, 0};
-  const FaceOnset o = face_onset(q, sa, sb, n, FaceStress::Larger);
-  EXPECT_NEAR(o.ratio, 8.0 / 9.0, 1e-12);  // A: t_s / c = 8 / 9 > B: 2 / 3
-  EXPECT_NEAR(o.t(1), 8e6, 1e-6);
+  const Real sa[6] = {2.8e6, 0, 0, 0, 0, 0}, sb[6] = {0, 0, 0, 8e6, 0, 0};
+  for (bool swap : {false, true}) {
+    const FaceOnset o =
+        swap ? face_onset(q, sb, sa, n, FaceStress::Larger) : face_onset(q, sa, sb, n, FaceStress::Larger);
+    EXPECT_NEAR(o.ratio, 2.8 / 3.0, 1e-12);
+    EXPECT_NEAR(o.t(0), 2.8e6, 1e-6);
+    EXPECT_EQ(o.t(1), 0.0);
+  }
 }
