@@ -161,8 +161,9 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
   {
     // Extrinsic insertion (issue 20): faces closed until their traction reaches the strength,
     // so that the penalty, which then acts on opened faces only, can be low and the step
-    // larger; checked every 10 steps (1 step read +20.8 % and 311 s, 10 steps +18.9 % and
-    // 195 s on 2 threads: cases/README.md).
+    // larger; checked every 10 steps (under the old mean-stress rule 1 step read +20.8 % and
+    // 311 s, 10 steps +18.9 % and 195 s on 2 threads; under the default "larger" rule 10 steps
+    // read +1.7 % in 67 s: cases/README.md).
     std::vector<std::string> sets{override_of("time.insertion_interval", 10.0)};
     for (std::size_t i = 0; i < base.bodies.size(); ++i)
       if (base.bodies[i].fracture != BodyConfig::Fracture::None)
