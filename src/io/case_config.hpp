@@ -10,6 +10,7 @@
 #include "contact/walls.hpp"
 #include "core/types.hpp"
 #include "fem/fem_model.hpp"
+#include "joint/onset.hpp"
 #include "time/monitor.hpp"
 
 namespace dspdem {
@@ -105,9 +106,9 @@ struct CaseConfig {
   Real t_end = 0, dt = 0, safety = 0.9;
   bool allow_unstable = false;
   long max_steps = 0;
-  long insertion_interval = 1;         ///< extrinsic insertion: steps between checks of the closed faces
-  bool insertion_mean_stress = false;  ///< extrinsic insertion: insertion_stress = "mean" (else "larger")
-  std::string stop_series;             ///< empty: run to t_end
+  long insertion_interval = 1;  ///< extrinsic insertion: steps between checks of the closed faces
+  joint::FaceStress insertion_stress = joint::FaceStress::Larger;  ///< extrinsic insertion: the face traction's rule
+  std::string stop_series;                                         ///< empty: run to t_end
   Real stop_fraction = 0.3, stop_min_peak = 0, stop_delay = 0;
   // output
   Real frame_interval = 0, series_interval = 0;

@@ -648,7 +648,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     c.allow_unstable = s.boolean("allow_unstable");
     c.max_steps = s.integer("max_steps");
     c.insertion_interval = s.integer("insertion_interval");
-    c.insertion_mean_stress = s.str("insertion_stress") == "mean";
+    c.insertion_stress = s.str("insertion_stress") == "mean" ? joint::FaceStress::Mean : joint::FaceStress::Larger;
     if (s.has("stop_series")) c.stop_series = s.str("stop_series");
     c.stop_fraction = s.real("stop_fraction");
     c.stop_min_peak = s.real("stop_min_peak");

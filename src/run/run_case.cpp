@@ -238,13 +238,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   Integrator it(model, dt);
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
-    extrinsic.emplace(c.insertion_interval,
-                      c.insertion_mean_stress ? joint::FaceStress::Mean : joint::FaceStress::Larger);
+    extrinsic.emplace(c.insertion_interval, c.insertion_stress);
     log::info(
         "  extrinsic insertion: {} joint(s) closed until their faces reach the strength (traction from the {} "
         "stress), checked every {} step(s)",
         std::count(model.joints.closed.begin(), model.joints.closed.end(), 1),
-        c.insertion_mean_stress ? "two elements' mean" : "more stressed element's", c.insertion_interval);
+        c.insertion_stress == joint::FaceStress::Mean ? "two elements' mean" : "more stressed element's",
+        c.insertion_interval);
   }
   std::vector<Real> stress;
   std::vector<Real> elem_mass(fem.n_elements, 0.0);

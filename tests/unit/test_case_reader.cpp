@@ -222,8 +222,8 @@ TEST(CaseReader, ExtrinsicInsertionNeedsJoints) {
   expect_error(kGood, {"'insertion_stress'"}, {"time.insertion_stress=\"median\""});
   const CaseConfig c = read_case(write_case(kGood), {"time.insertion_interval=5"});
   EXPECT_EQ(c.insertion_interval, 5);
-  EXPECT_FALSE(c.insertion_mean_stress);  // the default: "larger"
-  EXPECT_TRUE(read_case(write_case(kGood), {"time.insertion_stress=\"mean\""}).insertion_mean_stress);
+  EXPECT_EQ(c.insertion_stress, joint::FaceStress::Larger);  // the default
+  EXPECT_EQ(read_case(write_case(kGood), {"time.insertion_stress=\"mean\""}).insertion_stress, joint::FaceStress::Mean);
   EXPECT_FALSE(c.bodies[0].extrinsic);
 }
 
