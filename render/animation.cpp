@@ -1,15 +1,16 @@
 #include "render/animation.hpp"
 
+#include <fmt/format.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkOggTheoraWriter.h>
 #include <vtkPNGReader.h>
 
-#include <cstdlib>
 #include <filesystem>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/subprocess.hpp"
 
 namespace dspdem::render {
 
@@ -40,24 +41,37 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
     fs::rename(tmp, base + ".ogv");
     out.push_back(base + ".ogv");
   }
-  if (std::system("command -v ffmpeg >/dev/null 2>&1") == 0) {
-    const fs::path dir = fs::path(pngs[0]).parent_path();
-    const std::string pattern = (dir / "frame_%04d.png").string();
-    for (const char* ext : {"mp4", "gif"}) {
-      const std::string tmp = base + ".tmp." + ext, dst = base + "." + ext;
-      const std::string codec = std::string(ext) == "mp4"
-                                    ? "-c:v libx264 -pix_fmt yuv420p -vf pad=ceil(iw/2)*2:ceil(ih/2)*2"
-                                    : "-vf fps=" + std::to_string(fps) + ",scale=640:-1:flags=lanczos";
-      const std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(fps) + " -i '" + pattern + "' " +
-                              codec + " '" + tmp + "' </dev/null";
-      if (std::system(cmd.c_str()) == 0 && fs::exists(tmp)) {
-        fs::rename(tmp, dst);
-        out.push_back(dst);
-      } else {
-        log::warn("ffmpeg could not write '{}'", dst);
-      }
+  const std::string ffmpeg = find_on_path("ffmpeg");
+  if (ffmpeg.empty()) return out;
+  // ffmpeg reads a numbered sequence; the frames drawn may be any subset of the run's
+  // (--frames every:K), so number links to them 0, 1, 2, ... in a folder of their own.
+  const fs::path seq = base + ".seq";
+  fs::remove_all(seq);
+  fs::create_directories(seq);
+  for (std::size_t i = 0; i < pngs.size(); ++i)
+    fs::create_symlink(fs::absolute(pngs[i]), seq / fmt::format("{:06d}.png", i));
+  const std::string rate = std::to_string(fps), input = (seq / "%06d.png").string();
+  for (const std::string ext : {"mp4", "gif"}) {
+    const std::string tmp = base + ".tmp." + ext, dst = base + "." + ext;
+    std::vector<std::string> args = {"-loglevel", "error", "-y", "-framerate", rate, "-i", input};
+    if (ext == "mp4")  // H.264 in yuv420p plays in every browser; it needs even sizes
+      args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                               "-movflags", "+faststart", "-f", "mp4"});
+    else  // one palette made for the whole animation: smooth colour maps without dithering bands
+      args.insert(args.end(),
+                  {"-vf", "scale=640:-1:flags=lanczos,split[a][b];[a]palettegen[p];[b][p]paletteuse", "-f", "gif"});
+    args.push_back(tmp);
+    const std::string log = base + "." + ext + ".log";
+    if (run_program(ffmpeg, args, log) == 0 && fs::exists(tmp)) {
+      fs::rename(tmp, dst);
+      fs::remove(log);
+      out.push_back(dst);
+    } else {
+      fs::remove(tmp);
+      log::warn("ffmpeg could not write '{}' (its messages: {})", dst, log);
     }
   }
+  fs::remove_all(seq);
   return out;
 }
 

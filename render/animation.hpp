@@ -1,5 +1,5 @@
 // Animations from a view's PNG frames: .ogv through VTK's Theora writer (always), and
-// .mp4 / .gif through ffmpeg when it is on the PATH.
+// .mp4 (H.264) and .gif through ffmpeg when it is on the PATH (.ci/install-deps installs it).
 #pragma once
 #include <string>
 #include <vector>

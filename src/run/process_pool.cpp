@@ -1,38 +1,18 @@
 #include "run/process_pool.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <map>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
-
-extern char** environ;
+#include "core/subprocess.hpp"
 
 namespace dspdem {
 
 namespace {
-pid_t start(const Job& j) {
-  std::filesystem::create_directories(std::filesystem::absolute(j.log).parent_path());
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, j.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> args = {"/proc/self/exe"};
-  args.insert(args.end(), j.args.begin(), j.args.end());
-  std::vector<char*> argv;
-  for (auto& s : args) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
-}
+pid_t start(const Job& j) { return spawn_program("/proc/self/exe", j.args, j.log); }
 }  // namespace
 
 std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {

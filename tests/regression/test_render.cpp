@@ -93,8 +93,29 @@ TEST(Render, WritesFramesAnimationAndPlotsWithoutDisplay) {
   ASSERT_EQ(r2.code, 0) << r2.out;
   EXPECT_GT(fs::file_size(out2 / "images/stress.ogv"), 1000u);
   EXPECT_TRUE(fs::exists(out2 / "images/plots/tip_uy.png"));
-  for (const auto& e : fs::recursive_directory_iterator(out2))
+  // The .mp4 (H.264) and .gif through ffmpeg, which .ci/install-deps installs: each holds
+  // every frame drawn, also when the frames drawn skip some of the run's (every:2 draws 0, 2,
+  // 4 of 0-4: the writer must not assume a contiguous numbering).
+  auto frames_in = [](const fs::path& video) {
+    const Result p =
+        sh("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+           "-of csv=p=0 " +
+           video.string());
+    return p.code == 0 ? std::atoi(p.out.c_str()) : -1;
+  };
+  EXPECT_EQ(frames_in(out2 / "images/stress.mp4"), 5);
+  EXPECT_EQ(frames_in(out2 / "images/stress.gif"), 5);
+  const Result r3 = sh(bin() + " render " + out2.string() + " --frames every:2");
+  ASSERT_EQ(r3.code, 0) << r3.out;
+  EXPECT_EQ(frames_in(out2 / "images/stress.mp4"), 3);
+  EXPECT_EQ(frames_in(out2 / "images/stress.gif"), 3);
+  const Result codec = sh("ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,pix_fmt -of csv=p=0 " +
+                          (out2 / "images/stress.mp4").string());
+  EXPECT_NE(codec.out.find("h264,yuv420p"), std::string::npos) << codec.out;
+  for (const auto& e : fs::recursive_directory_iterator(out2)) {
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+    EXPECT_EQ(e.path().string().find(".seq"), std::string::npos) << "frame links left: " << e.path();
+  }
 }
 
 TEST(ImgDiff, IdenticalPassesAndChangedSceneFails) {
