@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "app/figures_command.hpp"
 #include "app/mesh_command.hpp"
 #include "app/report_command.hpp"
 #include "core/error.hpp"
@@ -117,6 +118,19 @@ int main(int argc, char** argv) {
   rep->add_flag("--no-stress-check", rpa.no_stress_check,
                 "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
 
+  auto* fig = app.add_subcommand(
+      "figures",
+      "Every scene's report and one static site over them: DIR/index.html (and index.md) with each scene's headline "
+      "figures against the paper, thumbnails linking to its report page, its animation");
+  FiguresArgs fga;
+  fig->add_option("cases", fga.cases, "Case files, one per scene (default: every scene's shipped case)");
+  fig->add_option("-o,--out", fga.out, "Output directory of the site (default: results/figures)");
+  fig->add_flag("--quick", fga.quick, "CI-sized meshes and runs (each scene in about a minute on 2 cores)");
+  fig->add_option("--from-runs", fga.from_runs,
+                  "Reuse the report folders FROM/<scene> made earlier (by figures or by report --out); run nothing")
+      ->check(CLI::ExistingDirectory)
+      ->type_name("FROM");
+
   auto* imgdiff =
       app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
   std::string img_a, img_b, img_diff;
@@ -167,6 +181,10 @@ int main(int argc, char** argv) {
       return render_command(ra);
     }
     if (*rep) return report_command(rpa);
+    if (*fig) {
+      fga.threads = threads;
+      return figures_command(fga);
+    }
     if (*scn) {
       for (const auto& sc : scenes::all())
         fmt::print("{:<16} {} (cases with mesh generator '{}' by default)\n", sc.name, sc.title, sc.generator);

@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "io/staging.hpp"
+#include "report/html.hpp"
 
 namespace dspdem::report {
 
@@ -13,6 +14,7 @@ Document::Document(const std::string& dir, const std::string& run_dir)
     : dir_(dir), rel_(fs::relative(run_dir, dir).string()) {}
 
 Document& Document::title(const std::string& text) {
+  if (title_.empty()) title_ = text;
   md_ += "# " + text + "\n\n";
   return *this;
 }
@@ -51,6 +53,28 @@ Document& Document::table(const std::vector<std::string>& header, const std::vec
   md_ += "\n";
   return *this;
 }
+Document& Document::animation(const std::string& caption, const std::string& base_in_run,
+                              const std::string& poster_in_run) {
+  // Only the files that exist (ffmpeg writes .mp4 and .gif, VTK always the .ogv): a <source>
+  // that is not there would be a broken link in the page.
+  auto exists = [&](const std::string& ext) { return fs::exists(fs::path(dir_) / run_link(base_in_run + ext)); };
+  std::string sources, links;
+  for (const auto& [ext, type] : {std::pair<std::string, std::string>{".mp4", "video/mp4"}, {".ogv", "video/ogg"}})
+    if (exists(ext)) sources += "<source src=\"" + run_link(base_in_run + ext) + "\" type=\"" + type + "\">";
+  for (const std::string ext : {".mp4", ".ogv", ".gif"})
+    if (exists(ext)) links += " [" + ext.substr(1) + "](" + run_link(base_in_run + ext) + ")";
+  if (links.empty()) return *this;
+  if (!sources.empty())
+    md_ += "<video controls loop muted preload=\"metadata\" poster=\"" + run_link(poster_in_run) + "\" title=\"" +
+           caption + "\">" + sources + "</video>\n\n";
+  md_ += caption + ", animation:" + links + "\n\n";
+  if (headline_.animation.empty()) headline_.animation = run_link(base_in_run);
+  return *this;
+}
+Document& Document::thumbnail(const std::string& caption, const std::string& path_in_run) {
+  headline_.images.emplace_back(caption, run_link(path_in_run));
+  return *this;
+}
 Document& Document::raw(const std::string& markdown) {
   md_ += markdown;
   return *this;
@@ -61,6 +85,8 @@ std::string Document::run_link(const std::string& path_in_run) const { return re
 std::string Document::write() const {
   const std::string p = (fs::path(dir_) / "report.md").string();
   write_file_atomic(p, md_);
+  write_file_atomic((fs::path(dir_) / "report.html").string(), html_page(title_, markdown_to_html(md_)));
+  if (!headline_.scene.empty() && !headline_.title.empty()) write_headline(headline_, dir_);
   return p;
 }
 

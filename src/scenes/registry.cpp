@@ -10,14 +10,40 @@
 namespace dspdem::scenes {
 
 const std::vector<Scene>& all() {
+  // quick_args: the CI-sized run of `dspdem figures --quick` (each about a minute on 2 cores
+  // or less), the sizes the scene's own tests use.
   static const std::vector<Scene> s = {
-      {"packing", "packing", "tetrahedra falling into a rigid box and coming to rest (paper 2.1)", packing_report},
-      {"brazilian_disc", "brazilian_disc", "Brazilian disc split between two plates (paper 2.2)",
-       brazilian_disc_report},
-      {"galvez_beam", "galvez_beam", "Galvez mixed-mode notched beam (paper 2.3)", galvez_beam_report},
-      {"murray_beam", "murray_beam", "plain concrete beam struck by two impactors (paper 2.4)", murray_beam_report},
-      {"sphere_impact", "sphere_plate", "rock sphere striking a rigid plate, a sweep over speeds (paper 2.5)",
-       sphere_impact_report},
+      {"packing",
+       "packing",
+       "tetrahedra falling into a rigid box and coming to rest (paper 2.1)",
+       packing_report,
+       "cases/packing.toml",
+       {"--set", "mesh.packing.count=200", "--set", "time.end=3.0"}},
+      {"brazilian_disc",
+       "brazilian_disc",
+       "Brazilian disc split between two plates (paper 2.2)",
+       brazilian_disc_report,
+       "cases/brazilian_disc.toml",
+       {"--no-stress-check", "--set", "mesh.brazilian_disc.size=0.02"}},
+      {"galvez_beam",
+       "galvez_beam",
+       "Galvez mixed-mode notched beam (paper 2.3)",
+       galvez_beam_report,
+       "cases/galvez_beam.toml",
+       {"--set", "time.stop_fraction=0.5", "--set", "time.stop_delay=5e-4"}},
+      {"murray_beam",
+       "murray_beam",
+       "plain concrete beam struck by two impactors (paper 2.4)",
+       murray_beam_report,
+       "cases/murray_beam.toml",
+       {"--set", "mesh.murray_beam.nx=34", "--set", "mesh.murray_beam.ny=3", "--set", "mesh.murray_beam.nz=5", "--set",
+        "time.end=4e-3"}},
+      {"sphere_impact",
+       "sphere_plate",
+       "rock sphere striking a rigid plate, a sweep over speeds (paper 2.5)",
+       sphere_impact_report,
+       "cases/sphere_impact.toml",
+       {"--set", "mesh.sphere_plate.size=0.04", "--speeds", "2.5,7.5,20"}},
   };
   return s;
 }

@@ -15,6 +15,8 @@ struct Scene {
   std::string generator;  ///< mesh generator whose cases are this scene by default ("" none)
   std::string title;      ///< one line for listings
   std::function<int(const CaseConfig&, const report::ReportArgs&)> report;
+  std::string case_file;                ///< its shipped case, relative to the source tree
+  std::vector<std::string> quick_args;  ///< `dspdem report` arguments for a CI-sized run (figures --quick)
 };
 
 const std::vector<Scene>& all();

@@ -1,0 +1,99 @@
+#include "app/figures_command.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/timer.hpp"
+#include "io/case_config.hpp"
+#include "report/site.hpp"
+#include "run/process_pool.hpp"
+#include "scenes/registry.hpp"
+
+namespace dspdem {
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Item {
+  std::string scene, case_file;
+  std::vector<std::string> quick_args;
+};
+
+// A scene's shipped case: under the working folder, else under the source tree dspdem was
+// built from.
+std::string find_case(const scenes::Scene& s) {
+  for (const fs::path& root : {fs::current_path(), fs::path(DSPDEM_SOURCE_DIR)})
+    if (fs::exists(root / s.case_file)) return (root / s.case_file).string();
+  fail("figures: the case of scene '{}' ({}) is neither under {} nor under {}; give the case files", s.name,
+       s.case_file, fs::current_path().string(), DSPDEM_SOURCE_DIR);
+}
+
+std::string last_line(const std::string& path) {
+  std::ifstream f(path);
+  std::string line, last;
+  while (std::getline(f, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+}  // namespace
+
+int figures_command(const FiguresArgs& a) {
+  Timer total;
+  std::vector<Item> items;
+  if (a.cases.empty()) {
+    for (const auto& s : scenes::all()) items.push_back({s.name, find_case(s), s.quick_args});
+  } else {
+    for (const auto& f : a.cases) {
+      const scenes::Scene& s = scenes::of_case(read_case(f));
+      for (const auto& it : items)
+        DSPDEM_CHECK(it.scene != s.name, "figures: {} and {} are both the scene '{}'; give one case per scene",
+                     it.case_file, f, s.name);
+      items.push_back({s.name, f, s.quick_args});
+    }
+  }
+  fs::create_directories(a.out);
+  report::SiteInfo info;
+  info.set = a.quick ? "quick (CI-sized meshes and runs: the figures show the method, not the converged numbers)"
+                     : "full (the shipped cases as they are)";
+  info.made_by = "dspdem figures" + std::string(a.quick ? " --quick" : "") +
+                 (a.from_runs.empty() ? "" : " --from-runs " + a.from_runs) + " --out " + a.out;
+  for (const auto& c : a.cases) info.made_by += " " + c;
+
+  std::vector<std::string> dirs;
+  int code = 0;
+  for (const auto& it : items) {
+    if (!a.from_runs.empty()) {
+      dirs.push_back((fs::path(a.from_runs) / it.scene).string());
+      continue;
+    }
+    // Each report is its own process: a scene that fails cannot take the others down, and
+    // its log stays beside the site.
+    const std::string dir = (fs::path(a.out) / it.scene).string();
+    const std::string log = (fs::path(a.out) / "logs" / (it.scene + ".log")).string();
+    std::vector<std::string> args;
+    if (a.threads > 0) args.insert(args.end(), {"-t", std::to_string(a.threads)});
+    args.insert(args.end(), {"report", it.case_file, "--out", dir});
+    if (a.quick) args.insert(args.end(), it.quick_args.begin(), it.quick_args.end());
+    log::info("figures: {} ({}{})", it.scene, it.case_file, a.quick ? ", quick" : "");
+    Timer t;
+    const int rc = run_processes({Job{args, log}}, 1).front();
+    if (rc != 0) {
+      info.failed.emplace_back(it.scene, fmt::format("exit {}: {} (log: logs/{}.log)", rc, last_line(log), it.scene));
+      log::warn("figures: the report of {} failed with exit {}; its log: {}", it.scene, rc, log);
+      if (code == 0) code = rc > 0 ? rc : 4;
+      continue;
+    }
+    log::info("figures: {} done in {:.1f} s", it.scene, t.seconds());
+    dirs.push_back(dir);
+  }
+  info.wall_s = total.seconds();
+  const std::string index = report::write_site(dirs, a.out, info);
+  log::info("figures: {} ({} scenes, {} failed, {:.1f} s)", index, dirs.size(), info.failed.size(), total.seconds());
+  return code;
+}
+
+}  // namespace dspdem

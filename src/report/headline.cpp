@@ -1,0 +1,51 @@
+#include "report/headline.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/staging.hpp"
+
+namespace dspdem::report {
+
+void write_headline(const Headline& h, const std::string& dir) {
+  nlohmann::ordered_json j;
+  j["scene"] = h.scene;
+  j["title"] = h.title;
+  j["summary"] = h.summary;
+  j["rows"] = nlohmann::json::array();
+  for (const auto& r : h.rows)
+    j["rows"].push_back({{"quantity", r.quantity}, {"paper", r.paper}, {"dspdem", r.dspdem}, {"agrees", r.agrees}});
+  j["images"] = nlohmann::json::array();
+  for (const auto& [caption, path] : h.images) j["images"].push_back({{"caption", caption}, {"path", path}});
+  j["animation"] = h.animation;
+  j["wall_s"] = h.wall_s;
+  write_file_atomic((std::filesystem::path(dir) / "headline.json").string(), j.dump(2) + "\n");
+}
+
+Headline read_headline(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) fail("cannot read '{}': no such file (a report written by this version of dspdem has one)", path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  Headline h;
+  try {
+    const auto j = nlohmann::json::parse(ss.str());
+    h.scene = j.at("scene").get<std::string>();
+    h.title = j.at("title").get<std::string>();
+    h.summary = j.at("summary").get<std::string>();
+    for (const auto& r : j.at("rows"))
+      h.rows.push_back({r.at("quantity").get<std::string>(), r.at("paper").get<std::string>(),
+                        r.at("dspdem").get<std::string>(), r.at("agrees").get<std::string>()});
+    for (const auto& i : j.at("images")) h.images.emplace_back(i.at("caption"), i.at("path"));
+    h.animation = j.at("animation").get<std::string>();
+    h.wall_s = j.at("wall_s").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    fail("'{}': not a dspdem headline ({})", path, e.what());
+  }
+  return h;
+}
+
+}  // namespace dspdem::report
