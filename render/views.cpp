@@ -1,11 +1,13 @@
 #include "render/views.hpp"
 
 #include <vtkActor.h>
+#include <vtkActor2D.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
+#include <vtkFeatureEdges.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
 #include <vtkLookupTable.h>
@@ -15,10 +17,13 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataMapper2D.h>
 #include <vtkProperty.h>
+#include <vtkProperty2D.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkStaticCleanPolyData.h>
+#include <vtkStaticPointLocator.h>
 #include <vtkTableBasedClipDataSet.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -29,8 +34,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "core/error.hpp"
+#include "render/colormap.hpp"
 #include "render/offscreen.hpp"
 
 namespace dspdem::render {
@@ -122,12 +129,49 @@ struct FrameRenderer::Impl {
   ViewOptions opt;
   OffscreenWindow win;
   vtkNew<vtkRenderer> ren;
-  vtkNew<vtkActor> actor, context_actor;
-  vtkNew<vtkPolyDataMapper> mapper, context_mapper;
+  vtkNew<vtkActor> actor, context_actor, wall_actor, wall_edge_actor;
+  vtkNew<vtkPolyDataMapper> mapper, context_mapper, wall_mapper, wall_edge_mapper;
+  vtkNew<vtkFeatureEdges> wall_edges;
   vtkNew<vtkLookupTable> lut;
   vtkNew<vtkScalarBarActor> bar;
-  vtkNew<vtkTextActor> time_text;
-  explicit Impl(const ViewOptions& o) : opt(o), win(o.width, o.height) {}
+  vtkNew<vtkTextActor> time_text, scale_text;
+  vtkNew<vtkActor2D> scale_actor;
+  vtkNew<vtkPolyDataMapper2D> scale_mapper;
+  FieldDisplay display;
+  explicit Impl(const ViewOptions& o) : opt(o), win(o.width, o.height), display(field_display(o.field)) {}
+  // A scale bar in the top-right corner: a round length (1, 2 or 5 x 10^k) about a sixth of
+  // the image wide, with end ticks and its length in mm. Parallel projection: one pixel is
+  // 2 ParallelScale / height in the view plane, on every frame (the camera never moves).
+  void add_scale_bar() {
+    const ViewOptions& o = opt;
+    const double per_px = 2 * ren->GetActiveCamera()->GetParallelScale() / o.height;
+    const double len = nice_length(o.width / 6.0 * per_px);
+    if (!(len > 0)) return;
+    const double px = len / per_px, font = std::max(12, o.height / 30);
+    const double x1 = o.width - 0.03 * o.width, x0 = x1 - px, y = o.height - 10 - 0.5 * font, tick = 0.35 * font;
+    vtkNew<vtkPoints> pts;
+    for (const auto& [x, yy] :
+         {std::pair{x0, y - tick}, {x0, y + tick}, {x0, y}, {x1, y}, {x1, y - tick}, {x1, y + tick}})
+      pts->InsertNextPoint(x, yy, 0);
+    vtkNew<vtkCellArray> lines;
+    const vtkIdType seg[3][2] = {{0, 1}, {2, 3}, {4, 5}};
+    for (const auto& sg : seg) lines->InsertNextCell(2, sg);
+    vtkNew<vtkPolyData> marks;
+    marks->SetPoints(pts);
+    marks->SetLines(lines);
+    scale_mapper->SetInputData(marks);
+    scale_actor->SetMapper(scale_mapper);
+    scale_actor->GetProperty()->SetColor(0.1, 0.1, 0.1);
+    scale_actor->GetProperty()->SetLineWidth(std::max(2.0, o.height / 360.0));
+    ren->AddViewProp(scale_actor);
+    const double mm = 1e3 * len;
+    scale_text->SetInput((mm >= 1000 ? fmt::format("{:g} m", mm / 1000) : fmt::format("{:g} mm", mm)).c_str());
+    scale_text->GetTextProperty()->SetFontSize(static_cast<int>(font));
+    scale_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+    scale_text->GetTextProperty()->SetJustificationToRight();
+    scale_text->SetPosition(x0 - 0.5 * font, y - 0.5 * font);
+    ren->AddViewProp(scale_text);
+  }
 };
 
 FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
@@ -138,23 +182,32 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
   s.win.add_renderer(s.ren);
   s.actor->SetMapper(s.mapper);
   s.ren->AddActor(s.actor);
-  s.lut->SetHueRange(0.667, 0.0);  // blue (low) to red (high)
-  s.lut->SetNumberOfTableValues(256);
-  s.lut->SetRange(o.range[0], o.range[1]);
-  s.lut->Build();
+  // Colours and labels in display units (MPa, mm); the range is given in the field's own.
+  const double lo = o.range[0] * s.display.scale, hi = o.range[1] * s.display.scale;
+  fill_lookup_table(s.lut, s.display.is_signed, lo, hi);
   s.time_text->GetTextProperty()->SetFontSize(std::max(12, o.height / 30));
   s.time_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
   s.time_text->SetPosition(10, o.height - 10 - std::max(12, o.height / 30));
   s.ren->AddViewProp(s.time_text);
   if (o.view == "stress") {
     s.mapper->SetLookupTable(s.lut);
-    s.mapper->SetScalarRange(o.range[0], o.range[1]);
+    s.mapper->SetScalarRange(lo, hi);
     s.mapper->SetScalarModeToUseCellFieldData();
     s.mapper->SelectColorArray("field");
     s.mapper->ScalarVisibilityOn();
     s.bar->SetLookupTable(s.lut);
-    s.bar->SetTitle(o.field == "displacement" ? "|u| [m]" : (o.field + " [Pa]").c_str());
-    s.bar->SetNumberOfLabels(5);
+    s.bar->SetTitle(s.display.title.c_str());
+    // Round tick values (2, 2.5 ... MPa, not 2.347): the bar's own labels split the range evenly.
+    const std::vector<double> ticks = nice_ticks(lo, hi, 6);
+    if (ticks.size() >= 2) {
+      vtkNew<vtkDoubleArray> labels;
+      for (double t : ticks) labels->InsertNextValue(t);
+      s.bar->SetUseCustomLabels(true);
+      s.bar->SetCustomLabels(labels);
+      s.bar->SetLabelFormat("%g");
+    } else {
+      s.bar->SetNumberOfLabels(5);
+    }
     // Horizontal along the bottom: it never covers the bodies, whatever their shape.
     s.bar->SetOrientationToHorizontal();
     s.bar->SetPosition(0.2, 0.01);
@@ -166,6 +219,13 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.bar->GetLabelTextProperty()->SetFontSize(std::max(9, o.height / 45));
     s.bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
     s.bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
+    // Upright, plain labels (VTK's default is bold italic with a shadow), as large as the title.
+    for (vtkTextProperty* tp : {s.bar->GetTitleTextProperty(), s.bar->GetLabelTextProperty()}) {
+      tp->ItalicOff();
+      tp->BoldOff();
+      tp->ShadowOff();
+    }
+    s.bar->GetLabelTextProperty()->SetFontSize(std::max(10, o.height / 40));
     s.ren->AddViewProp(s.bar);
   } else {
     s.mapper->SetScalarModeToUseCellFieldData();
@@ -181,6 +241,33 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
     s.ren->AddActor(s.context_actor);
   }
+  s.wall_mapper->ScalarVisibilityOff();
+  s.wall_actor->SetMapper(s.wall_mapper);
+  s.wall_actor->GetProperty()->SetColor(0.45, 0.5, 0.58);
+  s.wall_actor->GetProperty()->SetOpacity(0.22);
+  s.wall_actor->VisibilityOff();
+  s.ren->AddActor(s.wall_actor);
+  // A wall seen edge-on (a jaw's arc or a plate from the front) is a translucent sliver: its
+  // outline and sharp edges, drawn as lines, show where it is.
+  s.wall_edges->BoundaryEdgesOn();
+  s.wall_edges->FeatureEdgesOn();
+  s.wall_edges->SetFeatureAngle(60);
+  s.wall_edges->NonManifoldEdgesOff();
+  s.wall_edges->ManifoldEdgesOff();
+  s.wall_edges->ColoringOff();
+  s.wall_edge_mapper->SetInputConnection(s.wall_edges->GetOutputPort());
+  s.wall_edge_mapper->ScalarVisibilityOff();
+  s.wall_edge_actor->SetMapper(s.wall_edge_mapper);
+  s.wall_edge_actor->GetProperty()->SetColor(0.3, 0.34, 0.4);
+  s.wall_edge_actor->GetProperty()->SetOpacity(0.7);
+  s.wall_edge_actor->GetProperty()->SetLineWidth(std::max(1.5, o.height / 480.0));
+  s.wall_edge_actor->GetProperty()->LightingOff();
+  s.wall_edge_actor->VisibilityOff();
+  s.ren->AddActor(s.wall_edge_actor);
+  if (o.edges && o.view != "cracks") {
+    s.actor->GetProperty()->EdgeVisibilityOn();
+    s.actor->GetProperty()->SetEdgeColor(0.2, 0.2, 0.2);
+  }
   place_camera(s.ren, o);
   if (o.view == "stress") {
     // Leave the bottom strip to the horizontal scalar bar: shift the picture up a little.
@@ -188,6 +275,7 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     cam->SetParallelScale(cam->GetParallelScale() * 1.12);
     cam->SetWindowCenter(0.0, -0.16);
   }
+  if (o.scale_bar) s.add_scale_bar();
 }
 
 FrameRenderer::~FrameRenderer() { delete impl_; }
@@ -195,9 +283,15 @@ FrameRenderer::~FrameRenderer() { delete impl_; }
 std::string FrameRenderer::gl_info() const { return impl_->win.gl_info(); }
 
 vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, double time, const std::string& file,
-                                                    vtkUnstructuredGrid* joints) {
+                                                    vtkUnstructuredGrid* joints, vtkPolyData* walls) {
   Impl& s = *impl_;
   const ViewOptions& o = s.opt;
+  s.wall_actor->SetVisibility(walls != nullptr);
+  s.wall_edge_actor->SetVisibility(walls != nullptr);
+  if (walls) {
+    s.wall_mapper->SetInputData(walls);
+    s.wall_edges->SetInputData(walls);
+  }
   if (o.view == "cracks") {
     if (!joints || !joints->GetCellData()->GetArray("state"))
       fail("the cracks view needs the joints dataset, which frame '{}' does not have (the run has no joints)", file);
@@ -237,7 +331,7 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     vtkNew<vtkDoubleArray> a;
     a->SetName("field");
     a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
-    for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i]);
+    for (std::size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i] * s.display.scale);
     g->GetCellData()->AddArray(a);
   } else if (o.view == "fragments") {
     vtkDataArray* id = g->GetCellData()->GetArray("fragment");
@@ -257,7 +351,38 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     std::vector<std::pair<long, long>> by_size(cells.begin(), cells.end());
     std::stable_sort(by_size.begin(), by_size.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
     for (std::size_t r = 0; r < by_size.size(); ++r) cells[by_size[r].first] = static_cast<long>(r);  // now the rank
-    for (vtkIdType e = 0; e < nc; ++e) c->SetTypedTuple(e, kPalette[cells[std::lround(id->GetComponent(e, 0))] % 20]);
+    std::vector<int> rank(static_cast<std::size_t>(nc));
+    for (vtkIdType e = 0; e < nc; ++e) rank[e] = static_cast<int>(cells[std::lround(id->GetComponent(e, 0))]);
+    // Pieces that touch: a point of one within a hair (1e-5 of the framing diagonal, far
+    // below an element, far above rounding) of a point of another.
+    std::set<std::pair<int, int>> touching;
+    if (by_size.size() > 1) {
+      std::vector<int> point_rank(static_cast<std::size_t>(g->GetNumberOfPoints()), -1);
+      for (vtkIdType e = 0; e < nc; ++e) {
+        vtkIdType np = 0;
+        const vtkIdType* pts = nullptr;
+        g->GetCellPoints(e, np, pts);
+        for (vtkIdType k = 0; k < np; ++k) point_rank[pts[k]] = rank[e];
+      }
+      const double* b = o.bounds;
+      const double tol = 1e-5 * std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+                                          (b[5] - b[4]) * (b[5] - b[4]));
+      vtkNew<vtkStaticPointLocator> loc;
+      loc->SetDataSet(g);
+      loc->BuildLocator();
+      vtkNew<vtkIdList> near;
+      for (vtkIdType p = 0; p < g->GetNumberOfPoints(); ++p) {
+        if (point_rank[p] < 0) continue;
+        loc->FindPointsWithinRadius(tol, g->GetPoint(p), near);
+        for (vtkIdType k = 0; k < near->GetNumberOfIds(); ++k) {
+          const int q = point_rank[near->GetId(k)];
+          if (q >= 0 && q != point_rank[p]) touching.emplace(std::min(q, point_rank[p]), std::max(q, point_rank[p]));
+        }
+      }
+    }
+    const std::vector<int> colour =
+        piece_colours(by_size.size(), std::vector<std::pair<int, int>>(touching.begin(), touching.end()), 20);
+    for (vtkIdType e = 0; e < nc; ++e) c->SetTypedTuple(e, kPalette[colour[static_cast<std::size_t>(rank[e])]]);
     g->GetCellData()->AddArray(c);
   }
   vtkNew<vtkDataSetSurfaceFilter> surf;
@@ -314,7 +439,8 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     s.mapper->SetInputConnection(surf->GetOutputPort());
   }
   const std::string t = fmt::format("t = {:.4g} ms", time * 1e3);
-  s.time_text->SetInput((o.label.empty() ? t : o.label + "   " + t).c_str());
+  const std::string& who = o.label.empty() ? o.title : o.label;
+  s.time_text->SetInput((who.empty() ? t : who + "   " + t).c_str());
   return s.win.capture();
 }
 

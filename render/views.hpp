@@ -1,12 +1,17 @@
 // The views a frame is drawn in:
 //   stress    - a scalar field on the (optionally magnified) deformed bodies, fixed colour
-//               range over the series, scalar bar and simulated time;
+//               range over the series, in MPa (mm for displacement) with round tick values;
+//               viridis for magnitudes, cool-warm centred on zero for signed stresses;
 //   fragments - every fragment (or, in runs without fragment data, every body) its own
 //               colour by size rank: the largest piece palette[0], the next palette[1], ...
-//               (ties by id, 20 colours then wrapping), kept while a piece keeps its rank;
+//               (ties by id, 20 colours then wrapping), kept while a piece keeps its rank,
+//               unless a piece it touches has that colour: then the first colour none of
+//               its neighbours has;
 //   cracks    - broken joint faces over a translucent body (needs joint data in the run).
-// Camera presets look at the first frame's bounds, so every frame of a series is framed
-// the same and images can be compared pixel by pixel.
+// Every view has the case name (or a montage panel's label) and the simulated time in the
+// top-left corner and a scale bar in mm in the top-right (true for lengths in the view plane:
+// front, back, top, side). Camera presets look at the first frame's bounds, so every frame
+// of a series is framed the same and images can be compared pixel by pixel.
 #pragma once
 #include <vtkSmartPointer.h>
 
@@ -16,6 +21,7 @@
 
 class vtkUnstructuredGrid;
 class vtkImageData;
+class vtkPolyData;
 
 namespace dspdem::render {
 
@@ -31,6 +37,9 @@ struct ViewOptions {
   std::array<double, 3> background = {1.0, 1.0, 1.0};
   double bounds[6] = {0, 1, 0, 1, 0, 1};  ///< framing (first frame's bounds)
   std::string label;                      ///< written before the time in the corner (a montage panel's run)
+  std::string title;                      ///< the case name, written there when there is no label
+  bool edges = false;                     ///< element edges over the stress and fragments views
+  bool scale_bar = true;
 };
 
 /// Fields the stress view can draw.
@@ -45,9 +54,11 @@ class FrameRenderer {
  public:
   explicit FrameRenderer(const ViewOptions& opt);
   ~FrameRenderer();
-  /// `joints` (the run's joints dataset at this frame) is needed by the cracks view only.
+  /// `joints` (the run's joints dataset at this frame) is needed by the cracks view only;
+  /// `walls` (the rigid walls' surfaces at this frame, run/wall_shapes.hpp), when given, are
+  /// drawn translucent grey and never clipped by the cut.
   vtkSmartPointer<vtkImageData> render(vtkUnstructuredGrid* frame, double time, const std::string& file,
-                                       vtkUnstructuredGrid* joints = nullptr);
+                                       vtkUnstructuredGrid* joints = nullptr, vtkPolyData* walls = nullptr);
   std::string gl_info() const;
 
  private:

@@ -79,6 +79,7 @@ struct RenderConfig {
   int width = 1280, height = 720, fps = 10;
   Vec3 background = Vec3::Ones();
   bool animation = true;
+  bool edges = false;  ///< element edges over the stress and fragments views
   std::vector<std::string> plots;
 };
 

@@ -712,6 +712,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     r.height = static_cast<int>(s.integer("height"));
     r.background = s.vec3("background");
     r.animation = s.boolean("animation");
+    r.edges = s.boolean("edges");
     r.fps = static_cast<int>(s.integer("fps"));
     r.plots = s.strings("plots");
     for (const auto& p : r.plots)

@@ -133,6 +133,7 @@ const std::vector<Key>& general_keys() {
     {"render", "width", T::Int, "1280", 16, 8192, false, false, "px", nullptr, "Image width."},
     {"render", "height", T::Int, "720", 16, 8192, false, false, "px", nullptr, "Image height."},
     {"render", "background", T::Vec3, "[1.0, 1.0, 1.0]", 0, 1, false, false, "", nullptr, "Background colour (RGB, 0-1)."},
+    {"render", "edges", T::Bool, "false", 0, 0, false, false, "", nullptr, "Draw the element edges over the stress and fragments views."},
     {"render", "animation", T::Bool, "true", 0, 0, false, false, "", nullptr, "Write an animation per view (.ogv; .mp4 and .gif when ffmpeg is installed)."},
     {"render", "fps", T::Int, "10", 1, 120, false, false, "1/s", nullptr, "Animation frame rate."},
     {"render", "plots", T::StringList, "[]", 0, 0, false, false, "", nullptr, "Extra plots of series.csv, each \"x:y1,y2\" (e.g. \"cmod:load\"); energies and monitors against time are always plotted."},

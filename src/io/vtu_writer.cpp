@@ -3,6 +3,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -120,6 +121,11 @@ void write_vtu(const std::string& path, const FrameData& f) {
   if (f.body && wants(f, "body")) int_array("body", f.body);
   if (f.fragment) int_array("fragment", f.fragment);
   if (f.material && wants(f, "material")) int_array("material", f.material);
+  if (!f.wall_pose.empty()) {
+    auto a = vec_array("wall_pose", static_cast<vtkIdType>(f.wall_pose.size() / 7), 7);
+    for (std::size_t i = 0; i < f.wall_pose.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), f.wall_pose[i]);
+    grid->GetFieldData()->AddArray(a);
+  }
 
   write_grid(grid, path, f.compress);
 }

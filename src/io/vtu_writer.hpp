@@ -21,6 +21,10 @@ struct FrameData {
   const Index* material = nullptr;
   std::vector<std::string> fields;
   bool compress = true;
+  /// Rigid walls' poses, 7 per wall in the case's order (centre x y z, quaternion w x y z):
+  /// written as the grid's field data `wall_pose`, so the renderer draws the walls where they
+  /// were (their shapes come from the case).
+  std::vector<double> wall_pose;
 };
 
 /// Writes the frame to `path` (through a temporary name). Throws Error on failure.

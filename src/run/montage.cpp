@@ -1,6 +1,7 @@
 #include "run/montage.hpp"
 
 #include <vtkImageData.h>
+#include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
@@ -10,10 +11,12 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
+#include "render/colormap.hpp"
 #include "render/montage.hpp"
 #include "render/offscreen.hpp"
 #include "render/series.hpp"
 #include "render/views.hpp"
+#include "run/wall_shapes.hpp"
 
 namespace dspdem {
 
@@ -72,6 +75,7 @@ MontageFrames write_montage(const MontageArgs& a) {
 
   MontageFrames used;
   std::vector<vtkSmartPointer<vtkUnstructuredGrid>> grids, joint_grids;
+  std::vector<vtkSmartPointer<vtkPolyData>> walls;
   std::vector<std::string> files, labels;
   for (std::size_t r = 0; r < a.run_dirs.size(); ++r) {
     const auto frames = render::read_series(a.run_dirs[r]);
@@ -81,6 +85,11 @@ MontageFrames write_montage(const MontageArgs& a) {
     files.push_back(frames[i].file);
     grids.push_back(render::read_frame(frames[i].file));
     if (r == 0) render::read_frame(frames[0].file)->GetBounds(base.bounds);  // every panel framed alike
+    {  // each run's own walls (a sweep's runs may differ in them)
+      const fs::path rc = fs::path(a.run_dirs[r]) / "case.resolved.toml";
+      const CaseConfig cr = r == 0 || !fs::exists(rc) ? c : read_case(rc.string());
+      walls.push_back(wall_surfaces(cr.walls, grids.back(), base.bounds));
+    }
     if (cracks) {
       DSPDEM_CHECK(fs::exists(fs::path(a.run_dirs[r]) / "joints.pvd"),
                    "--montage: a cracks row needs the joints dataset, which run '{}' does not have", a.run_dirs[r]);
@@ -108,6 +117,10 @@ MontageFrames write_montage(const MontageArgs& a) {
       std::sort(v.begin(), v.end());
       base.range[0] = v[static_cast<std::size_t>(0.005 * static_cast<double>(v.size() - 1))];
       base.range[1] = v[static_cast<std::size_t>(0.995 * static_cast<double>(v.size() - 1))];
+      // As a run's own frames (render_run.cpp): magnitudes from zero, signed stresses centred on it.
+      if (!render::field_display(base.field).is_signed && base.range[0] > 0) base.range[0] = 0;
+      if (render::field_display(base.field).is_signed)
+        base.range[1] = std::max(std::abs(base.range[0]), std::abs(base.range[1])), base.range[0] = -base.range[1];
       if (!(base.range[1] > base.range[0]))
         base.range[1] = base.range[0] + 1e-6 * std::max(1.0, std::abs(base.range[0]));
     }
@@ -121,7 +134,8 @@ MontageFrames write_montage(const MontageArgs& a) {
       o.label = labels[r];
       log::debug("montage panel {}: label '{}'", r, o.label);
       render::FrameRenderer fr(o);  // a renderer per panel: the label is fixed at construction
-      panels.push_back(fr.render(grids[r], used.time[r], files[r], cracks ? joint_grids[r].Get() : nullptr));
+      panels.push_back(
+          fr.render(grids[r], used.time[r], files[r], cracks ? joint_grids[r].Get() : nullptr, walls[r].Get()));
     }
   }
   const auto img = render::tile_images(panels, static_cast<int>(grids.size()));

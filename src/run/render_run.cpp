@@ -5,6 +5,7 @@
 #include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkImageData.h>
+#include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
@@ -16,10 +17,12 @@
 #include "core/timer.hpp"
 #include "io/case_config.hpp"
 #include "render/animation.hpp"
+#include "render/colormap.hpp"
 #include "render/offscreen.hpp"
 #include "render/plot.hpp"
 #include "render/series.hpp"
 #include "render/views.hpp"
+#include "run/wall_shapes.hpp"
 
 extern char** environ;
 
@@ -66,6 +69,8 @@ void auto_range(const std::vector<render::FrameRef>& frames, const std::vector<s
   double lo = v[static_cast<std::size_t>(0.005 * (v.size() - 1))],
          hi = v[static_cast<std::size_t>(0.995 * (v.size() - 1))];
   if (o.field == "von_mises" || o.field == "displacement") lo = 0;
+  // Signed stresses: a range centred on zero, so the diverging map's white is zero stress.
+  if (render::field_display(o.field).is_signed) hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
   if (!rc.auto_min) lo = rc.range_min;
   if (!rc.auto_max) hi = rc.range_max;
   if (!(hi > lo)) hi = lo + std::max(1.0, std::abs(lo)) * 1e-6;
@@ -88,6 +93,7 @@ void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, 
                                      "--magnify",      fmt::format("{:.17g}", o.magnify),
                                      "--range",        fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]),
                                      "--size",         fmt::format("{}x{}", o.width, o.height)};
+    if (o.edges) args.push_back("--edges");
     for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
     std::vector<char*> argv;
     for (auto& s : args) argv.push_back(s.data());
@@ -121,6 +127,8 @@ int render_command(const RenderArgs& in) {
                  a.size);
   }
   o.background = {rc.background(0), rc.background(1), rc.background(2)};
+  o.title = c.name;
+  o.edges = a.edges || rc.edges;
 
   const std::vector<render::FrameRef> frames = render::read_series(a.run_dir);
   const std::vector<std::size_t> sel = select_frames(a.frames, frames.size());
@@ -185,7 +193,8 @@ int render_command(const RenderArgs& in) {
       auto g = s == 0 ? first : render::read_frame(frames[i].file);
       vtkSmartPointer<vtkUnstructuredGrid> jg;
       if (view == "cracks") jg = render::read_frame(joint_frames[i].file);
-      auto img = fr.render(g, frames[i].time, frames[i].file, jg);
+      const auto walls = wall_surfaces(c.walls, g, o.bounds);
+      auto img = fr.render(g, frames[i].time, frames[i].file, jg, walls);
       render::write_png(img, (fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
       ++drawn;
     }

@@ -12,6 +12,7 @@ struct RenderArgs {
   double magnify = 0;  ///< 0: from the case
   int jobs = 0;        ///< 0: number of cores
   bool no_animation = false;
+  bool edges = false;  ///< element edges (or the case's [render] edges)
   std::string worker;  ///< "k/N": render only frames i with i % N == k (internal)
 };
 

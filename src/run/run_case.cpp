@@ -327,6 +327,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     fd.material = fem.elem_material.data();
     fd.fields = c.fields;
     fd.compress = c.compress;
+    for (const auto& w : model.contact.walls())
+      fd.wall_pose.insert(fd.wall_pose.end(),
+                          {w.centre(0), w.centre(1), w.centre(2), w.q.w(), w.q.x(), w.q.y(), w.q.z()});
     const std::string name = fmt::format("frame_{:04d}.vtu", frames.size());
     write_vtu((fs::path(frames_dir) / name).string(), fd);
     frames.emplace_back(it.time(), "frames/" + name);
