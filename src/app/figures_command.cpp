@@ -57,9 +57,11 @@ int figures_command(const FiguresArgs& a) {
   }
   fs::create_directories(a.out);
   report::SiteInfo info;
-  info.set = a.quick ? "quick (CI-sized meshes and runs: the figures show the method, not the converged numbers)"
-                     : "full (the shipped cases as they are)";
-  info.made_by = "dspdem figures" + std::string(a.quick ? " --quick" : "") +
+  info.set = a.quick   ? "quick (CI-sized meshes and runs, no studies: the figures show the method, not the "
+                         "converged numbers)"
+             : a.study ? "full (the shipped cases as they are, each with its speed-against-error study)"
+                       : "full (the shipped cases as they are, without the studies)";
+  info.made_by = "dspdem figures" + std::string(a.quick ? " --quick" : "") + (a.study ? "" : " --no-study") +
                  (a.from_runs.empty() ? "" : " --from-runs " + a.from_runs) + " --out " + a.out;
   for (const auto& c : a.cases) info.made_by += " " + c;
 
@@ -78,6 +80,7 @@ int figures_command(const FiguresArgs& a) {
     if (a.threads > 0) args.insert(args.end(), {"-t", std::to_string(a.threads)});
     args.insert(args.end(), {"report", it.case_file, "--out", dir});
     if (a.quick) args.insert(args.end(), it.quick_args.begin(), it.quick_args.end());
+    if (!a.quick && a.study) args.push_back("--study");  // the speed-against-error tables
     log::info("figures: {} ({}{})", it.scene, it.case_file, a.quick ? ", quick" : "");
     Timer t;
     const int rc = run_processes({Job{args, log}}, 1).front();

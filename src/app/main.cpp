@@ -126,7 +126,9 @@ int main(int argc, char** argv) {
   FiguresArgs fga;
   fig->add_option("cases", fga.cases, "Case files, one per scene (default: every scene's shipped case)");
   fig->add_option("-o,--out", fga.out, "Output directory of the site (default: results/figures)");
-  fig->add_flag("--quick", fga.quick, "CI-sized meshes and runs (each scene in about a minute on 2 cores)");
+  fig->add_flag("--quick", fga.quick, "CI-sized meshes and runs, no studies (the whole set in minutes on 2 cores)");
+  bool fig_no_study = false;
+  fig->add_flag("--no-study", fig_no_study, "Full set without the speed-against-error studies (hours less)");
   fig->add_option("--from-runs", fga.from_runs,
                   "Reuse the report folders FROM/<scene> made earlier (by figures or by report --out); run nothing")
       ->check(CLI::ExistingDirectory)
@@ -184,6 +186,7 @@ int main(int argc, char** argv) {
     if (*rep) return report_command(rpa);
     if (*fig) {
       fga.threads = threads;
+      fga.study = !fig_no_study;
       return figures_command(fga);
     }
     if (*scn) {

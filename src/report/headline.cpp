@@ -17,7 +17,8 @@ void write_headline(const Headline& h, const std::string& dir) {
   j["summary"] = h.summary;
   j["rows"] = nlohmann::json::array();
   for (const auto& r : h.rows)
-    j["rows"].push_back({{"quantity", r.quantity}, {"paper", r.paper}, {"dspdem", r.dspdem}, {"agrees", r.agrees}});
+    j["rows"].push_back(
+        {{"quantity", r.quantity}, {"paper", r.paper}, {"dspdem", r.dspdem}, {"agrees", r.agrees}, {"test", r.test}});
   j["images"] = nlohmann::json::array();
   for (const auto& [caption, path] : h.images) j["images"].push_back({{"caption", caption}, {"path", path}});
   j["animation"] = h.animation;
@@ -38,7 +39,8 @@ Headline read_headline(const std::string& path) {
     h.summary = j.at("summary").get<std::string>();
     for (const auto& r : j.at("rows"))
       h.rows.push_back({r.at("quantity").get<std::string>(), r.at("paper").get<std::string>(),
-                        r.at("dspdem").get<std::string>(), r.at("agrees").get<std::string>()});
+                        r.at("dspdem").get<std::string>(), r.at("agrees").get<std::string>(),
+                        r.value("test", std::string())});
     for (const auto& i : j.at("images")) h.images.emplace_back(i.at("caption"), i.at("path"));
     h.animation = j.at("animation").get<std::string>();
     h.wall_s = j.at("wall_s").get<double>();

@@ -13,6 +13,7 @@ struct HeadlineRow {
   std::string paper;   ///< what the paper (or the experiment) reports, "-" when it gives nothing
   std::string dspdem;  ///< what this run gives
   std::string agrees;  ///< "yes", "no", or "" when there is nothing to agree with
+  std::string test;    ///< the ctest test that checks this figure in CI ("" none)
 };
 
 struct Headline {

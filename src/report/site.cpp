@@ -65,22 +65,24 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
 
   // index.html
   std::string b = "<h1>" + html_escape(info.title) + "</h1>\n<p>" + inline_html(intro) + "</p>\n";
-  b += "<h2>Every scene against the paper</h2>\n<table>\n<tr><th>scene</th><th>quantity</th><th>paper</th>"
-       "<th>dspdem</th><th>agrees</th></tr>\n";
+  b += "<h2>Every scene against the paper</h2>\n<p class=\"muted\">agrees: by the criterion of the CI test named "
+       "in the last column, which checks it on its own CI-sized run.</p>\n<table>\n<tr><th>scene</th><th>quantity</th>"
+       "<th>paper</th><th>dspdem</th><th>agrees</th><th>checked in CI by</th></tr>\n";
   for (const auto& e : entries) {
     const std::size_t n = std::max<std::size_t>(1, e.h.rows.size());
     b += fmt::format("<tr><td rowspan=\"{}\"><a href=\"#{}\">{}</a></td>", n, e.h.scene, html_escape(e.h.title));
-    if (e.h.rows.empty()) b += "<td colspan=\"4\">no headline figures</td></tr>\n";
+    if (e.h.rows.empty()) b += "<td colspan=\"5\">no headline figures</td></tr>\n";
     for (std::size_t i = 0; i < e.h.rows.size(); ++i) {
       const auto& r = e.h.rows[i];
       if (i) b += "<tr>";
       b += "<td>" + inline_html(r.quantity) + "</td><td>" + inline_html(r.paper) + "</td><td>" + inline_html(r.dspdem) +
-           "</td><td>" + agrees_html(r.agrees) + "</td></tr>\n";
+           "</td><td>" + agrees_html(r.agrees) + "</td><td>" +
+           (r.test.empty() ? std::string() : "<code>" + html_escape(r.test) + "</code>") + "</td></tr>\n";
     }
   }
   for (const auto& [scene, why] : info.failed)
     b += "<tr><td>" + html_escape(scene) +
-         "</td><td colspan=\"4\"><span class=\"no\">report failed</span>: " + html_escape(why) + "</td></tr>\n";
+         "</td><td colspan=\"5\"><span class=\"no\">report failed</span>: " + html_escape(why) + "</td></tr>\n";
   b += "</table>\n";
   for (const auto& e : entries) {
     const std::string page = e.rel + "/report.html";
@@ -112,16 +114,16 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
 
   // index.md: the same for a reader on a Markdown viewer.
   std::string m = "# " + info.title + "\n\n" + intro + "\n\n## Every scene against the paper\n\n";
-  m += "| scene | quantity | paper | dspdem | agrees |\n|---|---|---|---|---|\n";
+  m += "| scene | quantity | paper | dspdem | agrees | checked in CI by |\n|---|---|---|---|---|---|\n";
   for (const auto& e : entries)
     for (std::size_t i = 0; i < e.h.rows.size(); ++i) {
       const auto& r = e.h.rows[i];
       const std::string scene = i ? std::string() : fmt::format("[{}]({}/report.md)", md_cell(e.h.title), e.rel);
-      m += fmt::format("| {} | {} | {} | {} | {} |\n", scene, md_cell(r.quantity), md_cell(r.paper), md_cell(r.dspdem),
-                       r.agrees);
+      m += fmt::format("| {} | {} | {} | {} | {} | {} |\n", scene, md_cell(r.quantity), md_cell(r.paper),
+                       md_cell(r.dspdem), r.agrees, r.test.empty() ? std::string() : "`" + r.test + "`");
     }
   for (const auto& [scene, why] : info.failed)
-    m += fmt::format("| {} | report failed: {} | | | |\n", scene, md_cell(why));
+    m += fmt::format("| {} | report failed: {} | | | | |\n", scene, md_cell(why));
   m += "\n";
   for (const auto& e : entries) {
     m += "## " + e.h.title + "\n\n" + e.h.summary + "\n\n";

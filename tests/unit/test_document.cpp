@@ -83,7 +83,7 @@ TEST(Headline, RoundTripsAndTheSiteListsEveryScene) {
   d.title("A");
   report::Headline& h = d.headline();
   h.scene = "a", h.title = "Scene A (paper 2.9)", h.summary = "What A is.";
-  h.rows = {{"strength", "2.54 MPa", "2.25 MPa | -2 %", "yes"}, {"balance", "-", "1e-3", "no"}};
+  h.rows = {{"strength", "2.54 MPa", "2.25 MPa | -2 %", "yes", "T.One"}, {"balance", "-", "1e-3", "no", ""}};
   d.thumbnail("x", "images/x.png");
   h.wall_s = 12.5;
   d.write();
@@ -93,6 +93,7 @@ TEST(Headline, RoundTripsAndTheSiteListsEveryScene) {
   ASSERT_EQ(r.rows.size(), 2u);
   EXPECT_EQ(r.rows[0].dspdem, "2.25 MPa | -2 %");
   EXPECT_EQ(r.rows[1].agrees, "no");
+  EXPECT_EQ(r.rows[0].test, "T.One");
   ASSERT_EQ(r.images.size(), 1u);
   EXPECT_EQ(r.images[0].second, "run/images/x.png");
   EXPECT_DOUBLE_EQ(r.wall_s, 12.5);
@@ -110,9 +111,9 @@ TEST(Headline, RoundTripsAndTheSiteListsEveryScene) {
   EXPECT_NE(html.find("report failed"), std::string::npos);
   EXPECT_NE(html.find("no headline.json"), std::string::npos);
   const std::string md = slurp(base / "site/index.md");
-  EXPECT_NE(
-      md.find("| [Scene A (paper 2.9)](../reports/a/report.md) | strength | 2.54 MPa | 2.25 MPa \\| -2 % | yes |"),
-      std::string::npos)
+  EXPECT_NE(md.find("| [Scene A (paper 2.9)](../reports/a/report.md) | strength | 2.54 MPa | 2.25 MPa \\| -2 % | yes | "
+                    "`T.One` |"),
+            std::string::npos)
       << md;
 }
 

@@ -187,18 +187,20 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
              cracked ? fmt::format("x = {:+.1f} mm, y = {:.1f} mm (the tip: x = 0, y = {:.0f} mm)", 1e3 * r.start_x,
                                    1e3 * r.start_y, 1e3 * r.notch)
                      : "no crack",
-             yes(cracked && std::abs(r.start_x) < 0.015 && std::abs(r.start_y - r.notch) < 0.015)},
+             yes(cracked && std::abs(r.start_x) < 0.015 && std::abs(r.start_y - r.notch) < 0.015),
+             "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"},
             {"where it runs", "from the notch towards the loading side, curving (the test's trajectory: not found)",
              cracked ? fmt::format("highest at y = {:.1f} mm, x = {:+.1f} mm (load at x = {:+.0f} mm)", 1e3 * r.top_y,
                                    1e3 * r.top_x, 1e3 * r.load_x)
                      : "no crack",
-             yes(cracked && r.top_x * r.load_x > 0 && r.top_y > r.notch + 0.5 * (r.D - r.notch))},
+             yes(cracked && r.top_x * r.load_x > 0 && r.top_y > r.notch + 0.5 * (r.D - r.notch)),
+             "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"},
             {"peak actuator load", "a load-CMOD curve in qualitative agreement (no number)",
-             fmt::format("{:.2f} kN at CMOD {:.3f} mm", 1e-3 * r.P_peak, 1e3 * r.cmod_peak), ""},
+             fmt::format("{:.2f} kN at CMOD {:.3f} mm", 1e-3 * r.P_peak, 1e3 * r.cmod_peak), "", ""},
             {"quasi-static: kinetic / internal energy at the peak", "-", fmt::format("{:.3f}", r.ke_ratio_peak),
-             yes(r.ke_ratio_peak < 0.05)},
+             yes(r.ke_ratio_peak < 0.05), "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"},
             {"energy balance, largest error", "-", fmt::format("{:.1e} of the largest term", r.balance_max),
-             yes(r.balance_max < 0.01)}};
+             yes(r.balance_max < 0.01), "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"}};
   if (!a.no_render) {
     doc.thumbnail("cracks at the end", fmt::format("images/cracks/frame_{:04d}.png", r.last_frame));
     doc.thumbnail("stress at the end", fmt::format("images/stress/frame_{:04d}.png", r.last_frame));

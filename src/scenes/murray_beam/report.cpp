@@ -224,14 +224,15 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
                            "mm)",
                            1e3 * first->x, 1e3 * first->y_lo, 0.5e3 * r.gap, -0.5e3 * r.H)
              : "no crack",
-       first ? yes(first->y_lo < -0.5 * r.H + r.H / 3) : "no"},
+       first ? yes(first->y_lo < -0.5 * r.H + r.H / 3) : "no",
+       "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically"},
       {"pieces at the end", "5, as in the test",
        fmt::format("{} main pieces (at least {:.0f} % of the mass each), {} fragments in all", r.main_pieces,
                    100 * MurrayResult::main_piece_fraction, r.fragments),
-       yes(r.main_pieces == 5)},
-      {"largest deflection", "not given", fmt::format("{:.2f} mm", 1e3 * r.max_deflection), ""},
+       yes(r.main_pieces == 5), ""},
+      {"largest deflection", "not given", fmt::format("{:.2f} mm", 1e3 * r.max_deflection), "", ""},
       {"energy balance, largest error", "-", fmt::format("{:.1e} of the largest term", r.balance_max),
-       yes(r.balance_max < 0.01)}};
+       yes(r.balance_max < 0.01), "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically"}};
   if (!a.no_render) {
     doc.thumbnail("fragments at the end", fmt::format("images/fragments/frame_{:04d}.png", r.last_frame));
     doc.thumbnail("cracks at the end", fmt::format("images/cracks/frame_{:04d}.png", r.last_frame));
