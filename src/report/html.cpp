@@ -68,6 +68,7 @@ code { background: #f4f4f4; padding: 0 0.2rem; font-size: 0.9em; }
 .scene { margin: 1.5rem 0; padding-top: 0.5rem; border-top: 2px solid #ddd; }
 .thumbs a img { width: 31%; margin-right: 1%; }
 .muted { color: #666; font-size: 0.9rem; }
+td.ci { max-width: 15rem; overflow-wrap: anywhere; } td.ci code { font-size: 0.75rem; background: none; }
 )";
   // Marks on <body> how many images and videos loaded, once every video has its metadata or
   // has failed (or after 8 s): what tests/figures/check_site.py reads in a headless browser.

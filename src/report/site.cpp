@@ -76,7 +76,7 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
       const auto& r = e.h.rows[i];
       if (i) b += "<tr>";
       b += "<td>" + inline_html(r.quantity) + "</td><td>" + inline_html(r.paper) + "</td><td>" + inline_html(r.dspdem) +
-           "</td><td>" + agrees_html(r.agrees) + "</td><td>" +
+           "</td><td>" + agrees_html(r.agrees) + "</td><td class=\"ci\">" +
            (r.test.empty() ? std::string() : "<code>" + html_escape(r.test) + "</code>") + "</td></tr>\n";
     }
   }
