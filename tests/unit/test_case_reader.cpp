@@ -1,5 +1,6 @@
 // Case-file validation: every error names the file, the line and the key.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -32,7 +33,9 @@ std::string write_case(const std::string& text) {
   static int n = 0;
   const fs::path dir = fs::temp_directory_path() / "dspdem_case_reader";
   fs::create_directories(dir);
-  const fs::path p = dir / ("case" + std::to_string(n++) + ".toml");
+  // The process id in the name: ctest runs every test as its own process, side by side with -j,
+  // and each process counts from 0 (two tests writing case0.toml at once read each other's).
+  const fs::path p = dir / ("case" + std::to_string(getpid()) + "_" + std::to_string(n++) + ".toml");
   std::ofstream(p) << text;
   return p.string();
 }
