@@ -48,12 +48,21 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
   const fs::path seq = base + ".seq";
   fs::remove_all(seq);
   fs::create_directories(seq);
-  for (std::size_t i = 0; i < pngs.size(); ++i)
-    fs::create_symlink(fs::absolute(pngs[i]), seq / fmt::format("{:06d}.png", i));
+  for (std::size_t i = 0; i < pngs.size(); ++i) {
+    const fs::path link = seq / fmt::format("{:06d}.png", i);
+    std::error_code ec;
+    fs::create_symlink(fs::absolute(pngs[i]), link, ec);
+    if (ec) fs::copy_file(pngs[i], link, fs::copy_options::overwrite_existing, ec);  // no symlinks here
+    if (ec) {
+      fs::remove_all(seq);
+      log::warn("no .mp4/.gif for '{}': cannot stage frame {} ({})", base, pngs[i], ec.message());
+      return out;
+    }
+  }
   const std::string rate = std::to_string(fps), input = (seq / "%06d.png").string();
   for (const std::string ext : {"mp4", "gif"}) {
     const std::string tmp = base + ".tmp." + ext, dst = base + "." + ext;
-    std::vector<std::string> args = {"-loglevel", "error", "-y", "-framerate", rate, "-i", input};
+    std::vector<std::string> args = {"-nostdin", "-loglevel", "error", "-y", "-framerate", rate, "-i", input};
     if (ext == "mp4")  // H.264 in yuv420p plays in every browser; it needs even sizes
       args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
                                "-movflags", "+faststart", "-f", "mp4"});

@@ -73,9 +73,12 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
     const double next = (m < 2 ? 2 : m < 5 ? 5 : 10) * p;
     if (std::log(next / raw) < std::log(raw / step)) step = next;
   }
+  // A range a few rounding steps wide, far from zero (a hand-set range), has no round ticks
+  // that a counter could step through: none.
+  if (!(step > 0) || std::abs(lo / step) > 1e12 || (hi - lo) / step > 1000) return out;
   // Multiples of the step, not a running sum: 0.1 + 0.1 + 0.1 would print 0.30000000000000004.
-  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; ++k)
-    out.push_back(k == 0 ? 0.0 : k * step);
+  for (long long k = std::llround(std::ceil(lo / step - 1e-9)); static_cast<double>(k) * step <= hi + 1e-9 * step; ++k)
+    out.push_back(k == 0 ? 0.0 : static_cast<double>(k) * step);
   return out;
 }
 

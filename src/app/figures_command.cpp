@@ -45,7 +45,8 @@ int figures_command(const FiguresArgs& a) {
   Timer total;
   std::vector<Item> items;
   if (a.cases.empty()) {
-    for (const auto& s : scenes::all()) items.push_back({s.name, find_case(s), s.quick_args});
+    for (const auto& s : scenes::all())  // --from-runs runs nothing: no case needed
+      items.push_back({s.name, a.from_runs.empty() ? find_case(s) : s.case_file, s.quick_args});
   } else {
     for (const auto& f : a.cases) {
       const scenes::Scene& s = scenes::of_case(read_case(f));
@@ -94,9 +95,11 @@ int figures_command(const FiguresArgs& a) {
     dirs.push_back(dir);
   }
   info.wall_s = total.seconds();
-  const std::string index = report::write_site(dirs, a.out, info);
-  log::info("figures: {} ({} scenes, {} failed, {:.1f} s)", index, dirs.size(), info.failed.size(), total.seconds());
-  return code;
+  const report::SiteWritten site = report::write_site(dirs, a.out, info);
+  log::info("figures: {} ({} scenes, {} failed, {:.1f} s)", site.index, dirs.size(), site.failed, total.seconds());
+  // A scene listed as failed fails the command, also when only its headline was missing
+  // (--from-runs over an incomplete folder).
+  return code != 0 ? code : site.failed > 0 ? 2 : 0;
 }
 
 }  // namespace dspdem

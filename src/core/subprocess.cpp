@@ -16,6 +16,8 @@ namespace dspdem {
 pid_t spawn_program(const std::string& program, const std::vector<std::string>& args, const std::string& log) {
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
+  // No stdin: a child that reads the terminal (ffmpeg does) would stop a background job.
+  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   if (!log.empty()) {
     std::error_code ec;  // a log folder that cannot be made shows up as the open failing
     std::filesystem::create_directories(std::filesystem::absolute(log).parent_path(), ec);

@@ -8,8 +8,8 @@
 
 namespace dspdem {
 
-/// Starts `program` (looked up on PATH when it has no '/') with `args`, its stdout and stderr
-/// into `log` ("" keeps ours); returns the pid, or -1 when it could not be started.
+/// Starts `program` (looked up on PATH when it has no '/') with `args`, its stdin /dev/null, its
+/// stdout and stderr into `log` ("" keeps ours); returns the pid, or -1 when it could not start.
 pid_t spawn_program(const std::string& program, const std::vector<std::string>& args, const std::string& log);
 
 /// The exit code of a child started by spawn_program, 128 + the signal that ended it, or -1.

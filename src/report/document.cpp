@@ -60,13 +60,13 @@ Document& Document::animation(const std::string& caption, const std::string& bas
   auto exists = [&](const std::string& ext) { return fs::exists(fs::path(dir_) / run_link(base_in_run + ext)); };
   std::string sources, links;
   for (const auto& [ext, type] : {std::pair<std::string, std::string>{".mp4", "video/mp4"}, {".ogv", "video/ogg"}})
-    if (exists(ext)) sources += "<source src=\"" + run_link(base_in_run + ext) + "\" type=\"" + type + "\">";
+    if (exists(ext)) sources += "<source src=\"" + url_path(run_link(base_in_run + ext)) + "\" type=\"" + type + "\">";
   for (const std::string ext : {".mp4", ".ogv", ".gif"})
     if (exists(ext)) links += " [" + ext.substr(1) + "](" + run_link(base_in_run + ext) + ")";
   if (links.empty()) return *this;
   if (!sources.empty())
-    md_ += "<video controls loop muted preload=\"metadata\" poster=\"" + run_link(poster_in_run) + "\" title=\"" +
-           caption + "\">" + sources + "</video>\n\n";
+    md_ += "<video controls loop muted preload=\"metadata\" poster=\"" + url_path(run_link(poster_in_run)) +
+           "\" title=\"" + html_escape(caption) + "\">" + sources + "</video>\n\n";
   md_ += caption + ", animation:" + links + "\n\n";
   if (headline_.animation.empty()) headline_.animation = run_link(base_in_run);
   return *this;

@@ -2,7 +2,9 @@
 
 #include <cmark-gfm-core-extensions.h>
 #include <cmark-gfm.h>
+#include <fmt/format.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <memory>
 
@@ -49,6 +51,17 @@ std::string html_escape(const std::string& text) {
   return out;
 }
 
+std::string url_path(const std::string& path) {
+  std::string out;
+  for (unsigned char c : path) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/')
+      out += static_cast<char>(c);
+    else
+      out += fmt::format("%{:02X}", c);
+  }
+  return out;
+}
+
 std::string html_page(const std::string& title, const std::string& body) {
   // The style is inline and the script tiny: the page must read offline, copied anywhere.
   static const char* kStyle = R"(
@@ -71,7 +84,7 @@ code { background: #f4f4f4; padding: 0 0.2rem; font-size: 0.9em; }
 td.ci { max-width: 15rem; overflow-wrap: anywhere; } td.ci code { font-size: 0.75rem; background: none; }
 )";
   // Marks on <body> how many images and videos loaded, once every video has its metadata or
-  // has failed (or after 8 s): what tests/figures/check_site.py reads in a headless browser.
+  // has failed (or after 8 s): what tests/figures/test_site.cpp reads in a headless browser.
   static const char* kScript = R"(
 window.addEventListener('load', function () {
   var ok = 0, bad = 0, vok = 0, vbad = 0, done = false;

@@ -42,7 +42,7 @@ std::string md_cell(const std::string& s) {
 }
 }  // namespace
 
-std::string write_site(const std::vector<std::string>& report_dirs, const std::string& out, SiteInfo info) {
+SiteWritten write_site(const std::vector<std::string>& report_dirs, const std::string& out, SiteInfo info) {
   fs::create_directories(out);
   std::vector<Entry> entries;
   for (const auto& d : report_dirs) {
@@ -70,7 +70,8 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
        "<th>paper</th><th>dspdem</th><th>agrees</th><th>checked in CI by</th></tr>\n";
   for (const auto& e : entries) {
     const std::size_t n = std::max<std::size_t>(1, e.h.rows.size());
-    b += fmt::format("<tr><td rowspan=\"{}\"><a href=\"#{}\">{}</a></td>", n, e.h.scene, html_escape(e.h.title));
+    b += fmt::format("<tr><td rowspan=\"{}\"><a href=\"#{}\">{}</a></td>", n, url_path(e.h.scene),
+                     html_escape(e.h.title));
     if (e.h.rows.empty()) b += "<td colspan=\"5\">no headline figures</td></tr>\n";
     for (std::size_t i = 0; i < e.h.rows.size(); ++i) {
       const auto& r = e.h.rows[i];
@@ -86,28 +87,29 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
   b += "</table>\n";
   for (const auto& e : entries) {
     const std::string page = e.rel + "/report.html";
-    b += fmt::format("<div class=\"scene\" id=\"{}\">\n<h2>{}</h2>\n<p>{}</p>\n<p class=\"thumbs\">", e.h.scene,
-                     html_escape(e.h.title), inline_html(e.h.summary));
+    b += fmt::format("<div class=\"scene\" id=\"{}\">\n<h2>{}</h2>\n<p>{}</p>\n<p class=\"thumbs\">",
+                     url_path(e.h.scene), html_escape(e.h.title), inline_html(e.h.summary));
     for (const auto& [caption, path] : e.h.images)
-      b += fmt::format("<a href=\"{}\"><img src=\"{}/{}\" alt=\"{}\" title=\"{}\"></a>", page, e.rel, path,
-                       html_escape(caption), html_escape(caption));
+      b += fmt::format("<a href=\"{}\"><img src=\"{}\" alt=\"{}\" title=\"{}\"></a>", url_path(page),
+                       url_path(e.rel + "/" + path), html_escape(caption), html_escape(caption));
     b += "</p>\n";
     if (!e.h.animation.empty()) {
       const std::string base = e.rel + "/" + e.h.animation;
       std::string sources;
       for (const auto& [ext, type] : {std::pair<std::string, std::string>{".mp4", "video/mp4"}, {".ogv", "video/ogg"}})
         if (fs::exists(fs::path(out) / (base + ext)))
-          sources += "<source src=\"" + base + ext + "\" type=\"" + type + "\">";
+          sources += "<source src=\"" + url_path(base + ext) + "\" type=\"" + type + "\">";
       // The animation's first frame as its poster, when the frames lie beside it as a view's do.
       const std::string poster = base + "/frame_0000.png";
-      const std::string poster_attr = fs::exists(fs::path(out) / poster) ? " poster=\"" + poster + "\"" : std::string();
+      const std::string poster_attr =
+          fs::exists(fs::path(out) / poster) ? " poster=\"" + url_path(poster) + "\"" : std::string();
       if (!sources.empty())
         b += "<video controls loop muted preload=\"metadata\" width=\"640\"" + poster_attr + ">" + sources +
              "</video>\n";
     }
     b += fmt::format(
         "<p><a href=\"{}\">Full report</a> (<a href=\"{}/report.md\">Markdown</a>), made in {:.0f} s.</p>\n</div>\n",
-        page, e.rel, e.h.wall_s);
+        url_path(page), url_path(e.rel), e.h.wall_s);
   }
   const std::string index = (fs::path(out) / "index.html").string();
   write_file_atomic(index, html_page(info.title, b));
@@ -115,13 +117,16 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
   // index.md: the same for a reader on a Markdown viewer.
   std::string m = "# " + info.title + "\n\n" + intro + "\n\n## Every scene against the paper\n\n";
   m += "| scene | quantity | paper | dspdem | agrees | checked in CI by |\n|---|---|---|---|---|---|\n";
-  for (const auto& e : entries)
+  for (const auto& e : entries) {
+    if (e.h.rows.empty())
+      m += fmt::format("| [{}]({}/report.md) | no headline figures | | | | |\n", md_cell(e.h.title), e.rel);
     for (std::size_t i = 0; i < e.h.rows.size(); ++i) {
       const auto& r = e.h.rows[i];
       const std::string scene = i ? std::string() : fmt::format("[{}]({}/report.md)", md_cell(e.h.title), e.rel);
       m += fmt::format("| {} | {} | {} | {} | {} | {} |\n", scene, md_cell(r.quantity), md_cell(r.paper),
                        md_cell(r.dspdem), r.agrees, r.test.empty() ? std::string() : "`" + r.test + "`");
     }
+  }
   for (const auto& [scene, why] : info.failed)
     m += fmt::format("| {} | report failed: {} | | | | |\n", scene, md_cell(why));
   m += "\n";
@@ -131,7 +136,7 @@ std::string write_site(const std::vector<std::string>& report_dirs, const std::s
     m += "\n[Full report](" + e.rel + "/report.md)\n\n";
   }
   write_file_atomic((fs::path(out) / "index.md").string(), m);
-  return index;
+  return {index, info.failed.size()};
 }
 
 }  // namespace dspdem::report

@@ -3,6 +3,7 @@
 // to its report page and its animation playing in the page. Links are relative, so the
 // folder can be copied, zipped as a CI artefact or opened from disk with no network.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,9 +18,15 @@ struct SiteInfo {
   std::vector<std::pair<std::string, std::string>> failed;  ///< (scene, why) of reports that failed
 };
 
+struct SiteWritten {
+  std::string index;       ///< the path of index.html
+  std::size_t failed = 0;  ///< scenes listed as failed: given in SiteInfo, or found without a headline
+};
+
 /// Writes OUT/index.html and OUT/index.md over the report folders (each with report.html and
-/// headline.json); returns the path of index.html. A folder without a headline is listed as
-/// failed with the reason, not skipped in silence.
-std::string write_site(const std::vector<std::string>& report_dirs, const std::string& out, SiteInfo info);
+/// headline.json). A folder without a readable headline is listed as failed with the reason,
+/// not skipped in silence. Links are relative: folders outside OUT (--from-runs elsewhere) are
+/// linked with ../, so such a site moves only together with them.
+SiteWritten write_site(const std::vector<std::string>& report_dirs, const std::string& out, SiteInfo info);
 
 }  // namespace dspdem::report

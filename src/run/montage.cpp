@@ -70,6 +70,7 @@ MontageFrames write_montage(const MontageArgs& a) {
   base.camera = a.camera.empty() ? c.render.camera : a.camera;
   base.field = a.field.empty() ? c.render.field : a.field;
   base.magnify = 1.0;  // a montage compares runs as they are
+  base.edges = c.render.edges;
   base.width = a.width, base.height = a.height;
   base.background = {c.render.background(0), c.render.background(1), c.render.background(2)};
 

@@ -108,6 +108,21 @@ void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, 
 }
 }  // namespace
 
+std::string common_range(const std::vector<std::string>& run_dirs, const std::string& field, const RenderConfig& rc) {
+  std::vector<render::FrameRef> frames;
+  for (const auto& d : run_dirs) {
+    const auto f = render::read_series(d);
+    frames.insert(frames.end(), f.begin(), f.end());
+  }
+  DSPDEM_CHECK(!frames.empty(), "common_range: no frames in {} run folder(s)", run_dirs.size());
+  std::vector<std::size_t> all(frames.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  render::ViewOptions o;
+  o.field = field;
+  auto_range(frames, all, o, rc);
+  return fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]);
+}
+
 int render_command(const RenderArgs& in) {
   Timer wall;
   RenderArgs a = in;

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "io/case_config.hpp"
+
 namespace dspdem {
 
 struct RenderArgs {
@@ -17,5 +19,11 @@ struct RenderArgs {
 };
 
 int render_command(const RenderArgs& a);
+
+/// One colour range for `field` over every frame of several runs (0.5th to 99.5th percentile;
+/// from zero for magnitudes, centred on zero for signed stresses), as "MIN:MAX" for
+/// RenderArgs::range: runs drawn with it compare colour for colour (a sweep, a study).
+/// The case's [render] range_min / range_max, when set, win as in a single run.
+std::string common_range(const std::vector<std::string>& run_dirs, const std::string& field, const RenderConfig& rc);
 
 }  // namespace dspdem

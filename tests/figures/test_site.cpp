@@ -3,6 +3,7 @@
 // and videos load, no link leaves the site or points at a missing file, the index lists
 // every scene, and a screenshot of the index is kept beside it (BUILD/figures/index.png).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -32,16 +33,19 @@ std::vector<fs::path> pages() {
   return out;
 }
 
+// A browser profile of this test process's own: ctest -j runs the tests side by side, and two
+// Chromiums on one profile refuse or join each other.
+fs::path profile() { return fs::temp_directory_path() / ("dspdem_site_chromium_" + std::to_string(getpid())); }
+
 // Chromium with no way out: every host resolves to nothing and a dead proxy takes the rest,
 // so a page that needs the network shows it as broken images or videos.
 std::string chromium(const std::string& args) {
   std::string bin = dspdem::find_on_path("chromium");
   if (bin.empty()) bin = dspdem::find_on_path("chromium-browser");
   if (bin.empty()) return "";
-  const fs::path profile = fs::temp_directory_path() / "dspdem_site_chromium";
   return bin + " --headless=new --no-sandbox --disable-gpu --hide-scrollbars --no-first-run --mute-audio " +
          "--proxy-server=http://127.0.0.1:9 --host-resolver-rules='MAP * ~NOTFOUND' --user-data-dir=" +
-         profile.string() + " --virtual-time-budget=20000 " + args;
+         profile().string() + " --virtual-time-budget=20000 " + args;
 }
 
 int attr(const std::string& dom, const std::string& name) {
@@ -63,6 +67,7 @@ class FiguresSite : public ::testing::Test {
     ASSERT_TRUE(fs::exists(kSite / "index.html")) << "no site in " << kSite << ": the fixture figures_quick failed";
     ASSERT_FALSE(chromium("").empty()) << "chromium is not installed (.ci/install-deps installs it)";
   }
+  void TearDown() override { fs::remove_all(profile()); }
 };
 
 TEST_F(FiguresSite, EveryPageLoadsEveryImageAndVideoWithNoNetwork) {
@@ -83,7 +88,7 @@ TEST_F(FiguresSite, EveryPageLoadsEveryImageAndVideoWithNoNetwork) {
 
 TEST_F(FiguresSite, EveryLinkStaysInTheSiteAndExists) {
   const std::regex link(R"re((src|href|poster)="([^"]*)")re");
-      for (const auto& page : pages()) {
+  for (const auto& page : pages()) {
     const std::string html = slurp(page);
     int links = 0;
     for (auto it = std::sregex_iterator(html.begin(), html.end(), link); it != std::sregex_iterator(); ++it) {
@@ -92,7 +97,10 @@ TEST_F(FiguresSite, EveryLinkStaysInTheSiteAndExists) {
       ++links;
       EXPECT_EQ(target.find("://"), std::string::npos) << page << " links outside: " << target;
       EXPECT_NE(target.rfind("//", 0), 0u) << page << " links outside: " << target;
-      EXPECT_TRUE(fs::exists(page.parent_path() / target)) << page << " links a missing file: " << target;
+      const fs::path file = fs::weakly_canonical(page.parent_path() / target);
+      EXPECT_TRUE(fs::exists(file)) << page << " links a missing file: " << target;
+      const std::string site = fs::weakly_canonical(kSite).string() + "/";
+      EXPECT_EQ(file.string().rfind(site, 0), 0u) << page << " links outside the site folder: " << target;
     }
     EXPECT_GT(links, 3) << page;
   }

@@ -53,6 +53,7 @@ TEST(Colormap, TicksAreRoundAndInsideTheRange) {
   EXPECT_DOUBLE_EQ(t.back(), 0.45);
   EXPECT_EQ(t.size(), 7u);
   EXPECT_TRUE(nice_ticks(1, 1, 5).empty());
+  EXPECT_TRUE(nice_ticks(1e20, 1e20 * (1 + 1e-15), 6).empty()) << "a range a few ulps wide far from zero";
   EXPECT_DOUBLE_EQ(nice_length(0.037), 0.02);
   EXPECT_DOUBLE_EQ(nice_length(0.05), 0.05);
   EXPECT_DOUBLE_EQ(nice_length(9.99), 5);

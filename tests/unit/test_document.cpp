@@ -100,9 +100,10 @@ TEST(Headline, RoundTripsAndTheSiteListsEveryScene) {
 
   report::SiteInfo info;
   info.made_by = "dspdem figures", info.set = "test";
-  const std::string index = report::write_site({(base / "reports/a").string(), (base / "reports/b").string()},
-                                               (base / "site").string(), info);
-  const std::string html = slurp(index);
+  const report::SiteWritten site = report::write_site({(base / "reports/a").string(), (base / "reports/b").string()},
+                                                      (base / "site").string(), info);
+  EXPECT_EQ(site.failed, 1u) << "the folder without a headline";
+  const std::string html = slurp(site.index);
   EXPECT_NE(html.find("Scene A (paper 2.9)"), std::string::npos);
   EXPECT_NE(html.find("src=\"../reports/a/run/images/x.png\""), std::string::npos) << html;
   EXPECT_NE(html.find("href=\"../reports/a/report.html\""), std::string::npos);

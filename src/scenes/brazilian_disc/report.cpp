@@ -196,14 +196,15 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
       "should read f_t, and the crack run along the loaded diameter.",
       1e3 * r.D, 1e3 * r.L, r.elements, r.joints, 1e-6 * r.ft);
   const auto yes = [](bool b) { return std::string(b ? "yes" : "no"); };
-  const bool two_halves = r.mass_fractions.size() >= 2 && r.mass_fractions[1] > 0.3;
+  // The criteria of the test named beside them (tests/verification/test_disc_unaligned.cpp).
+  const bool two_halves = r.mass_fractions.size() >= 2 && r.mass_fractions[1] > 0.35;
+  const bool crosses = r.crack_path_slices > r.crack_path_bins / 2;
   h.rows = {
       {"splitting strength against the input f_t", "2.54 MPa for 2.30 MPa: +10 %",
        fmt::format("{:.2f} MPa for {:.2f} MPa: {}", 1e-6 * r.split, 1e-6 * r.ft, pct(r.split_err)),
-       yes(std::abs(r.split_err) <= 0.15), "DiscUnaligned.SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength"},
+       yes(std::abs(r.split_err) < 0.15), "DiscUnaligned.SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength"},
       {"peak plate load", "40.6 kN", fmt::format("{:.1f} kN", 1e-3 * r.P_peak),
-       yes(std::abs(r.P_peak / 40.6e3 - 1) <= 0.15),
-       "DiscUnaligned.SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength"},
+       yes(std::abs(r.P_peak / 40.6e3 - 1) <= 0.15), ""},
       {"crack", "one crack along the loaded diameter, two halves",
        r.crack_path_mean_x >= 0
            ? fmt::format("mean {:.1f} mm from the diameter (element {:.0f} mm); largest pieces {:.2f}, {:.2f}",
@@ -211,7 +212,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
                          r.mass_fractions.empty() ? 0.0 : r.mass_fractions[0],
                          r.mass_fractions.size() < 2 ? 0.0 : r.mass_fractions[1])
            : "no crack",
-       yes(two_halves && r.crack_path_mean_x >= 0 && r.crack_path_mean_x <= c.mesh_num.at("size")),
+       yes(two_halves && crosses && r.crack_path_mean_x >= 0 && r.crack_path_mean_x < c.mesh_num.at("size")),
        "DiscUnaligned.SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength"},
       {"stresses along the loaded diameter, L2 error against the point-load solution", "eqs. 24-25, shown",
        fmt::format("sigma_xx {:.1f} %, sigma_yy {:.1f} %", 100 * r.l2_xx, 100 * r.l2_yy), "",

@@ -218,14 +218,20 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       1e3 * r.L, 1e3 * r.H, 1e3 * r.W, 1e3 * r.gap, r.elements, r.joints);
   const auto yes = [](bool b) { return std::string(b ? "yes" : "no"); };
   const BeamCrack* first = r.cracks.empty() ? nullptr : &r.cracks.front();
+  // The criterion of the test named beside it (tests/verification/test_murray.cpp): every
+  // crack of the first time within an element of an impactor, on the bottom row.
+  bool under = first != nullptr;
+  const double hx = r.L / mesh_param(c, "nx");
+  for (const auto& k : r.cracks)
+    if (k.t_first <= r.cracks.front().t_first)
+      under = under && std::abs(std::abs(k.x) - 0.5 * r.gap) < hx && k.y_lo < -0.5 * r.H + r.H / 3;
   h.rows = {
       {"where the first cracks start", "on the lower face, under the impactors",
        first ? fmt::format("x = {:+.0f} mm, from y = {:+.0f} mm (impactors at x = +-{:.0f} mm, lower face y = {:+.0f} "
                            "mm)",
                            1e3 * first->x, 1e3 * first->y_lo, 0.5e3 * r.gap, -0.5e3 * r.H)
              : "no crack",
-       first ? yes(first->y_lo < -0.5 * r.H + r.H / 3) : "no",
-       "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically"},
+       yes(under), "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically"},
       {"pieces at the end", "5, as in the test",
        fmt::format("{} main pieces (at least {:.0f} % of the mass each), {} fragments in all", r.main_pieces,
                    100 * MurrayResult::main_piece_fraction, r.fragments),

@@ -247,9 +247,16 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     m.rows = {"cracks"};
     m.out = (img / "montage_cracks.png").string();
     write_montage(m);
-    for (const auto& r : sweep) {  // each speed's own frames and animations
+    // Each speed's own frames and animations, all with one stress range so that the speeds
+    // compare colour for colour.
+    std::vector<std::string> dirs;
+    for (const auto& r : sweep) dirs.push_back(r.run_dir);
+    const bool stress = std::find(c.render.views.begin(), c.render.views.end(), "stress") != c.render.views.end();
+    const std::string range = stress ? common_range(dirs, c.render.field, c.render) : std::string();
+    for (const auto& r : sweep) {
       RenderArgs ra;
       ra.run_dir = r.run_dir;
+      ra.range = range;
       render_command(ra);
     }
   }
