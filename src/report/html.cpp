@@ -75,7 +75,7 @@ th { background: #f2f2f2; }
 img { max-width: 100%; height: auto; border: 1px solid #eee; }
 p img { max-width: 32%; margin-right: 0.5%; }
 p img:only-child { max-width: 75%; }
-video { max-width: 100%; border: 1px solid #eee; }
+video { max-width: 75%; height: auto; border: 1px solid #eee; }
 code { background: #f4f4f4; padding: 0 0.2rem; font-size: 0.9em; }
 .yes { color: #1a7f37; font-weight: bold; } .no { color: #c62828; font-weight: bold; }
 .scene { margin: 1.5rem 0; padding-top: 0.5rem; border-top: 2px solid #ddd; }
