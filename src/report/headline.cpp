@@ -1,5 +1,7 @@
 #include "report/headline.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -9,6 +11,10 @@
 #include "io/staging.hpp"
 
 namespace dspdem::report {
+
+HeadlineRow balance_row(double balance_max, const std::string& test, const std::string& quantity) {
+  return {quantity, "-", fmt::format("{:.1e} of the largest term", balance_max), agrees(balance_max < 0.01), test};
+}
 
 void write_headline(const Headline& h, const std::string& dir) {
   nlohmann::ordered_json j;

@@ -25,6 +25,14 @@ struct Headline {
   double wall_s = 0;                                        ///< the report's whole time, runs included
 };
 
+/// "yes" or "no", for HeadlineRow::agrees.
+inline std::string agrees(bool met) { return met ? "yes" : "no"; }
+
+/// The row every scene has: the ledger's largest balance error, which agrees below 1 % of the
+/// largest term (the brief's bound), checked by `test` ("" none).
+HeadlineRow balance_row(double balance_max, const std::string& test,
+                        const std::string& quantity = "energy balance, largest error");
+
 /// Writes DIR/headline.json (atomically).
 void write_headline(const Headline& h, const std::string& dir);
 /// Reads a headline.json; throws Error naming the file and key that is wrong.

@@ -1,6 +1,5 @@
 #include "run/render_run.hpp"
 
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vtkCellData.h>
@@ -14,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/subprocess.hpp"
 #include "core/timer.hpp"
 #include "io/case_config.hpp"
 #include "render/animation.hpp"
@@ -23,8 +23,6 @@
 #include "render/series.hpp"
 #include "render/views.hpp"
 #include "run/wall_shapes.hpp"
-
-extern char** environ;
 
 namespace dspdem {
 
@@ -68,9 +66,11 @@ void auto_range(const std::vector<render::FrameRef>& frames, const std::vector<s
   std::sort(v.begin(), v.end());
   double lo = v[static_cast<std::size_t>(0.005 * (v.size() - 1))],
          hi = v[static_cast<std::size_t>(0.995 * (v.size() - 1))];
-  if (o.field == "von_mises" || o.field == "displacement") lo = 0;
-  // Signed stresses: a range centred on zero, so the diverging map's white is zero stress.
-  if (render::field_display(o.field).is_signed) hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
+  // Magnitudes from zero; signed stresses centred on zero, so the diverging map's white is zero.
+  if (render::field_display(o.field).is_signed)
+    hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
+  else
+    lo = 0;
   if (!rc.auto_min) lo = rc.range_min;
   if (!rc.auto_max) hi = rc.range_max;
   if (!(hi > lo)) hi = lo + std::max(1.0, std::abs(lo)) * 1e-6;
@@ -83,27 +83,32 @@ std::string view_dir(const std::string& run, const std::string& view) {
 
 void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, std::vector<pid_t>& pids) {
   for (int k = 1; k < jobs; ++k) {
-    std::vector<std::string> args = {"/proc/self/exe", "-q",
-                                     "render",         a.run_dir,
-                                     "--worker",       fmt::format("{}/{}", k, jobs),
-                                     "--frames",       a.frames,
-                                     "--field",        o.field,
-                                     "--camera",       o.camera,
-                                     "--cut",          o.cut,
-                                     "--magnify",      fmt::format("{:.17g}", o.magnify),
-                                     "--range",        fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]),
-                                     "--size",         fmt::format("{}x{}", o.width, o.height)};
+    std::vector<std::string> args = {"-q",
+                                     "render",
+                                     a.run_dir,
+                                     "--worker",
+                                     fmt::format("{}/{}", k, jobs),
+                                     "--frames",
+                                     a.frames,
+                                     "--field",
+                                     o.field,
+                                     "--camera",
+                                     o.camera,
+                                     "--cut",
+                                     o.cut,
+                                     "--magnify",
+                                     fmt::format("{:.17g}", o.magnify),
+                                     "--range",
+                                     fmt::format("{:.17g}:{:.17g}", o.range[0], o.range[1]),
+                                     "--size",
+                                     fmt::format("{}x{}", o.width, o.height)};
     if (o.edges) args.push_back("--edges");
     for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
-    std::vector<char*> argv;
-    for (auto& s : args) argv.push_back(s.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    const int rc = posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ);
-    if (rc == 0)
+    const pid_t pid = spawn_program("/proc/self/exe", args, "");  // its messages on our stderr
+    if (pid > 0)
       pids.push_back(pid);
     else
-      log::warn("could not start render worker {} ({}); rendering its frames here", k, rc);
+      log::warn("could not start render worker {}; rendering its frames here", k);
   }
 }
 }  // namespace

@@ -195,7 +195,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
       "interior face ({} joints), input tensile strength f_t = {:.2f} MPa. The splitting strength 2P/(pi D L) "
       "should read f_t, and the crack run along the loaded diameter.",
       1e3 * r.D, 1e3 * r.L, r.elements, r.joints, 1e-6 * r.ft);
-  const auto yes = [](bool b) { return std::string(b ? "yes" : "no"); };
+  const auto yes = report::agrees;
   // The criteria of the test named beside them (tests/verification/test_disc_unaligned.cpp).
   const bool two_halves = r.mass_fractions.size() >= 2 && r.mass_fractions[1] > 0.35;
   const bool crosses = r.crack_path_slices > r.crack_path_bins / 2;
@@ -217,8 +217,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
       {"stresses along the loaded diameter, L2 error against the point-load solution", "eqs. 24-25, shown",
        fmt::format("sigma_xx {:.1f} %, sigma_yy {:.1f} %", 100 * r.l2_xx, 100 * r.l2_yy), "",
        "DiscField.SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh"},
-      {"energy balance, largest error", "-", fmt::format("{:.1e} of the largest term", r.balance_max),
-       yes(r.balance_max < 0.01), ""}};
+      report::balance_row(r.balance_max, "")};
   if (!a.no_render) {
     doc.thumbnail("fragments at the end", fmt::format("images/fragments/frame_{:04d}.png", r.last_frame));
     doc.thumbnail("stress at crack initiation",

@@ -216,7 +216,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       "mm apart (Murray et al. 2007); {} hexahedra, {} joints. The paper describes where the cracks start and how "
       "many pieces the beam ends in; the test's own records were not found.",
       1e3 * r.L, 1e3 * r.H, 1e3 * r.W, 1e3 * r.gap, r.elements, r.joints);
-  const auto yes = [](bool b) { return std::string(b ? "yes" : "no"); };
+  const auto yes = report::agrees;
   const BeamCrack* first = r.cracks.empty() ? nullptr : &r.cracks.front();
   // The criterion of the test named beside it (tests/verification/test_murray.cpp): every
   // crack of the first time within an element of an impactor, on the bottom row.
@@ -237,8 +237,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
                    100 * MurrayResult::main_piece_fraction, r.fragments),
        yes(r.main_pieces == 5), ""},
       {"largest deflection", "not given", fmt::format("{:.2f} mm", 1e3 * r.max_deflection), "", ""},
-      {"energy balance, largest error", "-", fmt::format("{:.1e} of the largest term", r.balance_max),
-       yes(r.balance_max < 0.01), "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically"}};
+      report::balance_row(r.balance_max, "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically")};
   if (!a.no_render) {
     doc.thumbnail("fragments at the end", fmt::format("images/fragments/frame_{:04d}.png", r.last_frame));
     doc.thumbnail("cracks at the end", fmt::format("images/cracks/frame_{:04d}.png", r.last_frame));

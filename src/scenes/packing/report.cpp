@@ -111,13 +111,12 @@ int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
              rest ? fmt::format("yes, from {:.2f} s; kinetic / released energy {:.1e}; {} outside the box", r.t_rest,
                                 ratio, r.escaped)
                   : fmt::format("no: kinetic / released energy {:.1e} at the end ({:.2f} s)", ratio, r.t_end),
-             rest && r.escaped == 0 ? "yes" : "no", "Packing.ParticlesComeToRestInTheBoxWithTheLedgerClosed"},
+             report::agrees(rest && r.escaped == 0), "Packing.ParticlesComeToRestInTheBoxWithTheLedgerClosed"},
             {"speed", fmt::format("{:.0f} s for 5346 particles (its machine)", kPaperSeconds),
              fmt::format("{:.3g} particle-steps/s: {:.1f} s for {} particles, {} steps", r.particle_steps_per_s,
                          r.wall_s, r.particles, r.steps),
              "", ""},
-            {"energy balance, largest error", "-", fmt::format("{:.1e} of the largest term", r.balance_max),
-             r.balance_max < 0.01 ? "yes" : "no", "Packing.ParticlesComeToRestInTheBoxWithTheLedgerClosed"}};
+            report::balance_row(r.balance_max, "Packing.ParticlesComeToRestInTheBoxWithTheLedgerClosed")};
   if (!a.no_render) {
     doc.thumbnail("the heap, front", "images/heap_front.png");
     doc.thumbnail("the heap, from above at an angle", "images/heap_iso.png");

@@ -370,13 +370,12 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         {fmt::format("pieces at {:g} m/s", r.speed), expected_pattern(r.speed),
          fmt::format("{} fragments, {} of at least 10 %, largest {:.2f}{}", r.fragments.count(), r.pieces_10pct,
                      r.fragments.largest_fraction(), r.through_crack ? ", through crack" : ", no through crack"),
-         pattern_met(r) ? "yes" : "no", "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
+         report::agrees(pattern_met(r)), "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
   {
     double worst = 0;
     for (const auto& r : sweep) worst = std::max(worst, r.balance_max);
-    h.rows.push_back({"energy balance, largest error over the speeds", "-",
-                      fmt::format("{:.1e} of the largest term", worst), worst < 0.01 ? "yes" : "no",
-                      "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
+    h.rows.push_back(report::balance_row(worst, "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage",
+                                         "energy balance, largest error over the speeds"));
   }
   if (!a.no_render) {
     doc.thumbnail("fragments, every speed", "images/montage_fragments.png");
