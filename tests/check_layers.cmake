@@ -2,7 +2,7 @@
 # order of the code (README "Layout"): run as `cmake -DSRC=<repo> -P check_layers.cmake`.
 # meshing/ sits beside fem (it checks element quality), render/ beside core (it reads VTK
 # files only); run/ uses both.
-set(order core mesh fem joint contact time io run report scenes app)
+set(order core mesh fem joint contact time io par run report scenes app)
 set(rank_meshing 3)  # after fem
 set(rank_render 1)   # after core
 set(i 0)

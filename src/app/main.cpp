@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
+#include "par/mpi_world.hpp"
 #include "render/image_compare.hpp"
 #include "run/checkpoint.hpp"
 #include "run/montage.hpp"
@@ -23,7 +24,8 @@
 
 using namespace dspdem;
 
-int main(int argc, char** argv) {
+namespace {
+int run_main(int argc, char** argv) {
   CLI::App app{"dspdem: deformable spheropolyhedral DEM with cohesive joints (batch, off-screen)"};
   app.require_subcommand(1);
   bool quiet = false, verbose = false;
@@ -157,11 +159,16 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 1;      // README: 1 is a command-line error, whatever CLI11 calls it
   }
   log::set_level(quiet ? log::Level::Quiet : verbose ? log::Level::Debug : log::Level::Info);
+  if (par::rank() > 0) log::set_level(log::Level::Quiet);  // one log per run: process 0's
 #ifdef _OPENMP
   if (threads > 0) omp_set_num_threads(threads);
 #endif
 
   try {
+    DSPDEM_CHECK(par::size() == 1 || *run,
+                 "only `dspdem run` runs on several processes (mpirun -n {}); give the others "
+                 "one process",
+                 par::size());
     if (*keys) {
       fmt::print("{}", case_schema_markdown());
       return 0;
@@ -249,4 +256,15 @@ int main(int argc, char** argv) {
     return 4;
   }
   return 0;
+}
+}  // namespace
+
+// Under mpirun each process runs the same command on its share (par/); a failure on one ends
+// them all, since the others would wait for it at the next exchange.
+int main(int argc, char** argv) {
+  par::init(&argc, &argv);
+  const int code = run_main(argc, argv);
+  if (code != 0 && par::size() > 1) par::abort(code);
+  par::finalize();
+  return code;
 }

@@ -10,18 +10,21 @@
 namespace dspdem {
 namespace fs = std::filesystem;
 
-Staging::Staging(const std::string& out_dir) : out_(out_dir) {
+Staging::Staging(const std::string& out_dir) : Staging(out_dir, static_cast<long>(getpid()), true) {}
+
+Staging::Staging(const std::string& out_dir, long id, bool owner) : out_(out_dir), owner_(owner) {
+  stage_ = (fs::path(out_) / fmt::format(".staging-{}", id)).string();
+  if (!owner) return;
   std::error_code ec;
   fs::create_directories(out_, ec);
   DSPDEM_CHECK(!ec && fs::is_directory(out_), "output directory '{}' cannot be created: {}", out_, ec.message());
-  stage_ = (fs::path(out_) / fmt::format(".staging-{}", getpid())).string();
   fs::remove_all(stage_, ec);
   fs::create_directories(stage_, ec);
   DSPDEM_CHECK(!ec, "cannot create staging folder '{}': {}", stage_, ec.message());
 }
 
 Staging::~Staging() {
-  if (done_) return;
+  if (done_ || !owner_) return;
   std::error_code ec;
   fs::remove_all(stage_, ec);
 }

@@ -11,6 +11,9 @@ namespace dspdem {
 class Staging {
  public:
   explicit Staging(const std::string& out_dir);
+  /// A distributed run's shared folder: process 0 creates and commits it (owner), named by
+  /// its id; the others write into it and leave it alone.
+  Staging(const std::string& out_dir, long id, bool owner);
   ~Staging();  ///< removes the staging folder if neither commit() nor keep_failed() ran
   Staging(const Staging&) = delete;
   Staging& operator=(const Staging&) = delete;
@@ -28,6 +31,7 @@ class Staging {
  private:
   std::string out_, stage_;
   bool done_ = false;
+  bool owner_ = true;
 };
 
 /// Writes `text` to `path` through a temporary file and a rename.

@@ -4,11 +4,14 @@
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
+#include <vtkMPIController.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPUnstructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <Eigen/Eigenvalues>
@@ -32,8 +35,35 @@ Real max_principal(const Real* s) {
 }
 
 namespace {
-// Appended raw binary, zlib-compressed on request, through a temporary name.
-void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compress) {
+// Appended raw binary, zlib-compressed on request, through a temporary name. With pieces > 1,
+// `path` is a .pvtu: this process writes its piece beside it (VTK names it path's stem
+// _<piece>.vtu) and piece 0 the .pvtu, which lists them all (collective: VTK's MPI controller
+// tells piece 0 which pieces were written); the staging folder keeps a run's half-written
+// frame from replacing a whole one.
+void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compress, int piece = 0, int pieces = 1) {
+  if (pieces > 1) {
+    static vtkMPIController* controller = [] {
+      auto* c = vtkMPIController::New();
+      c->Initialize(nullptr, nullptr, 1);  // MPI is already running (par::init)
+      return c;
+    }();
+    vtkNew<vtkXMLPUnstructuredGridWriter> w;
+    w->SetController(controller);
+    w->SetFileName(path.c_str());
+    w->SetInputData(grid);
+    w->SetNumberOfPieces(pieces);
+    w->SetStartPiece(piece);
+    w->SetEndPiece(piece);
+    w->SetWriteSummaryFile(1);  // on every process: collective, and only process 0 writes it
+    w->SetDataModeToAppended();
+    w->EncodeAppendedDataOff();
+    if (compress)
+      w->SetCompressorTypeToZLib();
+    else
+      w->SetCompressorTypeToNone();
+    DSPDEM_CHECK(w->Write() == 1, "could not write piece {} of '{}'", piece, path);
+    return;
+  }
   const std::string tmp = path + ".tmp.vtu";
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetFileName(tmp.c_str());
@@ -63,74 +93,114 @@ vtkNew<vtkDoubleArray> vec_array(const char* name, vtkIdType n, int nc) {
 
 void write_vtu(const std::string& path, const FrameData& f) {
   const Mesh& mesh = *f.mesh;
-  const vtkIdType nn = mesh.n_nodes();
+  // The cells written (all, or a piece's own) and their points, numbered in node order.
+  std::vector<Index> cells;
+  for (Index e = 0; e < mesh.n_elements(); ++e)
+    if (!f.cell_owned || f.cell_owned[e]) cells.push_back(e);
+  std::vector<vtkIdType> point_of;
+  std::vector<Index> points;
+  if (f.cell_owned) {
+    point_of.assign(mesh.n_nodes(), -1);
+    Index e0 = 0;
+    for (const auto& b : mesh.blocks) {
+      for (Index e = 0; e < b.size(); ++e)
+        if (f.cell_owned[e0 + e])
+          for (int i = 0; i < b.npe(); ++i) point_of[b.conn[static_cast<std::size_t>(e) * b.npe() + i]] = 0;
+      e0 += b.size();
+    }
+    for (Index n = 0; n < mesh.n_nodes(); ++n)
+      if (point_of[n] == 0) point_of[n] = static_cast<vtkIdType>(points.size()), points.push_back(n);
+  } else {
+    for (Index n = 0; n < mesh.n_nodes(); ++n) points.push_back(n);
+  }
+  auto pid = [&](Index n) { return f.cell_owned ? point_of[n] : static_cast<vtkIdType>(n); };
+  const vtkIdType np = static_cast<vtkIdType>(points.size());
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(nn);
-  for (vtkIdType i = 0; i < nn; ++i) pts->SetPoint(i, f.x[3 * i], f.x[3 * i + 1], f.x[3 * i + 2]);
+  pts->SetNumberOfPoints(np);
+  for (vtkIdType i = 0; i < np; ++i) {
+    const std::size_t k = 3 * static_cast<std::size_t>(points[i]);
+    pts->SetPoint(i, f.x[k], f.x[k + 1], f.x[k + 2]);
+  }
   grid->SetPoints(pts);
-  const vtkIdType ne = mesh.n_elements();
+  const vtkIdType ne = static_cast<vtkIdType>(cells.size());
   grid->Allocate(ne);
-  for (const auto& b : mesh.blocks) {
-    const int npe = b.npe();
-    const int vtk_type = b.type == CellType::Tet4 ? 10 /*VTK_TETRA*/ : 12 /*VTK_HEXAHEDRON*/;
-    vtkIdType ids[8];
-    for (Index e = 0; e < b.size(); ++e) {
-      for (int i = 0; i < npe; ++i) ids[i] = b.conn[static_cast<std::size_t>(e) * npe + i];
-      grid->InsertNextCell(vtk_type, npe, ids);
+  {
+    Index e0 = 0;
+    for (const auto& b : mesh.blocks) {
+      const int npe = b.npe();
+      const int vtk_type = b.type == CellType::Tet4 ? 10 /*VTK_TETRA*/ : 12 /*VTK_HEXAHEDRON*/;
+      vtkIdType ids[8];
+      for (Index e = 0; e < b.size(); ++e) {
+        if (f.cell_owned && !f.cell_owned[e0 + e]) continue;
+        for (int i = 0; i < npe; ++i) ids[i] = pid(b.conn[static_cast<std::size_t>(e) * npe + i]);
+        grid->InsertNextCell(vtk_type, npe, ids);
+      }
+      e0 += b.size();
     }
   }
-  if (wants(f, "displacement")) {
-    auto a = vec_array("displacement", nn, 3);
-    for (vtkIdType i = 0; i < 3 * nn; ++i) a->SetValue(i, f.x[i] - f.x0[i]);
-    grid->GetPointData()->AddArray(a);
-  }
-  if (wants(f, "velocity")) {
-    auto a = vec_array("velocity", nn, 3);
-    for (vtkIdType i = 0; i < 3 * nn; ++i) a->SetValue(i, f.v[i]);
-    grid->GetPointData()->AddArray(a);
-  }
+  auto point_vector = [&](const char* name, const Real* a, const Real* minus) {
+    auto arr = vec_array(name, np, 3);
+    for (vtkIdType i = 0; i < np; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const std::size_t k = 3 * static_cast<std::size_t>(points[i]) + d;
+        arr->SetValue(3 * i + d, minus ? a[k] - minus[k] : a[k]);
+      }
+    grid->GetPointData()->AddArray(arr);
+  };
+  if (wants(f, "displacement")) point_vector("displacement", f.x, f.x0);
+  if (wants(f, "velocity")) point_vector("velocity", f.v, nullptr);
   if (f.stress && wants(f, "stress")) {
     auto a = vec_array("stress", ne, 6);  // ParaView reads 6 components as a symmetric tensor
-    for (vtkIdType i = 0; i < 6 * ne; ++i) a->SetValue(i, f.stress[i]);
+    for (vtkIdType i = 0; i < ne; ++i)
+      for (int k = 0; k < 6; ++k) a->SetValue(6 * i + k, f.stress[6 * static_cast<std::size_t>(cells[i]) + k]);
     grid->GetCellData()->AddArray(a);
   }
   if (f.stress && wants(f, "von_mises")) {
     auto a = vec_array("von_mises", ne, 1);
-    for (vtkIdType e = 0; e < ne; ++e) {
-      const Real* s = f.stress + 6 * e;
+    for (vtkIdType i = 0; i < ne; ++i) {
+      const Real* s = f.stress + 6 * static_cast<std::size_t>(cells[i]);
       Mat3 m;
       m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
-      a->SetValue(e, von_mises(m));
+      a->SetValue(i, von_mises(m));
     }
     grid->GetCellData()->AddArray(a);
   }
   if (f.stress && wants(f, "max_principal")) {
     auto a = vec_array("max_principal", ne, 1);
-    for (vtkIdType e = 0; e < ne; ++e) a->SetValue(e, max_principal(f.stress + 6 * e));
+    for (vtkIdType i = 0; i < ne; ++i) a->SetValue(i, max_principal(f.stress + 6 * static_cast<std::size_t>(cells[i])));
     grid->GetCellData()->AddArray(a);
   }
-  auto int_array = [&](const char* name, const Index* src) {
+  auto int_array = [&](const char* name, auto&& value) {
     vtkNew<vtkIntArray> a;
     a->SetName(name);
     a->SetNumberOfTuples(ne);
-    for (vtkIdType e = 0; e < ne; ++e) a->SetValue(e, src[e]);
+    for (vtkIdType i = 0; i < ne; ++i) a->SetValue(i, value(cells[i]));
     grid->GetCellData()->AddArray(a);
   };
-  if (f.body && wants(f, "body")) int_array("body", f.body);
-  if (f.fragment) int_array("fragment", f.fragment);
-  if (f.material && wants(f, "material")) int_array("material", f.material);
+  if (f.body && wants(f, "body")) int_array("body", [&](Index e) { return f.body[e]; });
+  if (f.fragment) int_array("fragment", [&](Index e) { return f.fragment[e]; });
+  if (f.material && wants(f, "material")) int_array("material", [&](Index e) { return f.material[e]; });
+  if (f.pieces > 1) int_array("rank", [&](Index) { return f.piece; });
+  if (f.element_tag && wants(f, "element")) {
+    vtkNew<vtkIdTypeArray> a;
+    a->SetName("element");
+    a->SetNumberOfTuples(ne);
+    for (vtkIdType i = 0; i < ne; ++i) a->SetValue(i, static_cast<vtkIdType>(f.element_tag[cells[i]]));
+    grid->GetCellData()->AddArray(a);
+  }
   if (!f.wall_pose.empty()) {
     auto a = vec_array("wall_pose", static_cast<vtkIdType>(f.wall_pose.size() / 7), 7);
     for (std::size_t i = 0; i < f.wall_pose.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), f.wall_pose[i]);
     grid->GetFieldData()->AddArray(a);
   }
 
-  write_grid(grid, path, f.compress);
+  write_grid(grid, path, f.compress, f.piece, f.pieces);
 }
 
-void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress) {
+void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress,
+                      const std::vector<char>& owned, int piece, int pieces) {
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
@@ -139,6 +209,7 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
   vtkNew<vtkDoubleArray> damage, opening, slip;
   damage->SetName("damage"), opening->SetName("opening"), slip->SetName("slip");
   for (Index j = 0; j < js.size(); ++j) {
+    if (!owned.empty() && !owned[j]) continue;
     const int npf = js.npf[j];
     vtkIdType ids[4];
     for (int k = 0; k < npf; ++k) {
@@ -166,7 +237,7 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
   grid->GetCellData()->AddArray(damage);
   grid->GetCellData()->AddArray(opening);
   grid->GetCellData()->AddArray(slip);
-  write_grid(grid, path, compress);
+  write_grid(grid, path, compress, piece, pieces);
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {

@@ -25,6 +25,13 @@ struct FrameData {
   /// written as the grid's field data `wall_pose`, so the renderer draws the walls where they
   /// were (their shapes come from the case).
   std::vector<double> wall_pose;
+  /// A distributed run's piece: only the cells flagged here (the process's own elements) and
+  /// their points, with the cell field `rank`; `path` is then the frame's .pvtu, which
+  /// piece 0 writes, and each process writes its piece beside it (name_<piece>.vtu).
+  const char* cell_owned = nullptr;
+  int piece = 0, pieces = 1;
+  /// Per element its gmsh tag, written as the cell field `element` when `fields` asks for it.
+  const std::size_t* element_tag = nullptr;
 };
 
 /// Writes the frame to `path` (through a temporary name). Throws Error on failure.
@@ -36,7 +43,9 @@ struct JointSet;
 /// Writes the joints as their own dataset: one polygon per joint on its mid-surface with
 /// cell data state (0 intact, 1 softening, 2 broken), damage (0-1, the eq. 6 measure),
 /// opening and slip (means over the points) [m].
-void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress);
+/// `owned` (one flag per joint) and pieces > 1: a distributed run's piece, as write_vtu's.
+void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress,
+                      const std::vector<char>& owned = {}, int piece = 0, int pieces = 1);
 
 /// Writes a .pvd collection: (time, relative file) pairs.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames);

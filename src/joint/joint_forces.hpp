@@ -25,7 +25,9 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
 /// The plain serial kernel, joint after joint: the test oracle of add_joint_forces.
 void add_joint_forces_reference(JointSet& js, const Real* x, Real* f);
 
-JointTotals joint_totals(const JointSet& js);
+/// Totals over the joints; with `owned` (one flag per joint), over the flagged ones only (a
+/// distributed run's share; released joints' energy only without a mask).
+JointTotals joint_totals(const JointSet& js, const std::vector<char>& owned = {});
 
 /// Energy stored in joint j now [J].
 Real joint_elastic_energy(const JointSet& js, Index j);

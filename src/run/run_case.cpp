@@ -21,6 +21,10 @@
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
 #include "mesh/locality.hpp"
+#include "par/halo.hpp"
+#include "par/mpi_world.hpp"
+#include "par/partition.hpp"
+#include "par/subdomain.hpp"
 #include "run/case_mesh.hpp"
 #include "run/checkpoint.hpp"
 #include "time/extrinsic.hpp"
@@ -226,16 +230,48 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   long n_steps = static_cast<long>(std::ceil(c.t_end / dt - 1e-9));
   if (c.max_steps > 0) n_steps = std::min(n_steps, c.max_steps);
 
-  Staging stage(opt.out_dir);
+  // A distributed run (mpirun -n N): the whole model was built on every process, as above,
+  // and each keeps its share (par/subdomain.hpp); the step is the whole model's.
+  const int n_ranks = par::size(), my_rank = par::rank();
+  const bool distributed = n_ranks > 1;
+  const Index whole_nodes = fem.n_nodes, whole_elements = fem.n_elements, whole_joints = model.joints.size();
+  std::unique_ptr<par::MpiHalo> halo;
+  if (distributed) {
+    auto refuse = [&](bool bad, const char* what) {
+      if (bad)
+        fail("{}: {} is not yet supported in a distributed run (mpirun -n {}); run it on one process", c.path, what,
+             n_ranks);
+    };
+    refuse(model.contact.enabled(), "[contact]");
+    refuse(!model.rigid.empty(), "a rigid body");
+    refuse(!model.joints.closed.empty(), "extrinsic joint insertion");
+    refuse(!opt.restart_file.empty() || opt.checkpoint_every > 0, "a checkpoint or a restart");
+    const std::vector<int> part = par::partition_elements(model, n_ranks);
+    par::Subdomain sd = par::make_subdomain(model, part, my_rank);
+    model = std::move(sd.local);
+    halo = std::make_unique<par::MpiHalo>(sd);
+    const std::vector<long> own = par::all_gather(model.owned_nodes);
+    const std::vector<long> ghosts = par::all_gather(halo->ghosts());
+    const std::vector<long> elems =
+        par::all_gather(static_cast<long>(std::count(model.elem_owned.begin(), model.elem_owned.end(), 1)));
+    const std::vector<long> msgs = par::all_gather(halo->messages_per_exchange());
+    log::info(
+        "  distributed over {} processes (METIS): own elements {}, own nodes {}, ghost nodes {}, messages "
+        "sent per step {}",
+        n_ranks, fmt::join(elems, "/"), fmt::join(own, "/"), fmt::join(ghosts, "/"), fmt::join(msgs, "/"));
+  }
+
+  // Process 0 makes the staging folder and commits it; the others write their pieces into it.
+  Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
   const fs::path sdir(stage.path());
   const std::string frames_dir = (sdir / "frames").string();
   fs::create_directories(frames_dir);
-  write_file_atomic((sdir / "case.resolved.toml").string(), c.resolved_toml);
+  if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), c.resolved_toml);
   const std::string pvd = (sdir / "run.pvd").string();
   const std::string joints_pvd = (sdir / "joints.pvd").string();
   const std::string ckpt = (sdir / "checkpoint.bin").string();
 
-  Integrator it(model, dt);
+  Integrator it(model, dt, halo.get());
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
     extrinsic.emplace(c.insertion_interval, c.insertion_stress);
@@ -251,7 +287,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   for (const auto& b : fem.blocks)
     for (Index e = 0; e < b.size(); ++e)
       elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
-  joint::Fragments frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+  // Fragments need the whole model's joints: not yet in a distributed run (issue 23).
+  joint::Fragments frag;
+  if (!distributed) frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
   PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
   LoopState ls;
   ls.next_frame = c.frame_interval, ls.next_series = c.series_interval, ls.next_checkpoint = opt.checkpoint_every;
@@ -294,11 +332,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", opt.restart_file, it.steps(),
               it.time(), ls.frames.size());
   }
-  Series series((sdir / "series.csv").string(), model, !opt.restart_file.empty());
+  // Every process computes each row (its reductions are collective); process 0 writes it.
+  Series series(my_rank == 0 ? (sdir / "series.csv").string() : "/dev/null", model, !opt.restart_file.empty());
   // fragments.csv: per frame the count and the largest pieces (mass, size, where), so that
   // any scene's report can follow the break-up without reading the frames back.
-  std::ofstream frag_csv(sdir / "fragments.csv", opt.restart_file.empty() ? std::ios::out | std::ios::binary
-                                                                          : std::ios::app | std::ios::binary);
+  std::ofstream frag_csv(
+      my_rank == 0 ? sdir / "fragments.csv" : fs::path("/dev/null"),
+      opt.restart_file.empty() ? std::ios::out | std::ios::binary : std::ios::app | std::ios::binary);
   DSPDEM_CHECK(frag_csv.good(), "cannot write '{}'", (sdir / "fragments.csv").string());
   if (opt.restart_file.empty())
     frag_csv << "frame,time,count,rank,id,mass,elements,x,y,z\n";  // id: the frames' fragment field
@@ -314,9 +354,15 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     fd.v = it.v().data();
     fd.stress = stress.data();
     fd.body = fem.elem_body.data();
-    frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
-    fd.fragment = frag.id.data();
-    {
+    fd.element_tag = fem.elem_tag.data();
+    if (distributed) {
+      fd.cell_owned = model.elem_owned.data();
+      fd.piece = my_rank, fd.pieces = n_ranks;
+    } else {
+      frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+      fd.fragment = frag.id.data();
+    }
+    if (!distributed) {
       const auto info = joint::describe_fragments(model.mesh, frag, it.x().data(), elem_mass);
       for (std::size_t k = 0; k < std::min(kFragmentRows, info.size()); ++k)
         frag_csv << fmt::format("{},{:.10g},{},{},{},{:.10g},{},{:.8g},{:.8g},{:.8g}\n", frames.size(), it.time(),
@@ -330,15 +376,17 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     for (const auto& w : model.contact.walls())
       fd.wall_pose.insert(fd.wall_pose.end(),
                           {w.centre(0), w.centre(1), w.centre(2), w.q.w(), w.q.x(), w.q.y(), w.q.z()});
-    const std::string name = fmt::format("frame_{:04d}.vtu", frames.size());
+    const char* ext = distributed ? "pvtu" : "vtu";  // a distributed frame: its pieces, listed in a .pvtu
+    const std::string name = fmt::format("frame_{:04d}.{}", frames.size(), ext);
     write_vtu((fs::path(frames_dir) / name).string(), fd);
     frames.emplace_back(it.time(), "frames/" + name);
-    write_pvd(pvd, frames);
-    if (model.joints.size() > 0) {
-      const std::string jname = fmt::format("joints_{:04d}.vtu", joint_frames.size());
-      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(), c.compress);
+    if (my_rank == 0) write_pvd(pvd, frames);
+    if (whole_joints > 0) {
+      const std::string jname = fmt::format("joints_{:04d}.{}", joint_frames.size(), ext);
+      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(), c.compress,
+                       model.joint_owned, my_rank, n_ranks);
       joint_frames.emplace_back(it.time(), "frames/" + jname);
-      write_pvd(joints_pvd, joint_frames);
+      if (my_rank == 0) write_pvd(joints_pvd, joint_frames);
     }
   };
   auto write_ckpt = [&]() {
@@ -354,20 +402,21 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   };
 
   auto write_summary = [&](const std::string& dir, const std::string& status, const std::string& message) {
-    const Energy e = it.energy();
+    const Energy e = it.energy();  // on every process: its sums are collective
+    if (my_rank != 0) return;
     RunSummary s;
     s.case_name = c.name, s.case_file = c.path, s.status = status, s.message = message;
     s.steps = it.steps(), s.dt = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
     s.dt_limiting_element = static_cast<long>(lim_tag);
     s.t_end = it.time(), s.wall_s = ls.wall_before + wall.seconds(), s.threads = omp_get_max_threads();
-    s.nodes = fem.n_nodes, s.elements = fem.n_elements, s.frames = static_cast<long>(frames.size());
-    s.joints = model.joints.size(), s.joint_added_compliance = joint_compliance;
+    s.nodes = whole_nodes, s.elements = whole_elements, s.frames = static_cast<long>(frames.size());
+    s.joints = whole_joints, s.joint_added_compliance = joint_compliance;
     s.broken_joints = e.broken_joints, s.crack_area = e.crack_area;
     s.fragments = frag.count;
     for (Real mm : frag.mass) s.total_mass += mm;
     for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)
       s.largest_fragment_masses.push_back(frag.mass[i]);
-    s.element_steps_per_s = s.wall_s > 0 ? static_cast<double>(it.steps()) * fem.n_elements / s.wall_s : 0.0;
+    s.element_steps_per_s = s.wall_s > 0 ? static_cast<double>(it.steps()) * whole_elements / s.wall_s : 0.0;
     s.energy = {e.kinetic,    e.internal,    e.external_work,   e.damping,  e.initial,         e.joint_elastic,
                 e.fracture_I, e.fracture_II, e.contact_elastic, e.friction, e.contact_damping, e.balance_error()};
     write_run_summary((fs::path(dir) / "summary.json").string(), s);
@@ -413,6 +462,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       }
       if (last) break;
       if (it.steps() == opt.interrupt_at_step) g_interrupted = 1;
+      if (g_interrupted && distributed)
+        fail(
+            "interrupted at step {}, t = {:.6g} s; a distributed run keeps no checkpoint yet (its frames so far are in "
+            "{})",
+            it.steps(), t, stage.path());
       if (g_interrupted) {
         write_ckpt();
         write_summary(stage.path(), "interrupted", fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t));
@@ -447,6 +501,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   }
   if (extrinsic) log::info("  extrinsic insertion: {} joint(s) opened", extrinsic->opened());
   write_summary(stage.path(), "completed", ls.stop_message);
+  const Energy e = it.energy();  // collective: before the other processes return
+  par::barrier();                // every piece written before process 0 moves the folder into place
+  if (my_rank != 0) return 0;
   fs::remove(ckpt);  // a finished run needs none
   stage.commit();
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
@@ -456,10 +513,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     const std::string name = src.filename().string();
     if (name.rfind(".staging-", 0) == 0 || name == "interrupted_run") fs::remove_all(src);
   }
-  const Energy e = it.energy();
   log::info("  {} steps to t = {:.6g} s in {:.2f} s ({:.3g} element-steps/s, {} threads); energy balance error {:.2e}",
             it.steps(), it.time(), wall.seconds(),
-            static_cast<double>(it.steps() - s0) * fem.n_elements / wall.seconds(), omp_get_max_threads(),
+            static_cast<double>(it.steps() - s0) * whole_elements / wall.seconds(), omp_get_max_threads(),
             e.balance_error());
   log::info("  results in {}/ (run.pvd, {} frames, series.csv, summary.json)", opt.out_dir, frames.size());
   return 0;

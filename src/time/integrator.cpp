@@ -20,7 +20,7 @@ Real Energy::balance_error() const {
   return l > 0 ? std::abs(balance()) / l : 0.0;
 }
 
-Integrator::Integrator(Model& m, Real dt) : m_(m), dt_(dt) {
+Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dist), dt_(dt) {
   DSPDEM_CHECK(dt > 0 && std::isfinite(dt), "time step must be positive, got {}", dt);
   const std::size_t nd = 3 * static_cast<std::size_t>(m.fem.n_nodes);
   x_ = m.fem.x0;
@@ -84,7 +84,7 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
   }
   if (!nodal_in_tail) {
     const Real mass_dpower =
-        chunked_sums<1>(static_cast<std::size_t>(m_.fem.n_nodes), [&](std::size_t b, std::size_t e) {
+        chunked_sums<1>(static_cast<std::size_t>(m_.n_owned_nodes()), [&](std::size_t b, std::size_t e) {
           Real dp = 0;
           for (std::size_t i = b; i < e; ++i)
             for (int d = 0; d < 3; ++d) {
@@ -133,7 +133,8 @@ void Integrator::kick_nonnodal(Real h, Real t_target) {
 // any thread count.
 void Integrator::step() {
   const Real h = dt_, hh = 0.5 * h;
-  const std::size_t nn = static_cast<std::size_t>(m_.fem.n_nodes);
+  // The own nodes: a distributed run's ghosts get their motion from their owners below.
+  const std::size_t nn = static_cast<std::size_t>(m_.n_owned_nodes());
   Real* x = x_.data();
   Real* v = v_.data();
   Real* f = f_.data();
@@ -204,6 +205,9 @@ void Integrator::step() {
   if (contact) m_.contact.drift_walls(h, m_.gravity);
   t_ += h;
   ++n_;
+  // Ghosts take their owners' drifted positions and mid-step velocities, which are exactly
+  // what this process would have computed with all of their forces.
+  if (dist_) dist_->exchange(x, v);
   compute_forces(v_, h, fused);  // v_ holds the mid-step velocity: damping is lagged by h/2
   // The last pass: (fused) the damping and external forces of the dofs compute_forces left,
   // and the damping power; the end of the step's external work (at the mid-step velocity);
@@ -245,8 +249,12 @@ void Integrator::step() {
   w += tail[0];
   w_ext_ += w;
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
-  // The reported external work is the integrator's plus the walls' (energy()).
-  w_peak_ = std::max(w_peak_, std::abs(w_ext_ + (contact ? m_.contact.wall_work() : 0.0)));
+  // The reported external work is the integrator's plus the walls' (energy()). Distributed:
+  // the whole work is the processes' shares added, one small reduction a step, so that the
+  // peak (the ledger's scale) is the one-process run's.
+  Real whole = w_ext_;
+  if (dist_) dist_->sum(&whole, 1);
+  w_peak_ = std::max(w_peak_, std::abs(whole + (contact ? m_.contact.wall_work() : 0.0)));
   kick_nonnodal(hh, t_);
   bool finite = std::isfinite(w) && bad == 0 && tail[1] == 0;
   // Rigid bodies and constraints wrote velocities after the check's pass: check them all.
@@ -338,22 +346,39 @@ void Integrator::contact_crossed() const {
 
 Energy Integrator::energy() const {
   Energy e;
-  const Index nn = m_.fem.n_nodes;
+  const Index nn = m_.n_owned_nodes();
   std::vector<Real> ke(nn);
   for (Index i = 0; i < nn; ++i) {
     const Real* v = &v_[3 * static_cast<std::size_t>(i)];
     ke[i] = 0.5 * m_.fem.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
   e.kinetic = deterministic_sum(ke);
-  e.internal = deterministic_sum(m_.fem.elem_energy);
+  if (m_.elem_owned.empty()) {
+    e.internal = deterministic_sum(m_.fem.elem_energy);
+  } else {
+    std::vector<Real> own(m_.fem.elem_energy);
+    for (std::size_t k = 0; k < own.size(); ++k)
+      if (!m_.elem_owned[k]) own[k] = 0;
+    e.internal = deterministic_sum(own);
+  }
   e.external_work = w_ext_;
   e.peak_work = w_peak_;
   e.damping = damp_;
   e.initial = e0_;
   if (m_.joints.size() > 0) {
-    const joint::JointTotals t = joint::joint_totals(m_.joints);
+    const joint::JointTotals t = joint::joint_totals(m_.joints, m_.joint_owned);
     e.joint_elastic = t.elastic, e.fracture_I = t.fracture_I, e.fracture_II = t.fracture_II;
     e.broken_joints = t.broken, e.crack_area = t.broken_area;
+  }
+  if (dist_) {
+    // The processes' shares added in rank order; e0_ is already whole (the constructor
+    // computed it through here), and so is w_peak_ (step()).
+    Real a[9] = {e.kinetic,       e.internal,   e.external_work, e.damping,
+                 e.joint_elastic, e.fracture_I, e.fracture_II,   static_cast<Real>(e.broken_joints),
+                 e.crack_area};
+    dist_->sum(a, 9);
+    e.kinetic = a[0], e.internal = a[1], e.external_work = a[2], e.damping = a[3], e.joint_elastic = a[4];
+    e.fracture_I = a[5], e.fracture_II = a[6], e.broken_joints = static_cast<Index>(a[7]), e.crack_area = a[8];
   }
   if (m_.contact.enabled()) {
     const contact::ContactTotals t = m_.contact.totals();
@@ -389,21 +414,28 @@ Real Integrator::monitor(const MonitorSet& ms) const {
   using T = MonitorConfig::Type;
   const int c = ms.cfg.component;
   auto pick = [c](const Vec3& v) { return c < 3 ? v(c) : v.norm(); };
+  // A distributed run's monitor sets hold the own nodes only: sums and counts are added
+  // over the processes (reduce), maxima taken over them.
+  auto reduce = [&](Vec3 s) {
+    if (dist_) dist_->sum(s.data(), 3);
+    return s;
+  };
   auto mean_of = [&](const std::vector<Index>& nodes, bool disp) {
-    Vec3 s = Vec3::Zero();
+    Real s[4] = {0, 0, 0, static_cast<Real>(nodes.size())};
     for (Index n : nodes)
       for (int d = 0; d < 3; ++d) {
         const std::size_t k = 3 * static_cast<std::size_t>(n) + d;
-        s(d) += disp ? x_[k] - m_.fem.x0[k] : v_[k];
+        s[d] += disp ? x_[k] - m_.fem.x0[k] : v_[k];
       }
-    return Vec3(s / static_cast<Real>(nodes.size()));
+    if (dist_) dist_->sum(s, 4);
+    return Vec3(Vec3(s[0], s[1], s[2]) / s[3]);
   };
   switch (ms.cfg.type) {
     case T::Reaction: {
       Vec3 r = Vec3::Zero();
       for (std::size_t k = 0; k < reaction_.size(); ++k)
         if (ms.dof_in_group[k]) r(k % 3) += reaction_[k];
-      return pick(r);
+      return pick(reduce(r));
     }
     case T::Displacement:
       return pick(mean_of(ms.nodes, true));
@@ -412,7 +444,7 @@ Real Integrator::monitor(const MonitorSet& ms) const {
     case T::Momentum: {
       Vec3 p = Vec3::Zero();
       for (Index n : ms.nodes) p += m_.fem.mass[n] * Vec3(v_[3 * n], v_[3 * n + 1], v_[3 * n + 2]);
-      return pick(p);
+      return pick(reduce(p));
     }
     case T::DisplacementDifference:
       return pick(Vec3(mean_of(ms.nodes2, true) - mean_of(ms.nodes, true)));
@@ -423,6 +455,7 @@ Real Integrator::monitor(const MonitorSet& ms) const {
         for (int d = 0; d < 3; ++d) u(d) = x_[3 * n + d] - m_.fem.x0[3 * n + d];
         mx = std::max(mx, std::abs(pick(u)));
       }
+      if (dist_) dist_->max(&mx, 1);
       return mx;
     }
   }

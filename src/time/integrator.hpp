@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/distribution.hpp"
 #include "core/error.hpp"
 #include "joint/ties.hpp"
 #include "time/model.hpp"
@@ -39,7 +40,8 @@ struct Energy {
 class Integrator {
  public:
   /// Starts at t = 0 with the model's initial velocities and prescribed velocities.
-  Integrator(Model& m, Real dt);
+  /// dist: a distributed run's exchange and reductions (m is then one process's share).
+  Integrator(Model& m, Real dt, Distribution* dist = nullptr);
 
   /// One step. Throws NumericalError (with step, time, element) on an inverted element or
   /// a non-finite state.
@@ -116,6 +118,7 @@ class Integrator {
   void tie_forces();
 
   Model& m_;
+  Distribution* dist_ = nullptr;
   Real dt_, t_ = 0;
   long n_ = 0;
   /// f_ext_: external force per dof. Without rigid bodies it is kept only at loaded and

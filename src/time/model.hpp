@@ -48,6 +48,16 @@ struct Model {
   joint::InsertionReport joint_report;
   contact::ContactSystem contact;  ///< disabled unless [contact] enabled
   std::vector<RigidBody> rigid;    ///< bodies with kinematics = "rigid"
+
+  // One process's share of a distributed run (par/subdomain.hpp): nodes [0, owned_nodes) are
+  // its own, the rest ghosts whose positions come from their owners each step; elements and
+  // joints with a 0 in elem_owned / joint_owned are computed here for the own nodes they
+  // touch but counted (energies, frames) by the process that owns them. A one-process run
+  // leaves owned_nodes at -1 and the masks empty: everything is its own.
+  Index owned_nodes = -1;
+  std::vector<char> elem_owned, joint_owned;
+  Index n_owned_nodes() const { return owned_nodes >= 0 ? owned_nodes : fem.n_nodes; }
+  bool owns_element(Index e) const { return elem_owned.empty() || elem_owned[e]; }
 };
 
 /// Ramp factor of a boundary value at time t: min(1, t / ramp), or 1 without a ramp.

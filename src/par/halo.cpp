@@ -1,0 +1,111 @@
+#include "par/halo.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <map>
+
+#include "core/error.hpp"
+
+namespace dspdem::par {
+
+MpiHalo::MpiHalo(const Subdomain& sd) {
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  const Index own = sd.local.owned_nodes;
+  // Ghosts by owner: what this process receives, in global order (they are numbered so).
+  std::map<int, std::vector<Index>> from;
+  for (std::size_t k = 0; k < sd.ghost_owner.size(); ++k)
+    from[sd.ghost_owner[k]].push_back(own + static_cast<Index>(k));
+  std::vector<int> ask(static_cast<std::size_t>(size_), 0), asked(static_cast<std::size_t>(size_), 0);
+  for (auto& [p, nodes] : from) ask[p] = static_cast<int>(nodes.size());
+  MPI_Alltoall(ask.data(), 1, MPI_INT, asked.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> sdisp(size_ + 1, 0), rdisp(size_ + 1, 0);
+  for (int p = 0; p < size_; ++p) sdisp[p + 1] = sdisp[p] + ask[p], rdisp[p + 1] = rdisp[p] + asked[p];
+  std::vector<long> want(static_cast<std::size_t>(sdisp[size_])), wanted(static_cast<std::size_t>(rdisp[size_]));
+  for (auto& [p, nodes] : from)
+    for (std::size_t k = 0; k < nodes.size(); ++k) want[sdisp[p] + k] = static_cast<long>(sd.node_global[nodes[k]]);
+  MPI_Alltoallv(want.data(), ask.data(), sdisp.data(), MPI_LONG, wanted.data(), asked.data(), rdisp.data(), MPI_LONG,
+                MPI_COMM_WORLD);
+  // Global -> local for the own nodes (numbered first, in global order: a binary search).
+  auto local_of = [&](long gn) {
+    const auto b = sd.node_global.begin(), e = b + own;
+    const auto it = std::lower_bound(b, e, static_cast<Index>(gn));
+    DSPDEM_CHECK(it != e && *it == gn, "internal: process {} was asked for node {}, which it does not own", rank_, gn);
+    return static_cast<Index>(it - b);
+  };
+  for (int p = 0; p < size_; ++p) {
+    if (asked[p] > 0) {
+      Link l{p, {}, {}};
+      for (int k = rdisp[p]; k < rdisp[p + 1]; ++k) l.nodes.push_back(local_of(wanted[k]));
+      l.buf.resize(6 * l.nodes.size());
+      send_.push_back(std::move(l));
+    }
+    if (ask[p] > 0) {
+      Link l{p, from[p], {}};
+      l.buf.resize(6 * l.nodes.size());
+      recv_.push_back(std::move(l));
+    }
+    if (asked[p] > 0 || ask[p] > 0) neighbours_.push_back(p);
+  }
+}
+
+void MpiHalo::exchange(Real* x, Real* v) {
+  std::vector<MPI_Request> req;
+  req.reserve(send_.size() + recv_.size());
+  for (Link& l : recv_) {
+    req.emplace_back();
+    MPI_Irecv(l.buf.data(), static_cast<int>(l.buf.size()), MPI_DOUBLE, l.peer, 23, MPI_COMM_WORLD, &req.back());
+  }
+  for (Link& l : send_) {
+    Real* b = l.buf.data();
+    for (Index n : l.nodes) {
+      const std::size_t k = 3 * static_cast<std::size_t>(n);
+      b[0] = x[k], b[1] = x[k + 1], b[2] = x[k + 2], b[3] = v[k], b[4] = v[k + 1], b[5] = v[k + 2];
+      b += 6;
+    }
+    req.emplace_back();
+    MPI_Isend(l.buf.data(), static_cast<int>(l.buf.size()), MPI_DOUBLE, l.peer, 23, MPI_COMM_WORLD, &req.back());
+  }
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+  for (const Link& l : recv_) {
+    const Real* b = l.buf.data();
+    for (Index n : l.nodes) {
+      const std::size_t k = 3 * static_cast<std::size_t>(n);
+      x[k] = b[0], x[k + 1] = b[1], x[k + 2] = b[2], v[k] = b[3], v[k + 1] = b[4], v[k + 2] = b[5];
+      b += 6;
+    }
+  }
+}
+
+// Gathered and added in rank order, not MPI_Allreduce: its order is the library's choice,
+// and a fixed order keeps a run repeatable on the same number of processes.
+void MpiHalo::sum(Real* a, int n) const {
+  std::vector<Real> all(static_cast<std::size_t>(n) * size_);
+  MPI_Allgather(a, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, MPI_COMM_WORLD);
+  for (int i = 0; i < n; ++i) {
+    Real s = all[i];
+    for (int p = 1; p < size_; ++p) s += all[static_cast<std::size_t>(p) * n + i];
+    a[i] = s;
+  }
+}
+
+void MpiHalo::max(Real* a, int n) const {
+  std::vector<Real> out(static_cast<std::size_t>(n));
+  MPI_Allreduce(a, out.data(), n, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  std::copy(out.begin(), out.end(), a);
+}
+
+long MpiHalo::values_sent_per_exchange() const {
+  long s = 0;
+  for (const Link& l : send_) s += static_cast<long>(l.buf.size());
+  return s;
+}
+
+long MpiHalo::ghosts() const {
+  long s = 0;
+  for (const Link& l : recv_) s += static_cast<long>(l.nodes.size());
+  return s;
+}
+
+}  // namespace dspdem::par
