@@ -4,6 +4,8 @@
 #include <vtkExecutive.h>
 #include <vtkNew.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPUnstructuredGridReader.h>
+#include <vtkXMLReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <filesystem>
@@ -52,12 +54,17 @@ vtkSmartPointer<vtkUnstructuredGrid> read_frame(const std::string& path) {
   vtkNew<vtkCallbackCommand> cb;
   cb->SetCallback(on_error);
   cb->SetClientData(&errors);
-  vtkNew<vtkXMLUnstructuredGridReader> r;
+  // A distributed run's frame is a .pvtu naming one piece per process: read as one grid.
+  vtkSmartPointer<vtkXMLReader> r;
+  if (fs::path(path).extension() == ".pvtu")
+    r = vtkSmartPointer<vtkXMLPUnstructuredGridReader>::New();
+  else
+    r = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
   r->AddObserver(vtkCommand::ErrorEvent, cb);
   r->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
   r->SetFileName(path.c_str());
   r->Update();
-  vtkUnstructuredGrid* g = r->GetOutput();
+  vtkUnstructuredGrid* g = vtkUnstructuredGrid::SafeDownCast(r->GetOutputDataObject(0));
   DSPDEM_CHECK(errors.empty() && g && g->GetNumberOfCells() > 0, "frame '{}' is truncated or unreadable{}", path,
                errors.empty() ? "" : ": " + errors.substr(0, 300));
   vtkSmartPointer<vtkUnstructuredGrid> out = vtkSmartPointer<vtkUnstructuredGrid>::New();

@@ -32,9 +32,10 @@ namespace {
 const std::string kCase = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
 // To 0.52 ms: past the peak force (0.40 ms), with the crack through the ligament (some 60
 // joints broken; checked below); frames at 0, 0.26 and 0.52 ms.
-const std::string kArgs = " -t 1 -q run " + kCase +
-                          " --set time.end=5.2e-4 --set output.frame_interval=2.6e-4"
-                          " --set 'output.fields=[\"displacement\", \"element\", \"stress\"]' --no-progress --out ";
+const std::string kArgs =
+    " -t 1 -q run " + kCase +
+    " --set time.end=5.2e-4 --set output.frame_interval=2.6e-4"
+    " --set 'output.fields=[\"displacement\", \"element\", \"stress\", \"von_mises\"]' --no-progress --out ";
 
 fs::path work() {
   static const fs::path d = [] {
@@ -164,6 +165,17 @@ void compare_with_one_process(int n) {
     ++moved;
   }
   EXPECT_EQ(differ, 0) << "of " << moved << " elements";
+
+  // The renderer reads the pieces as one grid: the same picture as the one-process run's.
+  for (const fs::path* d : {&one, &many}) {
+    const auto r =
+        shell(fmt::format("{} -q render {} --view stress --frames last --size 480x320", DSPDEM_BIN, d->string()));
+    ASSERT_EQ(r.code, 0) << r.out;
+  }
+  const fs::path png = fs::path("images") / "stress" / "frame_0002.png";
+  const auto diff = shell(fmt::format("{} imgdiff {} {} --diff {}", DSPDEM_BIN, (one / png).string(),
+                                      (many / png).string(), (many / "stress_diff.png").string()));
+  EXPECT_EQ(diff.code, 0) << diff.out;
 }
 
 }  // namespace
