@@ -9,9 +9,57 @@
 
 namespace dspdem::par {
 
+namespace {
+// Who holds which of whose items: `mine` lists, per other process, the global numbers of the
+// items this process holds as ghosts of it (in global order); returned, per other process,
+// the global numbers of this process's own items that it holds, in the order it asked.
+std::vector<std::vector<long>> ask_owners(const std::map<int, std::vector<long>>& mine, int size) {
+  std::vector<int> ask(static_cast<std::size_t>(size), 0), asked(static_cast<std::size_t>(size), 0);
+  for (const auto& [p, items] : mine) ask[p] = static_cast<int>(items.size());
+  MPI_Alltoall(ask.data(), 1, MPI_INT, asked.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> sdisp(size + 1, 0), rdisp(size + 1, 0);
+  for (int p = 0; p < size; ++p) sdisp[p + 1] = sdisp[p] + ask[p], rdisp[p + 1] = rdisp[p] + asked[p];
+  std::vector<long> want(static_cast<std::size_t>(sdisp[size])), wanted(static_cast<std::size_t>(rdisp[size]));
+  for (const auto& [p, items] : mine) std::copy(items.begin(), items.end(), want.begin() + sdisp[p]);
+  MPI_Alltoallv(want.data(), ask.data(), sdisp.data(), MPI_LONG, wanted.data(), asked.data(), rdisp.data(), MPI_LONG,
+                MPI_COMM_WORLD);
+  std::vector<std::vector<long>> theirs(static_cast<std::size_t>(size));
+  for (int p = 0; p < size; ++p) theirs[p].assign(wanted.begin() + rdisp[p], wanted.begin() + rdisp[p + 1]);
+  return theirs;
+}
+}  // namespace
+
 MpiHalo::MpiHalo(const Subdomain& sd) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  {
+    // Elements: the ghosts by owner, and the own ones that others hold.
+    std::map<int, std::vector<long>> mine;
+    std::map<int, std::vector<Index>> local;
+    std::map<long, Index> own_local;
+    for (std::size_t e = 0; e < sd.elem_owner.size(); ++e) {
+      const int p = sd.elem_owner[e];
+      if (p == rank_) {
+        own_local[static_cast<long>(sd.elem_global[e])] = static_cast<Index>(e);
+      } else {
+        mine[p].push_back(static_cast<long>(sd.elem_global[e]));
+        local[p].push_back(static_cast<Index>(e));
+      }
+    }
+    const auto theirs = ask_owners(mine, size_);
+    for (int p = 0; p < size_; ++p) {
+      if (!theirs[p].empty()) {
+        ElemLink l{p, {}, std::vector<long>(theirs[p].size())};
+        for (long ge : theirs[p]) {
+          const auto it = own_local.find(ge);
+          DSPDEM_CHECK(it != own_local.end(), "internal: process {} was asked for element {}, not its own", rank_, ge);
+          l.elems.push_back(it->second);
+        }
+        elem_own_.push_back(std::move(l));
+      }
+      if (local.count(p)) elem_ghost_.push_back({p, local[p], std::vector<long>(local[p].size())});
+    }
+  }
   const Index own = sd.local.owned_nodes;
   // Ghosts by owner: what this process receives, in global order (they are numbered so).
   std::map<int, std::vector<Index>> from;
@@ -94,6 +142,36 @@ void MpiHalo::max(Real* a, int n) const {
   std::vector<Real> out(static_cast<std::size_t>(n));
   MPI_Allreduce(a, out.data(), n, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   std::copy(out.begin(), out.end(), a);
+}
+
+void MpiHalo::min_over_copies(std::vector<Index>& value) {
+  // The holders tell the owners their values, the owners keep the smallest and send it back.
+  std::vector<MPI_Request> req;
+  auto post = [&](std::vector<ElemLink>& links, bool receive) {
+    for (ElemLink& l : links) {
+      req.emplace_back();
+      if (receive)
+        MPI_Irecv(l.buf.data(), static_cast<int>(l.buf.size()), MPI_LONG, l.peer, 24, MPI_COMM_WORLD, &req.back());
+      else
+        MPI_Isend(l.buf.data(), static_cast<int>(l.buf.size()), MPI_LONG, l.peer, 24, MPI_COMM_WORLD, &req.back());
+    }
+  };
+  for (ElemLink& l : elem_ghost_)
+    for (std::size_t k = 0; k < l.elems.size(); ++k) l.buf[k] = value[l.elems[k]];
+  post(elem_own_, true);
+  post(elem_ghost_, false);
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+  req.clear();
+  for (ElemLink& l : elem_own_)
+    for (std::size_t k = 0; k < l.elems.size(); ++k)
+      value[l.elems[k]] = std::min<Index>(value[l.elems[k]], static_cast<Index>(l.buf[k]));
+  for (ElemLink& l : elem_own_)
+    for (std::size_t k = 0; k < l.elems.size(); ++k) l.buf[k] = value[l.elems[k]];
+  post(elem_ghost_, true);
+  post(elem_own_, false);
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+  for (ElemLink& l : elem_ghost_)
+    for (std::size_t k = 0; k < l.elems.size(); ++k) value[l.elems[k]] = static_cast<Index>(l.buf[k]);
 }
 
 long MpiHalo::values_sent_per_exchange() const {

@@ -17,6 +17,9 @@ class MpiHalo final : public Distribution {
   explicit MpiHalo(const Subdomain& sd);
 
   void exchange(Real* x, Real* v) override;
+  /// Collective: every copy of an element (its owner's and the ghosts') takes the smallest
+  /// of their values (labels in a distributed union-find, par/fragments.hpp).
+  void min_over_copies(std::vector<Index>& elem_value);
   void sum(Real* a, int n) const override;
   void max(Real* a, int n) const override;
   int rank() const override { return rank_; }
@@ -34,8 +37,14 @@ class MpiHalo final : public Distribution {
     std::vector<Index> nodes;  ///< local nodes, in the order both sides agreed (global order)
     std::vector<Real> buf;     ///< 6 values per node: x then v
   };
+  struct ElemLink {
+    int peer;
+    std::vector<Index> elems;  ///< local elements, in global order on both sides
+    std::vector<long> buf;
+  };
   int rank_ = 0, size_ = 1;
   std::vector<Link> send_, recv_;
+  std::vector<ElemLink> elem_own_, elem_ghost_;  ///< own elements others hold; ghosts by owner
   std::vector<int> neighbours_;
 };
 

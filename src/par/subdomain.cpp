@@ -98,6 +98,7 @@ Subdomain make_subdomain(const Model& g, const std::vector<int>& part, int r) {
       if (!here[ge]) continue;
       e2l[ge] = static_cast<Index>(sd.elem_global.size());
       sd.elem_global.push_back(ge);
+      sd.elem_owner.push_back(part[ge]);
       for (int i = 0; i < gb.npe(); ++i) lb.conn.push_back(g2l[gb.conn[static_cast<std::size_t>(e) * gb.npe() + i]]);
       lb.tag.push_back(gb.tag[e]);
     }

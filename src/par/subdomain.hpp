@@ -21,6 +21,7 @@ struct Subdomain {
   std::vector<Index> elem_global;   ///< local element -> global element
   std::vector<Index> joint_global;  ///< local joint -> global joint
   std::vector<int> ghost_owner;     ///< per ghost (local node owned_nodes + k): its process
+  std::vector<int> elem_owner;      ///< per local element: its process
 };
 
 /// The share of process `rank` of the one-process model `global` under the element

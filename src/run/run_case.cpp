@@ -21,6 +21,7 @@
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
 #include "mesh/locality.hpp"
+#include "par/fragments.hpp"
 #include "par/halo.hpp"
 #include "par/mpi_world.hpp"
 #include "par/partition.hpp"
@@ -287,7 +288,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   for (const auto& b : fem.blocks)
     for (Index e = 0; e < b.size(); ++e)
       elem_mass[b.elem[e]] = b.vol[e] * model.materials[fem.elem_material[b.elem[e]]].density;
-  // Fragments need the whole model's joints: not yet in a distributed run (issue 23).
+  // Distributed: found per frame by a union-find over the processes (par/fragments.hpp).
   joint::Fragments frag;
   if (!distributed) frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
   PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
@@ -355,15 +356,19 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     fd.stress = stress.data();
     fd.body = fem.elem_body.data();
     fd.element_tag = fem.elem_tag.data();
+    std::vector<joint::FragmentInfo> info;
     if (distributed) {
       fd.cell_owned = model.elem_owned.data();
       fd.piece = my_rank, fd.pieces = n_ranks;
+      par::DistributedFragments df = par::find_fragments(model, *halo, elem_mass, it.x().data());
+      frag = std::move(df.fr);
+      info = std::move(df.info);
     } else {
       frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
-      fd.fragment = frag.id.data();
+      info = joint::describe_fragments(model.mesh, frag, it.x().data(), elem_mass);
     }
-    if (!distributed) {
-      const auto info = joint::describe_fragments(model.mesh, frag, it.x().data(), elem_mass);
+    fd.fragment = frag.id.data();
+    {
       for (std::size_t k = 0; k < std::min(kFragmentRows, info.size()); ++k)
         frag_csv << fmt::format("{},{:.10g},{},{},{},{:.10g},{},{:.8g},{:.8g},{:.8g}\n", frames.size(), it.time(),
                                 frag.count, k + 1, info[k].id, info[k].mass, info[k].elements, info[k].centroid(0),

@@ -30,11 +30,11 @@ using dspdem::testsupport::shell;
 namespace {
 
 const std::string kCase = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
-// To 0.52 ms: past the peak force (0.40 ms), with the crack through the ligament (some 60
-// joints broken; checked below); frames at 0, 0.26 and 0.52 ms.
+// To 0.56 ms: past the peak force (0.40 ms) and the split into two halves (by 0.55 ms: 0.383
+// and 0.381 kg; checked below); frames at 0, 0.28 and 0.56 ms.
 const std::string kArgs =
     " -t 1 -q run " + kCase +
-    " --set time.end=5.2e-4 --set output.frame_interval=2.6e-4"
+    " --set time.end=5.6e-4 --set output.frame_interval=2.8e-4"
     " --set 'output.fields=[\"displacement\", \"element\", \"stress\", \"von_mises\"]' --no-progress --out ";
 
 fs::path work() {
@@ -165,6 +165,33 @@ void compare_with_one_process(int n) {
     ++moved;
   }
   EXPECT_EQ(differ, 0) << "of " << moved << " elements";
+
+  // The same pieces, named alike: each element's fragment id, and fragments.csv (count, ids
+  // and element counts exactly; masses and centroids to rounding, summed per process first).
+  auto fragment_of = [](vtkUnstructuredGrid* g) {
+    std::map<long, int> out;
+    auto* tag = vtkIdTypeArray::SafeDownCast(g->GetCellData()->GetArray("element"));
+    auto* frag = vtkIntArray::SafeDownCast(g->GetCellData()->GetArray("fragment"));
+    EXPECT_TRUE(tag && frag) << "no cell fields 'element' and 'fragment'";
+    for (vtkIdType c = 0; tag && frag && c < g->GetNumberOfCells(); ++c)
+      out[static_cast<long>(tag->GetValue(c))] = frag->GetValue(c);
+    return out;
+  };
+  EXPECT_TRUE(fragment_of(g1) == fragment_of(gn)) << "fragment ids differ on " << n << " processes";
+  const Series f1 = read_series(one / "fragments.csv"), fn = read_series(many / "fragments.csv");
+  ASSERT_EQ(f1.rows.size(), fn.rows.size());
+  ASSERT_FALSE(f1.rows.empty());
+  // Columns frame,time,count,rank,id,mass,...: at the last frame, ranks 1 and 2 are the halves.
+  int halves = 0;
+  for (const auto& r : f1.rows)
+    if (r[0] == f1.rows.back()[0] && r[3] <= 2 && r[5] > 0.3) ++halves;
+  EXPECT_EQ(halves, 2) << "the bar must be in two halves at the last frame";
+  for (std::size_t i = 0; i < f1.rows.size(); ++i)
+    for (std::size_t k = 0; k < f1.names.size(); ++k) {
+      const bool exact = f1.names[k] == "count" || f1.names[k] == "id" || f1.names[k] == "elements";
+      EXPECT_LE(std::abs(f1.rows[i][k] - fn.rows[i][k]), exact ? 0.0 : 1e-9 * std::abs(f1.rows[i][k]))
+          << "fragments.csv " << f1.names[k] << " at row " << i;
+    }
 
   // The renderer reads the pieces as one grid: the same picture as the one-process run's.
   for (const fs::path* d : {&one, &many}) {
