@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
 
 extern char** environ;
 
@@ -29,8 +30,16 @@ pid_t spawn_program(const std::string& program, const std::vector<std::string>& 
   std::vector<char*> argv;
   for (auto& s : all) argv.push_back(s.data());
   argv.push_back(nullptr);
+  // Not the MPI launcher's variables: a child (a sweep's run, a render worker) must not take
+  // itself for a process of its parent's MPI job (par/mpi_world.cpp looks for them).
+  std::vector<char*> env;
+  for (char** e = environ; *e; ++e) {
+    const std::string_view v(*e);
+    if (v.rfind("OMPI_", 0) != 0 && v.rfind("PMIX_", 0) != 0 && v.rfind("PMI_", 0) != 0) env.push_back(*e);
+  }
+  env.push_back(nullptr);
   pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, program.c_str(), &fa, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, program.c_str(), &fa, nullptr, argv.data(), env.data());
   posix_spawn_file_actions_destroy(&fa);
   return rc == 0 ? pid : -1;
 }

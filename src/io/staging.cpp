@@ -50,6 +50,7 @@ void Staging::commit() {
 }
 
 std::string Staging::keep_as(const std::string& name) {
+  if (!owner_) return stage_;  // only the process that made the folder moves it
   const fs::path dst = fs::path(out_) / name;
   fs::remove_all(dst);
   fs::rename(stage_, dst);

@@ -6,7 +6,9 @@
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
+#if DSPDEM_HAVE_MPI
 #include <vtkMPIController.h>
+#endif
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -42,13 +44,17 @@ namespace {
 // frame from replacing a whole one.
 void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compress, int piece = 0, int pieces = 1) {
   if (pieces > 1) {
+    vtkNew<vtkXMLPUnstructuredGridWriter> w;
+#if DSPDEM_HAVE_MPI
     static vtkMPIController* controller = [] {
       auto* c = vtkMPIController::New();
       c->Initialize(nullptr, nullptr, 1);  // MPI is already running (par::init)
       return c;
     }();
-    vtkNew<vtkXMLPUnstructuredGridWriter> w;
     w->SetController(controller);
+#else
+    fail("internal: a frame in {} pieces from a build without MPI", pieces);
+#endif
     w->SetFileName(path.c_str());
     w->SetInputData(grid);
     w->SetNumberOfPieces(pieces);

@@ -1,14 +1,13 @@
 #include "par/mpi_world.hpp"
 
-#include <mpi.h>
+#include <fmt/format.h>
 
 #include <cstdlib>
+#if DSPDEM_HAVE_MPI
+#include <mpi.h>
+#endif
 
 namespace dspdem::par {
-
-namespace {
-bool g_started = false;
-}
 
 bool launched_by_mpi() {
   // Open MPI sets OMPI_COMM_WORLD_SIZE in the processes mpirun starts; PMIx and PMI
@@ -16,6 +15,11 @@ bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
     if (std::getenv(v)) return true;
   return false;
+}
+
+#if DSPDEM_HAVE_MPI
+namespace {
+bool g_started = false;
 }
 
 void init(int* argc, char*** argv) {
@@ -66,5 +70,26 @@ std::vector<long> all_gather(long value) {
   if (g_started) MPI_Allgather(&value, 1, MPI_LONG, out.data(), 1, MPI_LONG, MPI_COMM_WORLD);
   return out;
 }
+
+#else
+// Built without MPI (DSPDEM_MPI=OFF): one process. Under mpirun every process would run the
+// whole case into the same folder, so a launch with more than one is refused.
+void init(int*, char***) {
+  const char* n = std::getenv("OMPI_COMM_WORLD_SIZE");
+  if (!n) n = std::getenv("PMI_SIZE");
+  if (n && std::atoi(n) > 1) {
+    fmt::print(stderr, "error: this dspdem was built without MPI (DSPDEM_MPI=OFF): run it without mpirun\n");
+    std::exit(2);
+  }
+}
+void finalize() {}
+bool active() { return false; }
+int rank() { return 0; }
+int size() { return 1; }
+void barrier() {}
+long broadcast(long value) { return value; }
+void abort(int code) { std::exit(code); }
+std::vector<long> all_gather(long value) { return {value}; }
+#endif
 
 }  // namespace dspdem::par

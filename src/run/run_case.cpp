@@ -21,11 +21,13 @@
 #include "joint/fragments.hpp"
 #include "joint/joint_compliance.hpp"
 #include "mesh/locality.hpp"
+#include "par/mpi_world.hpp"
+#if DSPDEM_HAVE_MPI
 #include "par/fragments.hpp"
 #include "par/halo.hpp"
-#include "par/mpi_world.hpp"
 #include "par/partition.hpp"
 #include "par/subdomain.hpp"
+#endif
 #include "run/case_mesh.hpp"
 #include "run/checkpoint.hpp"
 #include "time/extrinsic.hpp"
@@ -236,8 +238,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const int n_ranks = par::size(), my_rank = par::rank();
   const bool distributed = n_ranks > 1;
   const Index whole_nodes = fem.n_nodes, whole_elements = fem.n_elements, whole_joints = model.joints.size();
+  Distribution* dist = nullptr;  // a distributed run's exchange and reductions
+#if DSPDEM_HAVE_MPI
   std::unique_ptr<par::MpiHalo> halo;
+#endif
   if (distributed) {
+#if DSPDEM_HAVE_MPI
     auto refuse = [&](bool bad, const char* what) {
       if (bad)
         fail("{}: {} is not yet supported in a distributed run (mpirun -n {}); run it on one process", c.path, what,
@@ -249,8 +255,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     refuse(!opt.restart_file.empty() || opt.checkpoint_every > 0, "a checkpoint or a restart");
     const std::vector<int> part = par::partition_elements(model, n_ranks);
     par::Subdomain sd = par::make_subdomain(model, part, my_rank);
+    halo = std::make_unique<par::MpiHalo>(sd);  // before the share moves out of sd
+    dist = halo.get();
     model = std::move(sd.local);
-    halo = std::make_unique<par::MpiHalo>(sd);
     const std::vector<long> own = par::all_gather(model.owned_nodes);
     const std::vector<long> ghosts = par::all_gather(halo->ghosts());
     const std::vector<long> elems =
@@ -260,10 +267,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         "  distributed over {} processes (METIS): own elements {}, own nodes {}, ghost nodes {}, messages "
         "sent per step {}",
         n_ranks, fmt::join(elems, "/"), fmt::join(own, "/"), fmt::join(ghosts, "/"), fmt::join(msgs, "/"));
+#endif
   }
 
   // Process 0 makes the staging folder and commits it; the others write their pieces into it.
   Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
+  par::barrier();  // the folder made before anyone writes into it
   const fs::path sdir(stage.path());
   const std::string frames_dir = (sdir / "frames").string();
   fs::create_directories(frames_dir);
@@ -272,7 +281,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const std::string joints_pvd = (sdir / "joints.pvd").string();
   const std::string ckpt = (sdir / "checkpoint.bin").string();
 
-  Integrator it(model, dt, halo.get());
+  Integrator it(model, dt, dist);
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
     extrinsic.emplace(c.insertion_interval, c.insertion_stress);
@@ -347,6 +356,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   auto& frames = ls.frames;
   auto& joint_frames = ls.joint_frames;
   auto write_frame = [&]() {
+    // Distributed: the ghosts of the pieces' points at their owners' end-of-step velocities
+    // (the step leaves them at mid-step: only own nodes take the last half kick).
+    if (distributed) it.refresh_ghosts();
     it.stresses(stress);
     FrameData fd;
     fd.mesh = &model.mesh;
@@ -360,9 +372,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (distributed) {
       fd.cell_owned = model.elem_owned.data();
       fd.piece = my_rank, fd.pieces = n_ranks;
+#if DSPDEM_HAVE_MPI
       par::DistributedFragments df = par::find_fragments(model, *halo, elem_mass, it.x().data());
       frag = std::move(df.fr);
       info = std::move(df.info);
+#endif
     } else {
       frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
       info = joint::describe_fragments(model.mesh, frag, it.x().data(), elem_mass);
@@ -498,6 +512,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     throw;
   } catch (const NumericalError& e) {
     if (tty_progress) fmt::print(stderr, "\n");
+    // Distributed: the failure may be this process's alone (its node, its element), so no
+    // collective call and no folder moved; main ends every process. The frames written so far
+    // stay in the staging folder.
+    if (distributed)
+      throw NumericalError(
+          fmt::format("{} (process {} of {}; frames so far in {})", e.what(), my_rank, n_ranks, stage.path()), e.step,
+          e.time);
     write_summary(stage.path(), "failed", e.what());
     write_pvd(pvd, frames);
     const std::string kept = stage.keep_failed();

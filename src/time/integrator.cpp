@@ -117,7 +117,12 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
 }
 
 Real Integrator::element_dpower() const {
-  return m_.fem.any_stiffness_damping ? deterministic_sum(m_.fem.elem_dpower) : 0.0;
+  if (!m_.fem.any_stiffness_damping) return 0.0;
+  if (m_.elem_owned.empty()) return deterministic_sum(m_.fem.elem_dpower);
+  std::vector<Real> own(m_.fem.elem_dpower);  // distributed: each element counted by its owner
+  for (std::size_t k = 0; k < own.size(); ++k)
+    if (!m_.elem_owned[k]) own[k] = 0;
+  return deterministic_sum(own);
 }
 
 void Integrator::kick_nonnodal(Real h, Real t_target) {

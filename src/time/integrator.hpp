@@ -55,6 +55,11 @@ class Integrator {
   const std::vector<Real>& reaction() const { return reaction_; }
   /// Energy ledger at the current state (sums in a fixed order: thread-count independent).
   Energy energy() const;
+  /// Distributed: the ghosts take their owners' positions and velocities now (collective;
+  /// the motion does not depend on it). One process: nothing.
+  void refresh_ghosts() {
+    if (dist_) dist_->exchange(x_.data(), v_.data());
+  }
   /// Throws NumericalError when KE + IE exceeds factor x (E0 + |W_ext| + D) + floor.
   void check_energy(Real factor) const;
   /// Value of a monitor at the current state.

@@ -226,3 +226,18 @@ TEST(Mpi, UnsupportedFeaturesAndCommandsAreRefusedByName) {
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("only `dspdem run` runs on several processes"), std::string::npos) << r.out;
 }
+
+// Hard case: an unstable step blows the bar up. Whichever process sees it first (a node's
+// non-finite position is seen by its owner only), every process must end, with the failure
+// named and a non-zero exit, not wait for the others for ever.
+TEST(Mpi, ANumericalFailureOnOneProcessEndsThemAll) {
+  const auto r = shell(fmt::format(
+      "timeout 300 {}{} -t 1 run {} --set time.dt=1.2e-7 --set time.allow_unstable=true --set time.end=2e-4 "
+      "--no-progress --out {}",
+      mpirun(2), DSPDEM_BIN, kCase, (work() / "unstable").string()));
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.code, 124) << "timed out: a process waited for ever\n" << r.out;
+  EXPECT_NE(r.out.find("numerical failure"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("of 2; frames so far in"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(work() / "unstable" / "summary.json"));
+}
