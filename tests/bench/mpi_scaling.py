@@ -4,14 +4,14 @@
 The scene: the Galvez beam (cases/galvez_beam.toml) with joints on every face
 (bodies.0.fracture = "all") and contact off, the two features a distributed run does not yet
 have. Its element count is set by the crack band's element size. Each configuration runs
-twice, for S and 2S steps, and the cost of a step is the difference over S: meshing, model
-building and the partition drop out. Per run the log line of the partition gives the own
+for S and 2S steps, and the cost of a step is the difference over S, the median of a few
+repeats: meshing, model building and the partition drop out. Per run the log line of the partition gives the own
 elements, ghost nodes and messages per step of each process.
 
   strong: the same beam on 1 process and on P processes (-t 1 each);
   weak:   a beam of about P times the elements on P processes, against the base on 1.
 
-  tests/bench/mpi_scaling.py [--bin build/dspdem] [--procs 2] [--band 0.012] [--steps 1500]
+  tests/bench/mpi_scaling.py [--bin build/dspdem] [--procs 2] [--band 0.012] [--steps 2000] [--repeats 3]
   tests/bench/mpi_scaling.py --project [--cost 1.52e-7] [--ghost-k 7] ...   (no runs: the model)
 
 Prints a Markdown table on stdout. Run it on a quiet box with one process per core.
@@ -26,6 +26,7 @@ import json
 import math
 import os
 import re
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -52,11 +53,17 @@ def run(binary, procs, band, steps, out):
     return s, part
 
 
-def cost(binary, procs, band, steps, tmp):
-    a, part = run(binary, procs, band, steps, Path(tmp) / f"p{procs}_{band}_a")
-    b, _ = run(binary, procs, band, 2 * steps, Path(tmp) / f"p{procs}_{band}_b")
-    return {"ms": 1e3 * (b["wall_s"] - a["wall_s"]) / steps, "elements": a["elements"], "joints": a["joints"],
-            "nodes": a["nodes"], "part": part}
+def cost(binary, procs, band, steps, tmp, repeats):
+    # The run's wall time includes meshing (or reading the mesh cache) and the set-up, which
+    # vary: the median over repeats of the difference of two lengths is the step's cost.
+    run(binary, procs, band, 1, Path(tmp) / f"p{procs}_{band}_warm")  # mesh cached before timing
+    diffs = []
+    for i in range(repeats):
+        a, part = run(binary, procs, band, steps, Path(tmp) / f"p{procs}_{band}_a{i}")
+        b, _ = run(binary, procs, band, 2 * steps, Path(tmp) / f"p{procs}_{band}_b{i}")
+        diffs.append(1e3 * (b["wall_s"] - a["wall_s"]) / steps)
+    return {"ms": statistics.median(diffs), "spread": (min(diffs), max(diffs)), "elements": a["elements"],
+            "joints": a["joints"], "nodes": a["nodes"], "part": part}
 
 
 def step_time(n, P, a):
@@ -105,25 +112,27 @@ def main():
     ap.add_argument("--bin", default=str(ROOT / "build/dspdem"))
     ap.add_argument("--procs", type=int, default=2)
     ap.add_argument("--band", type=float, default=0.012, help="element size of the strong-scaling beam [m]")
-    ap.add_argument("--steps", type=int, default=1500)
+    ap.add_argument("--steps", type=int, default=2000)
+    ap.add_argument("--repeats", type=int, default=3)
     a = ap.parse_args()
     if a.project:
         return project(a)
     P = a.procs
     weak_band = a.band / P ** (1 / 3)  # about P times the elements
     with tempfile.TemporaryDirectory(prefix="dspdem_mpi_scaling_") as tmp:
-        one = cost(a.bin, 1, a.band, a.steps, tmp)
-        many = cost(a.bin, P, a.band, a.steps, tmp)
-        weak = cost(a.bin, P, weak_band, a.steps, tmp)
+        one = cost(a.bin, 1, a.band, a.steps, tmp, a.repeats)
+        many = cost(a.bin, P, a.band, a.steps, tmp, a.repeats)
+        weak = cost(a.bin, P, weak_band, a.steps, tmp, a.repeats)
     print(f"Galvez beam, joints everywhere, contact off; cost of a step from runs of {a.steps} and "
-          f"{2 * a.steps} steps (set-up excluded); -t 1 per process.\n")
-    print("| run | processes | elements | joints | nodes | ms/step | element-steps/s per process | "
+          f"{2 * a.steps} steps (set-up excluded), median of {a.repeats}; -t 1 per process.\n")
+    print("| run | processes | elements | joints | nodes | ms/step (min-max) | element-steps/s per process | "
           "own elements per process | ghost nodes per process | messages sent per step |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name, p, r in [("base", 1, one), ("strong", P, many), ("weak", P, weak)]:
         part = r["part"] or {"elements": [r["elements"]], "ghosts": [0], "messages": [0]}
         rate = r["elements"] / p / (r["ms"] * 1e-3)
-        print(f"| {name} | {p} | {r['elements']} | {r['joints']} | {r['nodes']} | {r['ms']:.3f} | {rate:.3g} | "
+        print(f"| {name} | {p} | {r['elements']} | {r['joints']} | {r['nodes']} | {r['ms']:.3f} "
+              f"({r['spread'][0]:.3f}-{r['spread'][1]:.3f}) | {rate:.3g} | "
               f"{'/'.join(map(str, part['elements']))} | {'/'.join(map(str, part['ghosts']))} | "
               f"{'/'.join(map(str, part['messages']))} |")
     print(f"\nstrong: speed-up {one['ms'] / many['ms']:.2f} on {P} processes (efficiency "
