@@ -159,7 +159,7 @@ int run_main(int argc, char** argv) {
     return code == 0 ? 0 : 1;      // README: 1 is a command-line error, whatever CLI11 calls it
   }
   log::set_level(quiet ? log::Level::Quiet : verbose ? log::Level::Debug : log::Level::Info);
-  if (par::rank() > 0) log::set_level(log::Level::Quiet);  // one log per run: process 0's
+  if (par::rank() > 0) log::set_level(log::Level::Quiet), log::set_warnings(false);  // one log: process 0's
 #ifdef _OPENMP
   if (threads > 0) omp_set_num_threads(threads);
 #endif
@@ -236,7 +236,7 @@ int run_main(int argc, char** argv) {
       opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;
       const bool in_ci = std::getenv("CI") != nullptr;
-      opt.progress = !no_progress && (progress || (isatty(STDERR_FILENO) && !in_ci && !quiet));
+      opt.progress = !no_progress && (progress || (isatty(STDERR_FILENO) && !in_ci && !quiet)) && par::rank() == 0;
       return run_case(c, opt);
     }
   } catch (const Interrupted& e) {

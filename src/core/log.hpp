@@ -21,10 +21,14 @@ void debug(fmt::format_string<Args...> f, Args&&... args) {
   if (level() >= Level::Debug) fmt::print(stderr, "{}\n", fmt::format(f, std::forward<Args>(args)...));
 }
 
-/// Warnings are always printed: they say something the user should act on.
+/// Off on the processes of a distributed run other than the first, which all say the same.
+bool warnings();
+void set_warnings(bool on);
+
+/// Warnings are printed at every level: they say something the user should act on.
 template <typename... Args>
 void warn(fmt::format_string<Args...> f, Args&&... args) {
-  fmt::print(stderr, "warning: {}\n", fmt::format(f, std::forward<Args>(args)...));
+  if (warnings()) fmt::print(stderr, "warning: {}\n", fmt::format(f, std::forward<Args>(args)...));
 }
 
 }  // namespace dspdem::log

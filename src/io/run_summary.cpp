@@ -60,6 +60,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   j["t_end"] = num(s.t_end);
   j["wall_s"] = num(s.wall_s);
   j["threads"] = s.threads;
+  j["processes"] = s.processes;
   j["nodes"] = s.nodes;
   j["elements"] = s.elements;
   j["frames"] = s.frames;
@@ -98,6 +99,7 @@ RunSummary read_run_summary(const std::string& path) {
   get(j, "t_end", s.t_end, path);
   get(j, "wall_s", s.wall_s, path);
   get(j, "threads", s.threads, path);
+  if (j.contains("processes")) get(j, "processes", s.processes, path);  // not in older run folders
   get(j, "nodes", s.nodes, path);
   get(j, "elements", s.elements, path);
   get(j, "frames", s.frames, path);

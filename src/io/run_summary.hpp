@@ -27,6 +27,7 @@ struct RunSummary {
   long dt_limiting_element = 0;
   double t_end = 0, wall_s = 0;
   int threads = 1;
+  int processes = 1;  ///< MPI processes of a distributed run (mpirun -n)
   long nodes = 0, elements = 0, frames = 0, joints = 0, broken_joints = 0;
   double joint_added_compliance = 0, crack_area = 0;
   long fragments = 0;

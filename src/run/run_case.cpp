@@ -428,6 +428,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     s.steps = it.steps(), s.dt = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
     s.dt_limiting_element = static_cast<long>(lim_tag);
     s.t_end = it.time(), s.wall_s = ls.wall_before + wall.seconds(), s.threads = omp_get_max_threads();
+    s.processes = n_ranks;
     s.nodes = whole_nodes, s.elements = whole_elements, s.frames = static_cast<long>(frames.size());
     s.joints = whole_joints, s.joint_added_compliance = joint_compliance;
     s.broken_joints = e.broken_joints, s.crack_area = e.crack_area;

@@ -22,6 +22,7 @@
 #include <map>
 #include <sstream>
 
+#include "io/run_summary.hpp"
 #include "support/cli.hpp"
 
 namespace fs = std::filesystem;
@@ -113,6 +114,8 @@ void compare_with_one_process(int n) {
   const fs::path& one = run_dir(0);
   const fs::path& many = run_dir(n);
   ASSERT_TRUE(fs::exists(many / "summary.json")) << "no distributed run in " << many;
+  EXPECT_EQ(dspdem::read_run_summary((many / "summary.json").string()).processes, n);
+  EXPECT_EQ(dspdem::read_run_summary((one / "summary.json").string()).processes, 1);
 
   const Series a = read_series(one / "series.csv"), b = read_series(many / "series.csv");
   ASSERT_EQ(a.names, b.names);
