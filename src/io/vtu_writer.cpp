@@ -42,6 +42,19 @@ namespace {
 // _<piece>.vtu) and piece 0 the .pvtu, which lists them all (collective: VTK's MPI controller
 // tells piece 0 which pieces were written); the staging folder keeps a run's half-written
 // frame from replacing a whole one.
+template <class Writer>
+bool write_appended(Writer& w, vtkUnstructuredGrid* grid, const std::string& path, bool compress) {
+  w.SetFileName(path.c_str());
+  w.SetInputData(grid);
+  w.SetDataModeToAppended();
+  w.EncodeAppendedDataOff();
+  if (compress)
+    w.SetCompressorTypeToZLib();
+  else
+    w.SetCompressorTypeToNone();
+  return w.Write() == 1;
+}
+
 void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compress, int piece = 0, int pieces = 1) {
   if (pieces > 1) {
     vtkNew<vtkXMLPUnstructuredGridWriter> w;
@@ -55,32 +68,16 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& path, bool compres
 #else
     fail("internal: a frame in {} pieces from a build without MPI", pieces);
 #endif
-    w->SetFileName(path.c_str());
-    w->SetInputData(grid);
     w->SetNumberOfPieces(pieces);
     w->SetStartPiece(piece);
     w->SetEndPiece(piece);
     w->SetWriteSummaryFile(1);  // on every process: collective, and only process 0 writes it
-    w->SetDataModeToAppended();
-    w->EncodeAppendedDataOff();
-    if (compress)
-      w->SetCompressorTypeToZLib();
-    else
-      w->SetCompressorTypeToNone();
-    DSPDEM_CHECK(w->Write() == 1, "could not write piece {} of '{}'", piece, path);
+    DSPDEM_CHECK(write_appended(*w, grid, path, compress), "could not write piece {} of '{}'", piece, path);
     return;
   }
   const std::string tmp = path + ".tmp.vtu";
   vtkNew<vtkXMLUnstructuredGridWriter> w;
-  w->SetFileName(tmp.c_str());
-  w->SetInputData(grid);
-  w->SetDataModeToAppended();
-  w->EncodeAppendedDataOff();
-  if (compress)
-    w->SetCompressorTypeToZLib();
-  else
-    w->SetCompressorTypeToNone();
-  DSPDEM_CHECK(w->Write() == 1, "could not write '{}'", tmp);
+  DSPDEM_CHECK(write_appended(*w, grid, tmp, compress), "could not write '{}'", tmp);
   std::filesystem::rename(tmp, path);
 }
 

@@ -16,7 +16,6 @@ DistributedFragments find_fragments(const Model& m, MpiHalo& halo, const std::ve
   const Index ne = m.mesh.n_elements();
   for (;;) {
     halo.min_over_copies(label);
-    ++out.rounds;
     std::unordered_map<Index, Index> least;  // local piece -> smallest label of its elements
     for (Index e = 0; e < ne; ++e) {
       auto [it, fresh] = least.emplace(local.id[e], label[e]);

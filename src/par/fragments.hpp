@@ -15,7 +15,6 @@ namespace dspdem::par {
 struct DistributedFragments {
   joint::Fragments fr;                    ///< id per local element; count and masses whole
   std::vector<joint::FragmentInfo> info;  ///< whole, largest first, the same on every process
-  int rounds = 0;                         ///< label exchanges until nothing changed
 };
 
 /// Collective. `m` is the share (owned masks set), `elem_mass` per local element, `x` the

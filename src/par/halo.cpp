@@ -61,20 +61,15 @@ MpiHalo::MpiHalo(const Subdomain& sd) {
     }
   }
   const Index own = sd.local.owned_nodes;
-  // Ghosts by owner: what this process receives, in global order (they are numbered so).
+  // Nodes: the ghosts by owner (numbered in global order), and the own ones others hold.
+  std::map<int, std::vector<long>> mine;
   std::map<int, std::vector<Index>> from;
-  for (std::size_t k = 0; k < sd.ghost_owner.size(); ++k)
-    from[sd.ghost_owner[k]].push_back(own + static_cast<Index>(k));
-  std::vector<int> ask(static_cast<std::size_t>(size_), 0), asked(static_cast<std::size_t>(size_), 0);
-  for (auto& [p, nodes] : from) ask[p] = static_cast<int>(nodes.size());
-  MPI_Alltoall(ask.data(), 1, MPI_INT, asked.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  std::vector<int> sdisp(size_ + 1, 0), rdisp(size_ + 1, 0);
-  for (int p = 0; p < size_; ++p) sdisp[p + 1] = sdisp[p] + ask[p], rdisp[p + 1] = rdisp[p] + asked[p];
-  std::vector<long> want(static_cast<std::size_t>(sdisp[size_])), wanted(static_cast<std::size_t>(rdisp[size_]));
-  for (auto& [p, nodes] : from)
-    for (std::size_t k = 0; k < nodes.size(); ++k) want[sdisp[p] + k] = static_cast<long>(sd.node_global[nodes[k]]);
-  MPI_Alltoallv(want.data(), ask.data(), sdisp.data(), MPI_LONG, wanted.data(), asked.data(), rdisp.data(), MPI_LONG,
-                MPI_COMM_WORLD);
+  for (std::size_t k = 0; k < sd.ghost_owner.size(); ++k) {
+    const Index l = own + static_cast<Index>(k);
+    mine[sd.ghost_owner[k]].push_back(static_cast<long>(sd.node_global[l]));
+    from[sd.ghost_owner[k]].push_back(l);
+  }
+  const auto theirs = ask_owners(mine, size_);
   // Global -> local for the own nodes (numbered first, in global order: a binary search).
   auto local_of = [&](long gn) {
     const auto b = sd.node_global.begin(), e = b + own;
@@ -83,18 +78,17 @@ MpiHalo::MpiHalo(const Subdomain& sd) {
     return static_cast<Index>(it - b);
   };
   for (int p = 0; p < size_; ++p) {
-    if (asked[p] > 0) {
+    if (!theirs[p].empty()) {
       Link l{p, {}, {}};
-      for (int k = rdisp[p]; k < rdisp[p + 1]; ++k) l.nodes.push_back(local_of(wanted[k]));
+      for (long gn : theirs[p]) l.nodes.push_back(local_of(gn));
       l.buf.resize(6 * l.nodes.size());
       send_.push_back(std::move(l));
     }
-    if (ask[p] > 0) {
+    if (from.count(p)) {
       Link l{p, from[p], {}};
       l.buf.resize(6 * l.nodes.size());
       recv_.push_back(std::move(l));
     }
-    if (asked[p] > 0 || ask[p] > 0) neighbours_.push_back(p);
   }
 }
 
@@ -172,12 +166,6 @@ void MpiHalo::min_over_copies(std::vector<Index>& value) {
   MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
   for (ElemLink& l : elem_ghost_)
     for (std::size_t k = 0; k < l.elems.size(); ++k) value[l.elems[k]] = static_cast<Index>(l.buf[k]);
-}
-
-long MpiHalo::values_sent_per_exchange() const {
-  long s = 0;
-  for (const Link& l : send_) s += static_cast<long>(l.buf.size());
-  return s;
 }
 
 long MpiHalo::ghosts() const {

@@ -25,11 +25,9 @@ class MpiHalo final : public Distribution {
   int rank() const override { return rank_; }
   int size() const override { return size_; }
 
-  /// Per exchange: messages this process sends, and the values they carry.
+  /// Per exchange: messages this process sends; its ghost nodes (6 values each come in).
   long messages_per_exchange() const { return static_cast<long>(send_.size()); }
-  long values_sent_per_exchange() const;
   long ghosts() const;
-  const std::vector<int>& neighbours() const { return neighbours_; }
 
  private:
   struct Link {
@@ -45,7 +43,6 @@ class MpiHalo final : public Distribution {
   int rank_ = 0, size_ = 1;
   std::vector<Link> send_, recv_;
   std::vector<ElemLink> elem_own_, elem_ghost_;  ///< own elements others hold; ghosts by owner
-  std::vector<int> neighbours_;
 };
 
 }  // namespace dspdem::par

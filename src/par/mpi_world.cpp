@@ -35,8 +35,6 @@ void finalize() {
   g_started = false;
 }
 
-bool active() { return g_started; }
-
 int rank() {
   if (!g_started) return 0;
   int r = 0;
@@ -83,7 +81,6 @@ void init(int*, char***) {
   }
 }
 void finalize() {}
-bool active() { return false; }
 int rank() { return 0; }
 int size() { return 1; }
 void barrier() {}

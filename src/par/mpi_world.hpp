@@ -15,8 +15,6 @@ bool launched_by_mpi();
 void init(int* argc, char*** argv);
 /// Ends MPI if init started it.
 void finalize();
-/// Whether MPI is running (init started it).
-bool active();
 int rank();
 int size();
 void barrier();

@@ -117,12 +117,19 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
 }
 
 Real Integrator::element_dpower() const {
-  if (!m_.fem.any_stiffness_damping) return 0.0;
-  if (m_.elem_owned.empty()) return deterministic_sum(m_.fem.elem_dpower);
-  std::vector<Real> own(m_.fem.elem_dpower);  // distributed: each element counted by its owner
-  for (std::size_t k = 0; k < own.size(); ++k)
-    if (!m_.elem_owned[k]) own[k] = 0;
-  return deterministic_sum(own);
+  return m_.fem.any_stiffness_damping ? own_elements_sum(m_.fem.elem_dpower) : 0.0;
+}
+
+// Distributed: each element counted by the process that owns it (the mask), in fixed chunks.
+Real Integrator::own_elements_sum(const std::vector<Real>& a) const {
+  if (m_.elem_owned.empty()) return deterministic_sum(a);
+  const char* own = m_.elem_owned.data();
+  return chunked_sums<1>(a.size(), [&](std::size_t b, std::size_t e) {
+    Real s = 0;
+    for (std::size_t i = b; i < e; ++i)
+      if (own[i]) s += a[i];
+    return std::array<Real, 1>{s};
+  })[0];
 }
 
 void Integrator::kick_nonnodal(Real h, Real t_target) {
@@ -358,14 +365,7 @@ Energy Integrator::energy() const {
     ke[i] = 0.5 * m_.fem.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
   e.kinetic = deterministic_sum(ke);
-  if (m_.elem_owned.empty()) {
-    e.internal = deterministic_sum(m_.fem.elem_energy);
-  } else {
-    std::vector<Real> own(m_.fem.elem_energy);
-    for (std::size_t k = 0; k < own.size(); ++k)
-      if (!m_.elem_owned[k]) own[k] = 0;
-    e.internal = deterministic_sum(own);
-  }
+  e.internal = own_elements_sum(m_.fem.elem_energy);
   e.external_work = w_ext_;
   e.peak_work = w_peak_;
   e.damping = damp_;

@@ -111,9 +111,10 @@ class Integrator {
   /// Damping and external force of one dof at velocity vk: adds to the damping power dp,
   /// returns the external force.
   Real nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) const;
-  Real element_dpower() const;                ///< stiffness-damping power of the elements [W]
-  void kick_nodes(Real h);                    ///< v += h f / m at every node
-  void kick_nonnodal(Real h, Real t_target);  ///< constraints, rigid bodies, walls
+  Real element_dpower() const;                              ///< stiffness-damping power of the elements [W]
+  Real own_elements_sum(const std::vector<Real>& a) const;  ///< per-element values, own elements only
+  void kick_nodes(Real h);                                  ///< v += h f / m at every node
+  void kick_nonnodal(Real h, Real t_target);                ///< constraints, rigid bodies, walls
   [[noreturn]] void non_finite_state() const;
   [[noreturn]] void contact_crossed() const;  ///< throws the diagnosis of a too-deep contact
   /// average: give each group its copies' mean velocity (momentum kept), at the start.
