@@ -240,7 +240,7 @@ int run_main(int argc, char** argv) {
       return run_case(c, opt);
     }
   } catch (const Interrupted& e) {
-    fmt::print(stderr, "stopped by a signal: {}\n", e.what());
+    if (par::rank() == 0) fmt::print(stderr, "stopped by a signal: {}\n", e.what());
     return kExitInterrupted;
   } catch (const NumericalError& e) {
     fmt::print(stderr, "error: numerical failure: {}\n", e.what());
@@ -260,11 +260,15 @@ int run_main(int argc, char** argv) {
 }  // namespace
 
 // Under mpirun each process runs the same command on its share (par/); a failure on one ends
-// them all, since the others would wait for it at the next exchange.
+// them all, since the others would wait for it at the next exchange. An interruption is
+// agreed by all at the same step (run_case), so they end together and normally.
 int main(int argc, char** argv) {
   par::init(&argc, &argv);
   const int code = run_main(argc, argv);
-  if (code != 0 && par::size() > 1) par::abort(code);
+  if (code != 0 && code != kExitInterrupted && par::size() > 1) par::abort(code);
+  // mpirun ends the job as soon as one process exits non-zero: none leaves before process 0
+  // has moved the interrupted run's folder into place.
+  if (code == kExitInterrupted) par::barrier();
   par::finalize();
   return code;
 }

@@ -93,6 +93,14 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   skel_slot_.assign(ne, -1);
   slots_from_map();
   totals_ = {};
+  ex_ = nullptr;
+  n_local_nodes_ = own_nodes_ = mesh.n_nodes();
+  share_elems_ = global_elems_ = ne;
+  skel_w_share_ = skel_w_.size();
+  gid_.resize(ne);
+  for (Index e = 0; e < ne; ++e) gid_[e] = e;
+  owner_.assign(ne, 0);
+  active_.assign(ne, 1);
 }
 
 Poly ContactSystem::skeleton_poly(Index e, const Real* x) const {
@@ -102,7 +110,7 @@ Poly ContactSystem::skeleton_poly(Index e, const Real* x) const {
   const Real* w = &skel_w_[skel_off_[e]];
   for (int k = 0; k < el.npe; ++k) {
     Vec3 s = Vec3::Zero();
-    for (int j = 0; j < el.npe; ++j) s += w[k * el.npe + j] * node_pos_ptr(x, el.conn[j]);
+    for (int j = 0; j < el.npe; ++j) s += w[k * el.npe + j] * pos(x, xl_, el.conn[j]);
     p.v[k] = s;
   }
   return p;
@@ -136,30 +144,46 @@ bool ContactSystem::needs_rebuild(const joint::JointSet& js, const Real* x) cons
   return false;
 }
 
+// By global element number: a distributed run's lent elements are numbered anew at each
+// rebuild (a one-process run's global numbers are its own).
 std::vector<PairKey> ContactSystem::pair_keys() const {
-  const Index ne = static_cast<Index>(elems_.size());
-  std::vector<PairKey> k(pairs_.begin(), pairs_.end());
-  for (auto [w, e] : wall_pairs_) k.emplace_back(ne + w, e);
+  std::vector<PairKey> k;
+  k.reserve(pairs_.size() + wall_pairs_.size());
+  for (auto [ea, eb] : pairs_) k.emplace_back(gid_[ea], gid_[eb]);
+  for (auto [w, e] : wall_pairs_) k.emplace_back(global_elems_ + w, gid_[e]);
   return k;
 }
 
-void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x) {
-  const Index ne = static_cast<Index>(elems_.size());
+void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v) {
+  const Index ne = share_elems_;
   const std::vector<PairKey> old_keys = pair_keys();
-  const std::vector<PairKey> old_elem_keys(pairs_.begin(), pairs_.end());
+  const std::vector<PairKey> old_elem_keys(old_keys.begin(), old_keys.begin() + pairs_.size());
+  // The lent elements of the last build go; this build lends its own.
+  for (auto* a : {&radius_, &kn_, &elem_node_mass_}) a->resize(ne);
+  for (auto* a : {&elem_material_, &skel_off_, &outer_faces_, &gid_, &fragment_prev_})
+    a->resize(std::min<std::size_t>(a->size(), ne));
+  elems_.resize(ne), owner_.resize(ne), skel_w_.resize(skel_w_share_);
   surface_.assign(ne, 0);
   for (Index e = 0; e < ne; ++e) surface_[e] = outer_faces_[e] > 0 && skel_off_[e] >= 0;
   for (Index j : js.failed) {
     if (skel_off_[js.ea[j]] >= 0) surface_[js.ea[j]] = 1;
     if (skel_off_[js.eb[j]] >= 0) surface_[js.eb[j]] = 1;
   }
-  fragment_ = joint::find_fragments(mesh, js, std::vector<Real>(ne, 0.0)).id;
+  if (ex_) {
+    // An element's joints are not all on every process that holds it; one of them has each.
+    std::vector<Index> flag(surface_.begin(), surface_.end());
+    ex_->max_over_copies(flag);
+    for (Index e = 0; e < ne; ++e) surface_[e] = static_cast<char>(flag[e]);
+    fragment_ = ex_->fragment_ids(mesh, js);
+  } else {
+    fragment_ = joint::find_fragments(mesh, js, std::vector<Real>(ne, 0.0)).id;
+  }
   // A broken joint between two pieces would keep acting on faces that have moved apart and
   // turned (its "opening" then means nothing and its penalty can throw them back hard):
   // once the pieces are separate fragments, contact alone carries them.
   for (Index j : js.failed)
     if (!js.released[j] && fragment_[js.ea[j]] != fragment_[js.eb[j]]) {
-      js.released_energy += joint::joint_elastic_energy(js, j);
+      if (joint_owned_.empty() || joint_owned_[j]) js.released_energy += joint::joint_elastic_energy(js, j);
       js.released[j] = 1;
     }
   surface_list_.clear();
@@ -180,12 +204,44 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
     group[i] = fragment_[e];
   }
   PairList local;
-  grid_.find(boxes, local, &group);
   pairs_.clear();
-  for (auto [i, j] : local) pairs_.emplace_back(surface_list_[i], surface_list_[j]);
+  if (!ex_) {
+    grid_.find(boxes, local, &group);
+    for (auto [i, j] : local) pairs_.emplace_back(surface_list_[i], surface_list_[j]);
+  } else {
+    // The share's surface elements and the lent ones, merged in global order (so the pairs
+    // come out in the one-process order); kept: pairs with an element whose pairs this
+    // process evaluates.
+    borrow(boxes);
+    fetch_lent_nodes(x, v);
+    std::vector<Index> all;
+    Boxes ab;
+    std::size_t i = 0;
+    Index l = share_elems_;
+    const Index nl = static_cast<Index>(elems_.size());
+    auto take = [&](const Boxes& b, std::size_t k, Index e) {
+      ab.lo.insert(ab.lo.end(), &b.lo[3 * k], &b.lo[3 * k] + 3);
+      ab.hi.insert(ab.hi.end(), &b.hi[3 * k], &b.hi[3 * k] + 3);
+      all.push_back(e);
+    };
+    while (i < surface_list_.size() || l < nl) {
+      if (l >= nl || (i < surface_list_.size() && gid_[surface_list_[i]] < gid_[l]))
+        take(boxes, i, surface_list_[i]), ++i;
+      else
+        take(lent_boxes_, static_cast<std::size_t>(l - share_elems_), l), ++l;
+    }
+    group.resize(all.size());
+    for (std::size_t k = 0; k < all.size(); ++k) group[k] = fragment_[all[k]];
+    grid_.find(ab, local, &group);
+    auto mine = [&](Index e) { return e < share_elems_ && active_[e]; };
+    for (auto [a, b] : local)
+      if (mine(all[a]) || mine(all[b])) pairs_.emplace_back(all[a], all[b]);
+  }
   // Offsets of pairs born overlapping at a split: old ones kept while the pair stays a
   // candidate (-1 marks the new pairs), new ones measured now.
-  born_offset_ = remap_values(born_offset_, old_elem_keys, pairs_, -1.0);
+  const std::vector<PairKey> keys = pair_keys();
+  born_offset_ =
+      remap_values(born_offset_, old_elem_keys, std::vector<PairKey>(keys.begin(), keys.begin() + pairs_.size()), -1.0);
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     if (born_offset_[p] >= 0) continue;
     born_offset_[p] = 0;
@@ -199,7 +255,8 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   }
   if (!built_) refuse_crossed_skeletons(x);
   fragment_prev_ = fragment_;
-  // Walls: linear in the number of surface elements per wall.
+  // Walls: linear in the number of surface elements per wall (distributed: those whose
+  // pairs this process evaluates).
   wall_pairs_.clear();
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const Wall& wl = walls_[w];
@@ -216,6 +273,7 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
     }
     const Vec3 n = wl.plane_normal();
     for (Index i = 0; i < ns; ++i) {
+      if (!active_[surface_list_[i]]) continue;
       const Vec3 lo(boxes.lo[3 * i], boxes.lo[3 * i + 1], boxes.lo[3 * i + 2]);
       const Vec3 hi(boxes.hi[3 * i], boxes.hi[3 * i + 1], boxes.hi[3 * i + 2]);
       bool hit;
@@ -248,11 +306,12 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   wall_build_.clear(), wall_q_build_.clear();
   for (const Wall& wl : walls_) wall_build_.push_back(wl.centre), wall_q_build_.push_back(wl.q);
   history_ = remap_history(history_, old_keys, pair_keys());
-  skel_slot_.assign(ne, -1);
+  const Index nall = static_cast<Index>(elems_.size());
+  skel_slot_.assign(nall, -1);
   for (auto [ea, eb] : pairs_) skel_slot_[ea] = skel_slot_[eb] = 0;
   for (auto [w, e] : wall_pairs_) skel_slot_[e] = 0;
   Index slots = 0;
-  for (Index e = 0; e < ne; ++e)
+  for (Index e = 0; e < nall; ++e)
     if (skel_slot_[e] >= 0) skel_slot_[e] = slots++;
   slots_from_map();
   failed_seen_ = js.failed.size();
@@ -347,10 +406,10 @@ bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, cons
   auto spread = [&](Index e, Real* N, const Real* near) {
     const Elem& el = elems_[e];
     Vec3 xe[8];
-    for (int i = 0; i < el.npe; ++i) xe[i] = node_pos_ptr(x, el.conn[i]);
+    for (int i = 0; i < el.npe; ++i) xe[i] = pos(x, xl_, el.conn[i]);
     shape_at(el.type, xe, c, N, near);
     Vec3 vel = Vec3::Zero();
-    for (int i = 0; i < el.npe; ++i) vel += N[i] * node_pos_ptr(v, el.conn[i]);
+    for (int i = 0; i < el.npe; ++i) vel += N[i] * pos(v, vl_, el.conn[i]);
     return vel;
   };
   const Vec3 va = spread(ea, o.Na, o.Wa);
@@ -361,7 +420,7 @@ bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, cons
   auto velocity_w = [&](Index e, const Real* W) {
     const Elem& el = elems_[e];
     Vec3 vel = Vec3::Zero();
-    for (int i = 0; i < el.npe; ++i) vel += W[i] * node_pos_ptr(v, el.conn[i]);
+    for (int i = 0; i < el.npe; ++i) vel += W[i] * pos(v, vl_, el.conn[i]);
     return vel;
   };
   const Vec3 vn_rel = velocity_w(ea, o.Wa) - (wall ? wall->velocity_at(t.pb) : velocity_w(eb, o.Wb));
@@ -389,10 +448,13 @@ std::string ContactSystem::deepest_contact() const {
 
 void ContactSystem::gather(const TouchOut& o, Real* f) {
   history_next_.entry.push_back(o.hist);
-  elastic_ += o.elastic;
-  totals_.friction += o.slip_work;
-  ++totals_.contacts;
-  if (o.overlap_ratio > totals_.max_overlap) {
+  const bool counted = counts(o.ea);
+  if (counted) {
+    elastic_ += o.elastic;
+    totals_.friction += o.slip_work;
+    ++totals_.contacts;
+  }
+  if (counted && o.overlap_ratio > totals_.max_overlap) {
     totals_.max_overlap = o.overlap_ratio;
     totals_.deepest_a = elems_[o.ea].tag;
     totals_.deepest_b = o.eb < 0 ? 0 : elems_[o.eb].tag;
@@ -402,26 +464,38 @@ void ContactSystem::gather(const TouchOut& o, Real* f) {
   // the overlap energy (energy-conserving). Tangential force at the common point c with
   // the element's shape functions (eq. 16): equal, opposite and collinear, so angular
   // momentum is exact; friction dissipates anyway.
+  // Distributed: the lent elements' nodes are others' (what they get here is dropped).
+  const Index nloc = n_local_nodes_;
   const Elem& a = elems_[o.ea];
-  for (int i = 0; i < a.npe; ++i)
+  for (int i = 0; i < a.npe; ++i) {
+    if (a.conn[i] >= nloc) continue;
     for (int d = 0; d < 3; ++d) {
       f[3 * static_cast<std::size_t>(a.conn[i]) + d] += o.Wa[i] * o.fn(d) + o.Na[i] * o.ft(d);
       if (any_damping_)
         fdamp_[3 * static_cast<std::size_t>(a.conn[i]) + d] += o.Wa[i] * o.dmp_n(d) + o.Na[i] * o.dmp_t(d);
     }
+  }
   if (o.eb < 0) {
     Wall& w = walls_[-1 - o.eb];
-    w.force -= o.force;
-    w.torque -= (o.c - w.centre).cross(o.force);
+    const Vec3 torque = (o.c - w.centre).cross(o.force);
+    if (!ex_) {
+      w.force -= o.force;
+      w.torque -= torque;
+    } else if (counted) {  // added in order on every process (reduce_step)
+      wall_rec_.insert(wall_rec_.end(), {static_cast<Real>(-1 - o.eb), static_cast<Real>(gid_[o.ea]), o.force(0),
+                                         o.force(1), o.force(2), torque(0), torque(1), torque(2)});
+    }
     return;
   }
   const Elem& b = elems_[o.eb];
-  for (int i = 0; i < b.npe; ++i)
+  for (int i = 0; i < b.npe; ++i) {
+    if (b.conn[i] >= nloc) continue;
     for (int d = 0; d < 3; ++d) {
       f[3 * static_cast<std::size_t>(b.conn[i]) + d] -= o.Wb[i] * o.fn(d) + o.Nb[i] * o.ft(d);
       if (any_damping_)
         fdamp_[3 * static_cast<std::size_t>(b.conn[i]) + d] -= o.Wb[i] * o.dmp_n(d) + o.Nb[i] * o.dmp_t(d);
     }
+  }
 }
 
 void ContactSystem::slots_from_map() {
@@ -475,9 +549,16 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
 
 void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f) {
   if (!enabled_) return;
-  if (needs_rebuild(js, x)) rebuild(mesh, js, x);
+  DSPDEM_CHECK(ex_ || node_global_.empty(), "internal: a distributed run's contact share without its exchange");
+  bool again = needs_rebuild(js, x);
+  if (ex_) again = ex_->any(again);  // the one-process decision: any node, any joint, anywhere
+  if (again)
+    rebuild(mesh, js, x, v);
+  else if (ex_)
+    fetch_lent_nodes(x, v);
   cache_skeletons(x);
   elastic_ = 0;
+  wall_rec_.clear();
   const std::size_t nd = 3 * static_cast<std::size_t>(mesh.n_nodes());
   if (any_damping_) {
     std::swap(fdamp_, fdamp_prev_);
@@ -515,11 +596,14 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
     history_next_.offset[p + 1] = static_cast<Index>(history_next_.entry.size());
   }
   std::swap(history_, history_next_);
+  if (ex_) reduce_step();
   // Viscous dissipation over the drift just made (x moved by dt v): trapezoidal work of the
   // viscous forces of the last and this evaluation. Walls: their side is in wall_power.
+  // Distributed: over the own nodes, whose viscous forces are complete here.
   if (any_damping_ && dt > 0) {
     Real w = 0;
-    for (std::size_t k = 0; k < nd; ++k) w += (fdamp_prev_[k] + fdamp_[k]) * v[k];
+    const std::size_t nown = 3 * static_cast<std::size_t>(own_nodes_);
+    for (std::size_t k = 0; k < nown; ++k) w += (fdamp_prev_[k] + fdamp_[k]) * v[k];
     totals_.damping -= 0.5 * dt * w;
   }
   wall_power_ = 0;

@@ -13,11 +13,20 @@
 // touches are evaluated into records of its own, and the records are then added to the
 // nodes, walls, ledger and history in the fixed order of the pairs, one thread (the order
 // of a serial loop, so the sums do not depend on how the pairs were shared out).
+//
+// A distributed run (contact_share.cpp): each process evaluates every pair with an element
+// that it owns or that touches a node it owns, and adds the pairs in the same global order,
+// so its own nodes get the one-process run's terms in the one-process order. The partners it
+// lacks are lent to it at each rebuild by their owners (a broad phase on the processes'
+// bounding boxes), with their nodes' positions and velocities sent each step. Each pair's
+// energy and wall force is counted by the owner of its first element; the wall forces are
+// gathered and added in the one-process order on every process, so walls move alike.
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "contact/broad_phase.hpp"
+#include "contact/contact_exchange.hpp"
 #include "contact/contact_law.hpp"
 #include "contact/contact_params.hpp"
 #include "contact/narrow_phase.hpp"
@@ -55,6 +64,28 @@ class ContactSystem {
   void setup(const Mesh& mesh, const joint::JointSet& js, const std::vector<Index>& elem_material,
              const std::vector<ContactMaterial>& materials, const std::vector<Real>& elem_E,
              const std::vector<Real>& node_mass, std::vector<Wall> walls, const ContactSettings& s);
+
+  /// A distributed run's share: local node and element -> global, each local element's
+  /// process, how many nodes (numbered first) are this process's own, and which local
+  /// joints it owns (it books their released energy).
+  struct ShareMap {
+    std::vector<Index> node_global, elem_global;
+    std::vector<int> elem_owner;
+    Index own_nodes = 0;
+    std::vector<char> joint_owned;
+    int rank = 0;
+  };
+  /// This process's part of `whole` (set up on the whole model, not yet run): the data of
+  /// the share's elements, nodes renumbered. Contact then needs set_exchange before a step.
+  void take_share(const ContactSystem& whole, const ShareMap& map);
+  void set_exchange(ContactExchange* ex) { ex_ = ex; }
+  /// A distributed run's share of the contact work at the last rebuild: pairs evaluated
+  /// here and counted here, elements and nodes lent here; and the most elements lent here at
+  /// any rebuild so far (how the load moves with the pieces).
+  struct ShareLoad {
+    long evaluated = 0, counted = 0, lent_elements = 0, lent_nodes = 0, most_lent = 0;
+  };
+  ShareLoad share_load() const;
 
   /// Adds contact forces to f (3 x nodes) at positions x and velocities v; dt for the
   /// tangential increment. Updates the tangential history (call once per step). Broken
@@ -98,6 +129,13 @@ class ContactSystem {
     ar(surface_, surface_list_, fragment_, fragment_prev_, born_offset_, watch_, x_build_, wall_build_, wall_q_build_,
        failed_seen_, built_, pairs_, wall_pairs_, history_.offset, history_.entry, skel_slot_, totals_, elastic_,
        wall_power_, fdamp_, fdamp_prev_);
+    // A distributed run's share also keeps the elements lent at the last build, as they were
+    // numbered (the pairs name them), and who sends which of their nodes.
+    if (ex_) {
+      ar(elems_, elem_material_, radius_, kn_, elem_node_mass_, skel_off_, skel_w_, outer_faces_, gid_, owner_,
+         lent_nodes_, take_, lend_, lent_boxes_.lo, lent_boxes_.hi, most_lent_);
+      if (ar.loading()) lent_buffers();
+    }
     if (ar.loading()) slots_from_map();
   }
 
@@ -119,7 +157,7 @@ class ContactSystem {
     std::size_t tag;
   };
 
-  void rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x);
+  void rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v);
   bool needs_rebuild(const joint::JointSet& js, const Real* x) const;
   /// At the first build: Error if two pieces start with their skeletons crossed (a vertex
   /// of one inside the other), which no contact force can resolve.
@@ -134,6 +172,30 @@ class ContactSystem {
   void cache_skeletons(const Real* x);
   const Poly& cached(Index e) const { return skel_cache_[skel_slot_[e]]; }
   std::vector<PairKey> pair_keys() const;
+  /// Node n's three values in x (a local node) or in the lent nodes' `lent` array.
+  const Real* at(const Real* x, const std::vector<Real>& lent, Index n) const {
+    return n < n_local_nodes_ ? x + 3 * static_cast<std::size_t>(n)
+                              : lent.data() + 3 * static_cast<std::size_t>(n - n_local_nodes_);
+  }
+  Vec3 pos(const Real* x, const std::vector<Real>& lent, Index n) const {
+    const Real* p = at(x, lent, n);
+    return {p[0], p[1], p[2]};
+  }
+  /// Whether this process counts pair p's energy and wall force (the owner of its first
+  /// element; always on one process).
+  bool counts(Index ea) const { return !ex_ || owner_[ea] == rank_; }
+
+  // Distributed runs (contact_share.cpp).
+  /// Elements lent by other processes: the distributed broad phase. Boxes (3 x 2 per share
+  /// surface element, in surface_list_ order) of this process's surface elements.
+  void borrow(const Boxes& own_boxes);
+  /// Positions and velocities of the lent elements' nodes from their owners.
+  void fetch_lent_nodes(const Real* x, const Real* v);
+  /// The lent nodes' values and the messages sized from lent_nodes_, lend_ and take_.
+  void lent_buffers();
+  /// The counted wall forces, contacts and deepest overlap of all processes, added in the
+  /// one-process order on every process.
+  void reduce_step();
 
   bool enabled_ = false;
   ContactSettings settings_;
@@ -182,6 +244,28 @@ class ContactSystem {
   std::vector<Real> fdamp_, fdamp_prev_;
   bool any_damping_ = false;  ///< some material has contact damping (else the arrays stay empty)
   std::string setup_error_;
+
+  // Distributed runs: null ex_ is a one-process run, where every element and node is local.
+  ContactExchange* ex_ = nullptr;
+  int rank_ = 0;
+  Index n_local_nodes_ = 0;       ///< nodes [0, n_local_nodes_) are the share's; then the lent ones
+  Index own_nodes_ = 0;           ///< nodes [0, own_nodes_) are this process's own
+  Index share_elems_ = 0;         ///< elements [0, share_elems_) are the share's; then the lent ones
+  Index global_elems_ = 0;        ///< elements of the whole model (wall pairs' keys)
+  std::size_t skel_w_share_ = 0;  ///< skel_w_ entries of the share's elements
+  std::vector<Index> gid_;        ///< per element: global number (keys and order of pairs)
+  std::vector<int> owner_;        ///< per element: its process
+  std::vector<char> active_;      ///< per share element: own or touching an own node
+  std::vector<Index> node_global_;
+  std::vector<char> joint_owned_;
+  std::vector<Index> lent_nodes_;         ///< global numbers of the lent nodes
+  std::vector<Real> xl_, vl_;             ///< their positions and velocities (3 each)
+  std::vector<std::vector<Index>> lend_;  ///< per process: local nodes sent to it each step
+  std::vector<std::vector<Index>> take_;  ///< per process: lent nodes (index into lent_nodes_) it sends
+  Boxes lent_boxes_;                      ///< of the lent elements, in their order
+  long most_lent_ = 0;                    ///< the most elements lent here at a rebuild so far
+  std::vector<std::vector<Real>> out_, in_;
+  std::vector<Real> wall_rec_;  ///< this step's counted wall records: wall, element, force, torque
 };
 
 }  // namespace dspdem::contact

@@ -372,8 +372,9 @@ JointTotals joint_totals(const JointSet& js, const std::vector<char>& owned) {
     }
     if (js.status[j] == JointStatus::Broken) ++t.broken, t.broken_area += js.area0[j];
   }
-  // Joints are released by contact, which distributed runs do not have yet (run_case refuses).
-  if (owned.empty()) t.fracture_II += js.released_energy;
+  // Joints are released by contact; a distributed run books each one's energy on the
+  // process that owns it (contact::ContactSystem), so the shares add up.
+  t.fracture_II += js.released_energy;
   return t;
 }
 

@@ -4,32 +4,12 @@
 
 #include <algorithm>
 #include <map>
-#include <unordered_map>
 
 namespace dspdem::par {
 
 DistributedFragments find_fragments(const Model& m, MpiHalo& halo, const std::vector<Real>& elem_mass, const Real* x) {
   DistributedFragments out;
-  // Pieces of the share; each named by its smallest tag here, which also names it below.
-  const joint::Fragments local = joint::find_fragments(m.mesh, m.joints, elem_mass);
-  std::vector<Index> label = local.id;
-  const Index ne = m.mesh.n_elements();
-  for (;;) {
-    halo.min_over_copies(label);
-    std::unordered_map<Index, Index> least;  // local piece -> smallest label of its elements
-    for (Index e = 0; e < ne; ++e) {
-      auto [it, fresh] = least.emplace(local.id[e], label[e]);
-      if (!fresh) it->second = std::min(it->second, label[e]);
-    }
-    int changed = 0;
-    for (Index e = 0; e < ne; ++e) {
-      const Index l = least[local.id[e]];
-      if (l != label[e]) label[e] = l, changed = 1;
-    }
-    int any = 0;
-    MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    if (!any) break;
-  }
+  const std::vector<Index> label = halo.fragment_ids(m.mesh, m.joints);
   out.fr.id = label;
   // Each process sums its own elements per piece; the sums are gathered and added in rank
   // order on every process: id, mass, elements, mass-weighted centroid.

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <map>
+#include <unordered_map>
 
 #include "core/error.hpp"
+#include "joint/fragments.hpp"
 
 namespace dspdem::par {
 
@@ -166,6 +168,82 @@ void MpiHalo::min_over_copies(std::vector<Index>& value) {
   MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
   for (ElemLink& l : elem_ghost_)
     for (std::size_t k = 0; k < l.elems.size(); ++k) value[l.elems[k]] = static_cast<Index>(l.buf[k]);
+}
+
+bool MpiHalo::any(bool flag) {
+  int mine = flag ? 1 : 0, all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return all != 0;
+}
+
+std::vector<std::vector<Real>> MpiHalo::all_gather(const std::vector<Real>& mine) {
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size_)), disp(static_cast<std::size_t>(size_) + 1, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int p = 0; p < size_; ++p) disp[p + 1] = disp[p] + counts[p];
+  std::vector<Real> flat(static_cast<std::size_t>(disp[size_]));
+  MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, flat.data(), counts.data(), disp.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  std::vector<std::vector<Real>> out(static_cast<std::size_t>(size_));
+  for (int p = 0; p < size_; ++p) out[p].assign(flat.begin() + disp[p], flat.begin() + disp[p + 1]);
+  return out;
+}
+
+std::vector<std::vector<Real>> MpiHalo::all_to_all(const std::vector<std::vector<Real>>& out) {
+  std::vector<int> send(static_cast<std::size_t>(size_)), recv(static_cast<std::size_t>(size_));
+  for (int p = 0; p < size_; ++p) send[p] = static_cast<int>(out[p].size());
+  MPI_Alltoall(send.data(), 1, MPI_INT, recv.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> sdisp(size_ + 1, 0), rdisp(size_ + 1, 0);
+  for (int p = 0; p < size_; ++p) sdisp[p + 1] = sdisp[p] + send[p], rdisp[p + 1] = rdisp[p] + recv[p];
+  std::vector<Real> flat_out(static_cast<std::size_t>(sdisp[size_])), flat_in(static_cast<std::size_t>(rdisp[size_]));
+  for (int p = 0; p < size_; ++p) std::copy(out[p].begin(), out[p].end(), flat_out.begin() + sdisp[p]);
+  MPI_Alltoallv(flat_out.data(), send.data(), sdisp.data(), MPI_DOUBLE, flat_in.data(), recv.data(), rdisp.data(),
+                MPI_DOUBLE, MPI_COMM_WORLD);
+  std::vector<std::vector<Real>> in(static_cast<std::size_t>(size_));
+  for (int p = 0; p < size_; ++p) in[p].assign(flat_in.begin() + rdisp[p], flat_in.begin() + rdisp[p + 1]);
+  return in;
+}
+
+void MpiHalo::trade(const std::vector<std::vector<Real>>& out, std::vector<std::vector<Real>>& in) {
+  std::vector<MPI_Request> req;
+  for (int p = 0; p < size_; ++p)
+    if (!in[p].empty()) {
+      req.emplace_back();
+      MPI_Irecv(in[p].data(), static_cast<int>(in[p].size()), MPI_DOUBLE, p, 25, MPI_COMM_WORLD, &req.back());
+    }
+  for (int p = 0; p < size_; ++p)
+    if (!out[p].empty()) {
+      req.emplace_back();
+      MPI_Isend(out[p].data(), static_cast<int>(out[p].size()), MPI_DOUBLE, p, 25, MPI_COMM_WORLD, &req.back());
+    }
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+}
+
+void MpiHalo::max_over_copies(std::vector<Index>& value) {
+  for (Index& v : value) v = -v;
+  min_over_copies(value);
+  for (Index& v : value) v = -v;
+}
+
+std::vector<Index> MpiHalo::fragment_ids(const Mesh& mesh, const joint::JointSet& js) {
+  const Index ne = mesh.n_elements();
+  // Pieces of the share; each named by its smallest tag here, which also names it below.
+  const joint::Fragments local = joint::find_fragments(mesh, js, std::vector<Real>(ne, 0.0));
+  std::vector<Index> label = local.id;
+  for (;;) {
+    min_over_copies(label);
+    std::unordered_map<Index, Index> least;  // local piece -> smallest label of its elements
+    for (Index e = 0; e < ne; ++e) {
+      auto [it, fresh] = least.emplace(local.id[e], label[e]);
+      if (!fresh) it->second = std::min(it->second, label[e]);
+    }
+    bool changed = false;
+    for (Index e = 0; e < ne; ++e) {
+      const Index l = least[local.id[e]];
+      if (l != label[e]) label[e] = l, changed = true;
+    }
+    if (!any(changed)) break;
+  }
+  return label;
 }
 
 long MpiHalo::ghosts() const {

@@ -25,5 +25,7 @@ long broadcast(long value);
 [[noreturn]] void abort(int code);
 /// Every process's value, in rank order, on every process.
 std::vector<long> all_gather(long value);
+/// True on every process when `flag` is true on one.
+bool any(bool flag);
 
 }  // namespace dspdem::par

@@ -24,8 +24,8 @@ Subdomain make_subdomain(const Model& g, const std::vector<int>& part, int r) {
   const Index nn = gm.n_nodes(), ne = gm.n_elements();
   DSPDEM_CHECK(static_cast<Index>(part.size()) == ne, "internal: a partition of {} elements for a model of {}",
                part.size(), ne);
-  DSPDEM_CHECK(!g.contact.enabled() && g.rigid.empty() && g.joints.closed.empty(),
-               "internal: make_subdomain on a model with contact, rigid bodies or closed joints");
+  DSPDEM_CHECK(g.rigid.empty() && g.joints.closed.empty(),
+               "internal: make_subdomain on a model with rigid bodies or closed joints");
   std::vector<Index> block_off;
   {
     Index off = 0;
@@ -168,6 +168,12 @@ Subdomain make_subdomain(const Model& g, const std::vector<int>& part, int r) {
   for (std::size_t l = 0; l < keep.size(); ++l)
     m.joint_owned[l] = owner[gj.a[4 * static_cast<std::size_t>(keep[l])]] == r;
   m.joint_report = g.joint_report;
+  if (g.contact.enabled()) {
+    contact::ContactSystem::ShareMap map;
+    map.node_global = sd.node_global, map.elem_global = sd.elem_global, map.elem_owner = sd.elem_owner;
+    map.own_nodes = m.owned_nodes, map.joint_owned = m.joint_owned, map.rank = r;
+    m.contact.take_share(g.contact, map);
+  }
 
   // Boundary conditions and initial velocities of the nodes here (ghosts too: they are
   // overwritten each step, but a constrained ghost must not drift meanwhile).

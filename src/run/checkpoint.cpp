@@ -53,6 +53,11 @@ CheckpointHeader open_checked(const std::string& path, StateArchive& body) {
 }
 }  // namespace
 
+std::string checkpoint_piece(const std::string& path, int rank) {
+  if (rank == 0) return path;
+  return (fs::path(path).parent_path() / fmt::format("checkpoint.{}.bin", rank)).string();
+}
+
 std::string checkpoint_build_id() {
 #ifndef DSPDEM_BUILD_ID
 #define DSPDEM_BUILD_ID "unknown"

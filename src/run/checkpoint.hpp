@@ -6,6 +6,10 @@
 // the last good checkpoint survives a crash at any moment. A restart checks the build and
 // the case (its resolved text) before it builds anything, and the model's sizes before it
 // loads: a checkpoint of another case or build is refused with the reason.
+//
+// A distributed run (mpirun -n N) writes one file per process at the same step: process 0
+// checkpoint.bin, process r checkpoint.<r>.bin beside it, each with its share's state; a
+// restart needs the same N (the partition is the same: METIS with a fixed seed).
 #pragma once
 #include <string>
 #include <vector>
@@ -16,7 +20,7 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  int format = 2;                 // 2: ContactTotals names the deepest contact, the integrator keeps peak work
+  int format = 3;                 // 3: processes and rank (2: ContactTotals names the deepest contact)
   std::string build;              ///< dspdem version, commit, compiler and build type
   std::string case_path;          ///< absolute path of the case file
   std::vector<std::string> sets;  ///< the run's --set overrides
@@ -25,13 +29,18 @@ struct CheckpointHeader {
   Real dt = 0;
   long steps = 0;  ///< where the run was
   Real time = 0;
-  Real checkpoint_every = 0;  ///< the run's interval [s] (0: signals only)
+  Real checkpoint_every = 0;    ///< the run's interval [s] (0: signals only)
+  int processes = 1, rank = 0;  ///< a distributed run's: how many wrote, and which one this is
 
   template <class Ar>
   void persist(Ar& ar) {
-    ar(format, build, case_path, sets, resolved_toml, nodes, elements, joints, dt, steps, time, checkpoint_every);
+    ar(format, build, case_path, sets, resolved_toml, nodes, elements, joints, dt, steps, time, checkpoint_every,
+       processes, rank);
   }
 };
+
+/// Process `rank`'s file of the checkpoint whose process-0 file is `path`.
+std::string checkpoint_piece(const std::string& path, int rank);
 
 /// This build's identity, as written into checkpoints.
 std::string checkpoint_build_id();

@@ -74,8 +74,20 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
     fs::create_hard_link(from / rel, to / rel, ec);
     if (ec) fs::copy_file(from / rel, to / rel, fs::copy_options::overwrite_existing);
   };
-  for (const auto& [t, rel] : ls.frames) link(rel);
-  for (const auto& [t, rel] : ls.joint_frames) link(rel);
+  // A distributed run's frame is a .pvtu and its processes' pieces, <stem>_<piece>.vtu.
+  std::vector<std::string> pieces;
+  if (fs::is_directory(from / "frames"))
+    for (const auto& e : fs::directory_iterator(from / "frames"))
+      if (e.path().extension() == ".vtu") pieces.push_back(e.path().filename().string());
+  auto link_frame = [&](const std::string& rel) {
+    link(rel);
+    if (fs::path(rel).extension() != ".pvtu") return;
+    const std::string stem = fs::path(rel).stem().string() + "_";
+    for (const std::string& p : pieces)
+      if (p.rfind(stem, 0) == 0) link((fs::path("frames") / p).string());
+  };
+  for (const auto& [t, rel] : ls.frames) link_frame(rel);
+  for (const auto& [t, rel] : ls.joint_frames) link_frame(rel);
   auto cut = [&](const char* name, std::uint64_t bytes) {
     DSPDEM_CHECK(fs::exists(from / name) && fs::file_size(from / name) >= bytes,
                  "restart: '{}' is shorter than when the checkpoint was written ({} bytes)", (from / name).string(),
@@ -249,15 +261,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         fail("{}: {} is not yet supported in a distributed run (mpirun -n {}); run it on one process", c.path, what,
              n_ranks);
     };
-    refuse(model.contact.enabled(), "[contact]");
     refuse(!model.rigid.empty(), "a rigid body");
     refuse(!model.joints.closed.empty(), "extrinsic joint insertion");
-    refuse(!opt.restart_file.empty() || opt.checkpoint_every > 0, "a checkpoint or a restart");
     const std::vector<int> part = par::partition_elements(model, n_ranks);
     par::Subdomain sd = par::make_subdomain(model, part, my_rank);
     halo = std::make_unique<par::MpiHalo>(sd);  // before the share moves out of sd
     dist = halo.get();
     model = std::move(sd.local);
+    if (model.contact.enabled()) model.contact.set_exchange(halo.get());
     const std::vector<long> own = par::all_gather(model.owned_nodes);
     const std::vector<long> ghosts = par::all_gather(halo->ghosts());
     const std::vector<long> elems =
@@ -279,7 +290,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), c.resolved_toml);
   const std::string pvd = (sdir / "run.pvd").string();
   const std::string joints_pvd = (sdir / "joints.pvd").string();
-  const std::string ckpt = (sdir / "checkpoint.bin").string();
+  const std::string ckpt = checkpoint_piece((sdir / "checkpoint.bin").string(), my_rank);  // this process's
 
   Integrator it(model, dt, dist);
   std::optional<ExtrinsicInsertion> extrinsic;
@@ -308,8 +319,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   head.build = checkpoint_build_id();
   head.case_path = fs::absolute(c.path).lexically_normal().string();
   head.sets = opt.sets, head.resolved_toml = c.resolved_toml;
-  head.nodes = fem.n_nodes, head.elements = fem.n_elements, head.joints = model.joints.size();
+  head.nodes = whole_nodes, head.elements = whole_elements, head.joints = whole_joints;
   head.dt = dt, head.checkpoint_every = opt.checkpoint_every;
+  head.processes = n_ranks, head.rank = my_rank;
   // The same list saves and loads (core/archive.hpp).
   auto persist = [&](StateArchive& ar) {
     ar.section("loop");
@@ -324,21 +336,36 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   };
   if (!opt.restart_file.empty()) {
     StateArchive body;
-    const CheckpointHeader h = read_checkpoint(opt.restart_file, body);
+    const std::string mine = checkpoint_piece(opt.restart_file, my_rank);
+    DSPDEM_CHECK(my_rank == 0 || fs::exists(mine), "restart: no '{}' beside '{}' for process {} of {}", mine,
+                 opt.restart_file, my_rank, n_ranks);
+    const CheckpointHeader h = read_checkpoint(mine, body);
+    DSPDEM_CHECK(h.processes == n_ranks && h.rank == my_rank,
+                 "restart: checkpoint '{}' is process {}'s of a run on {} process(es); restart it on as many ({})",
+                 mine, h.rank, h.processes,
+                 h.processes > 1 ? fmt::format("mpirun -n {} dspdem run --restart ...", h.processes)
+                                 : std::string("without mpirun"));
+    // Every process's file of the same step (a crash between two processes' writes would
+    // leave them apart).
+    const std::vector<long> steps = par::all_gather(h.steps);
+    DSPDEM_CHECK(std::all_of(steps.begin(), steps.end(), [&](long n) { return n == steps[0]; }),
+                 "restart: the processes' checkpoint files in {} are of different steps ({}): the run was stopped "
+                 "while they were written; no restart from these",
+                 fs::path(opt.restart_file).parent_path().string(), fmt::join(steps, "/"));
     DSPDEM_CHECK(h.resolved_toml == c.resolved_toml,
                  "restart: checkpoint '{}' was written for case {} as it was then; it has changed since ({}): run it "
                  "again, or restore the case",
                  opt.restart_file, h.case_path, first_difference(h.resolved_toml, c.resolved_toml));
-    DSPDEM_CHECK(
-        h.nodes == fem.n_nodes && h.elements == fem.n_elements && h.joints == model.joints.size() && h.dt == dt,
-        "restart: checkpoint '{}' is of a model with {} nodes, {} elements, {} joints and dt {:.17g}; the "
-        "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
-        opt.restart_file, h.nodes, h.elements, h.joints, h.dt, fem.n_nodes, fem.n_elements, model.joints.size(), dt);
+    DSPDEM_CHECK(h.nodes == whole_nodes && h.elements == whole_elements && h.joints == whole_joints && h.dt == dt,
+                 "restart: checkpoint '{}' is of a model with {} nodes, {} elements, {} joints and dt {:.17g}; the "
+                 "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
+                 opt.restart_file, h.nodes, h.elements, h.joints, h.dt, whole_nodes, whole_elements, whole_joints, dt);
     persist(body);
     DSPDEM_CHECK(body.remaining() == 0, "checkpoint '{}': {} bytes left after the state (corrupt file)",
                  opt.restart_file, body.remaining());
-    restore_outputs(fs::path(opt.restart_file).parent_path(), sdir, ls);
-    frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+    if (my_rank == 0) restore_outputs(fs::path(opt.restart_file).parent_path(), sdir, ls);
+    par::barrier();  // the frames so far in place before anyone adds to them
+    if (!distributed) frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
     log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", opt.restart_file, it.steps(),
               it.time(), ls.frames.size());
   }
@@ -482,14 +509,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       }
       if (last) break;
       if (it.steps() == opt.interrupt_at_step) g_interrupted = 1;
-      if (g_interrupted && distributed)
-        fail(
-            "interrupted at step {}, t = {:.6g} s; a distributed run keeps no checkpoint yet (its frames so far are in "
-            "{})",
-            it.steps(), t, stage.path());
-      if (g_interrupted) {
+      // Distributed: a signal reaches the processes at different steps; all stop at the step
+      // where the first one saw it (one small reduction a step). g_interrupted stays this
+      // process's own: its signal may still come, and must not count as a second one.
+      const bool stop = distributed ? par::any(g_interrupted != 0) : g_interrupted != 0;
+      if (stop) {
         write_ckpt();
         write_summary(stage.path(), "interrupted", fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t));
+        par::barrier();  // every process's file written before process 0 moves the folder
         const std::string kept = stage.keep_as("interrupted_run");
         throw Interrupted(fmt::format("interrupted at step {}, t = {:.6g} s; outputs so far and a checkpoint in {}; "
                                       "continue with: dspdem run --restart {}",
@@ -527,11 +554,21 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                          e.step, e.time);
   }
   if (extrinsic) log::info("  extrinsic insertion: {} joint(s) opened", extrinsic->opened());
+  if (distributed && model.contact.enabled()) {
+    // How the contact work fell on the processes (the partition is the elements', made once).
+    const contact::ContactSystem::ShareLoad l = model.contact.share_load();
+    log::info(
+        "  contact per process at the last rebuild: pairs evaluated {}, counted {}; elements lent {} ({} nodes); "
+        "most elements lent at a rebuild {}",
+        fmt::join(par::all_gather(l.evaluated), "/"), fmt::join(par::all_gather(l.counted), "/"),
+        fmt::join(par::all_gather(l.lent_elements), "/"), fmt::join(par::all_gather(l.lent_nodes), "/"),
+        fmt::join(par::all_gather(l.most_lent), "/"));
+  }
   write_summary(stage.path(), "completed", ls.stop_message);
   const Energy e = it.energy();  // collective: before the other processes return
+  fs::remove(ckpt);              // a finished run needs none (each process its own file)
   par::barrier();                // every piece written before process 0 moves the folder into place
   if (my_rank != 0) return 0;
-  fs::remove(ckpt);  // a finished run needs none
   stage.commit();
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.

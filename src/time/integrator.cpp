@@ -375,21 +375,26 @@ Energy Integrator::energy() const {
     e.joint_elastic = t.elastic, e.fracture_I = t.fracture_I, e.fracture_II = t.fracture_II;
     e.broken_joints = t.broken, e.crack_area = t.broken_area;
   }
+  contact::ContactTotals ct;
+  if (m_.contact.enabled()) {
+    ct = m_.contact.totals();
+    e.contact_elastic = ct.elastic, e.friction = ct.friction, e.contact_damping = ct.damping;
+  }
   if (dist_) {
     // The processes' shares added in rank order; e0_ is already whole (the constructor
-    // computed it through here), and so is w_peak_ (step()).
-    Real a[9] = {e.kinetic,       e.internal,   e.external_work, e.damping,
-                 e.joint_elastic, e.fracture_I, e.fracture_II,   static_cast<Real>(e.broken_joints),
-                 e.crack_area};
-    dist_->sum(a, 9);
+    // computed it through here), and so is w_peak_ (step()). Contact: each pair counted by
+    // one process; the walls are the same on every process and added once, below.
+    Real a[12] = {e.kinetic,       e.internal,        e.external_work, e.damping,
+                  e.joint_elastic, e.fracture_I,      e.fracture_II,   static_cast<Real>(e.broken_joints),
+                  e.crack_area,    e.contact_elastic, e.friction,      e.contact_damping};
+    dist_->sum(a, 12);
     e.kinetic = a[0], e.internal = a[1], e.external_work = a[2], e.damping = a[3], e.joint_elastic = a[4];
     e.fracture_I = a[5], e.fracture_II = a[6], e.broken_joints = static_cast<Index>(a[7]), e.crack_area = a[8];
+    e.contact_elastic = a[9], e.friction = a[10], e.contact_damping = a[11];
   }
   if (m_.contact.enabled()) {
-    const contact::ContactTotals t = m_.contact.totals();
-    e.contact_elastic = t.elastic, e.friction = t.friction, e.contact_damping = t.damping;
-    e.kinetic += t.wall_kinetic;
-    e.external_work += t.wall_work;
+    e.kinetic += ct.wall_kinetic;
+    e.external_work += ct.wall_work;
   }
   return e;
 }

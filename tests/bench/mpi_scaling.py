@@ -13,6 +13,13 @@ elements, ghost nodes and messages per step of each process.
 
   tests/bench/mpi_scaling.py [--bin build/dspdem] [--procs 2] [--band 0.012] [--steps 2000] [--repeats 3]
   tests/bench/mpi_scaling.py --project [--cost 1.52e-7] [--ghost-k 7] ...   (no runs: the model)
+  tests/bench/mpi_scaling.py --contact [--procs 2] [--repeats 3]   (the two contact scenes)
+
+--contact times whole runs (wall_s of summary.json, set-up included) of the contact scenes on 1
+and P processes: the Brazilian disc on 12 mm elements to its split, and a packing of 1000
+particles falling for 1.6 s. Their contact cost moves through the run (the jaws touch, the
+disc splits, the particles land), so a window of steps would not stand for the run. The
+partition's line and the contact line of the log give the shares.
 
 Prints a Markdown table on stdout. Run it on a quiet box with one process per core.
 
@@ -66,6 +73,54 @@ def cost(binary, procs, band, steps, tmp, repeats):
             "joints": a["joints"], "nodes": a["nodes"], "part": part}
 
 
+CONTACT_SCENES = {
+    "disc": ["cases/brazilian_disc.toml", "--set", "mesh.brazilian_disc.size=0.012",
+             "--set", "output.frame_interval=1"],
+    "packing": ["cases/packing.toml", "--set", "mesh.packing.count=1000", "--set", "time.end=1.6",
+                "--set", "output.frame_interval=1"],
+}
+
+
+def whole_runs(binary, procs, scene, tmp, repeats):
+    walls, log = [], ""
+    for i in range(repeats + 1):  # the first one meshes (cached for the others) and is dropped
+        out = Path(tmp) / f"{scene}_p{procs}_{i}"
+        args = [str(ROOT / CONTACT_SCENES[scene][0])] + CONTACT_SCENES[scene][1:]
+        cmd = ([] if procs == 1 else ["mpirun", "-n", str(procs)]) + [
+            binary, "-t", "1", "run"] + args + ["--no-progress", "--out", str(out)]
+        r = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
+        if r.returncode != 0:
+            sys.exit(f"mpi_scaling.py: {' '.join(cmd)} failed ({r.returncode}):\n{r.stdout}{r.stderr}")
+        s = json.loads((out / "summary.json").read_text())
+        if i > 0:
+            walls.append(s["wall_s"])
+        log = r.stderr
+    lines = [l.strip() for l in log.splitlines() if "distributed over" in l or "contact per process" in l]
+    return {"s": statistics.median(walls), "spread": (min(walls), max(walls)), "steps": s["steps"],
+            "elements": s["elements"], "log": lines}
+
+
+def contact(a):
+    P = a.procs
+    print(f"Contact scenes, whole runs (set-up included), median of {a.repeats}; -t 1 per process.\n")
+    print("| scene | elements | steps | 1 process [s] (min-max) | "
+          f"{P} processes [s] (min-max) | speed-up | efficiency |")
+    print("|---|---|---|---|---|---|---|")
+    notes = []
+    with tempfile.TemporaryDirectory(prefix="dspdem_mpi_contact_") as tmp:
+        for scene in CONTACT_SCENES:
+            one = whole_runs(a.bin, 1, scene, tmp, a.repeats)
+            many = whole_runs(a.bin, P, scene, tmp, a.repeats)
+            print(f"| {scene} | {one['elements']} | {one['steps']} | {one['s']:.2f} "
+                  f"({one['spread'][0]:.2f}-{one['spread'][1]:.2f}) | {many['s']:.2f} "
+                  f"({many['spread'][0]:.2f}-{many['spread'][1]:.2f}) | {one['s'] / many['s']:.2f} | "
+                  f"{one['s'] / many['s'] / P:.2f} |")
+            notes += [f"{scene}: {l}" for l in many["log"]]
+    print()
+    for n in notes:
+        print(f"- {n}")
+
+
 def step_time(n, P, a):
     """Projected time of a step [s] for n elements per process on P processes."""
     n_max = a.imbalance * n
@@ -101,6 +156,7 @@ def project(a):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--project", action="store_true", help="print the model's projection only")
+    ap.add_argument("--contact", action="store_true", help="time the contact scenes' whole runs")
     ap.add_argument("--cost", type=float, default=1.52e-7, help="s per element-step on one process")
     ap.add_argument("--ghost-k", type=float, default=7.0)
     ap.add_argument("--imbalance", type=float, default=1.03)
@@ -117,6 +173,8 @@ def main():
     a = ap.parse_args()
     if a.project:
         return project(a)
+    if a.contact:
+        return contact(a)
     P = a.procs
     weak_band = a.band / P ** (1 / 3)  # about P times the elements
     with tempfile.TemporaryDirectory(prefix="dspdem_mpi_scaling_") as tmp:
