@@ -11,7 +11,14 @@ class Distribution {
  public:
   virtual ~Distribution() = default;
   /// Overwrites the ghost nodes' x and v (3 per node) with their owners' values.
-  virtual void exchange(Real* x, Real* v) = 0;
+  void exchange(Real* x, Real* v) {
+    exchange_begin(x, v);
+    exchange_end(x, v);
+  }
+  /// The same in two halves, with work between them that neither reads the ghosts nor
+  /// writes the own nodes: begin sends the own nodes' values, end waits for the ghosts'.
+  virtual void exchange_begin(const Real* x, const Real* v) = 0;
+  virtual void exchange_end(Real* x, Real* v) = 0;
   /// a[i] = the sum over processes of a[i], the same on every process, in rank order.
   virtual void sum(Real* a, int n) const = 0;
   /// a[i] = the maximum over processes of a[i], the same on every process.

@@ -105,17 +105,29 @@ FemModel build_fem_model(const Mesh& mesh, const std::vector<Material>& material
 }
 
 ForceStatus internal_forces(FemModel& m, const Real* x, const Real* v, Real* f, Real* stress) {
+  const ForceStatus st = element_forces(m, x, v, stress, {});
+  gather_forces(m, f);
+  return st;
+}
+
+ForceStatus element_forces(FemModel& m, const Real* x, const Real* v, Real* stress, ElementPass pass) {
   ForceStatus st;
   for (const auto& b : m.blocks) {
     if (b.kin == Kinematics::Rigid) {  // no strain: its slots stay zero, its stress is zero
       if (stress)
         for (Index g : b.elem)
-          std::fill(stress + 6 * static_cast<std::size_t>(g), stress + 6 * (g + std::size_t{1}), 0.0);
+          if (pass.takes(g))
+            std::fill(stress + 6 * static_cast<std::size_t>(g), stress + 6 * (g + std::size_t{1}), 0.0);
       continue;
     }
-    const ForceStatus s = b.type == CellType::Tet4 ? tet4_forces(m, b, x, v, stress) : hex8_forces(m, b, x, v, stress);
+    const ForceStatus s =
+        b.type == CellType::Tet4 ? tet4_forces(m, b, x, v, stress, pass) : hex8_forces(m, b, x, v, stress, pass);
     if (s.inverted_element >= 0 && (st.inverted_element < 0 || s.min_detF < st.min_detF)) st = s;
   }
+  return st;
+}
+
+void gather_forces(const FemModel& m, Real* f) {
   const Index n = m.n_nodes;
   const Index* ptr = m.node_ptr.data();
   const Index* sl = m.node_slot.data();
@@ -129,7 +141,6 @@ ForceStatus internal_forces(FemModel& m, const Real* x, const Real* v, Real* f, 
     }
     f[3 * i] = fx, f[3 * i + 1] = fy, f[3 * i + 2] = fz;
   }
-  return st;
 }
 
 Real deterministic_sum(const std::vector<Real>& a) {

@@ -75,15 +75,30 @@ struct ForceStatus {
   Real min_detF = 1.0;
 };
 
+/// Which elements an evaluation computes: all (no mask), or those whose mask entry (per
+/// element) is `value`. A distributed run computes the elements that need no ghost while the
+/// ghosts' values travel, then the others (time/integrator.cpp).
+struct ElementPass {
+  const char* mask = nullptr;
+  char value = 0;
+  bool takes(Index e) const { return !mask || mask[e] == value; }
+};
+
 /// Internal nodal forces f (acting on the nodes, i.e. minus the gradient of the strain
 /// energy, plus stiffness-proportional damping forces) at positions x and velocities v.
 /// Overwrites f (3 x n_nodes). If `stress` is given, also writes each element's Cauchy
 /// stress (6 per element: xx yy zz xy yz xz).
 ForceStatus internal_forces(FemModel& m, const Real* x, const Real* v, Real* f, Real* stress = nullptr);
 
+/// The two halves of internal_forces: the elements' nodal forces into their slots (the
+/// elements of `pass`), then every node's sum of its slots in a fixed order, into f. So the
+/// elements may be computed in any order or in several passes: f is the same to the bit.
+ForceStatus element_forces(FemModel& m, const Real* x, const Real* v, Real* stress, ElementPass pass);
+void gather_forces(const FemModel& m, Real* f);
+
 /// Per-block kernels (one file each).
-ForceStatus tet4_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress);
-ForceStatus hex8_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress);
+ForceStatus tet4_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress, ElementPass pass);
+ForceStatus hex8_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress, ElementPass pass);
 
 /// Sum of a per-element array in fixed chunks: the same result for any thread count.
 Real deterministic_sum(const std::vector<Real>& a);

@@ -13,7 +13,8 @@ namespace dspdem {
 
 namespace {
 template <bool Corot, bool Damped, bool Stress>
-ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress_out) {
+ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress_out,
+                        ElementPass pass) {
   using M38 = Eigen::Matrix<Real, 3, 8>;
   using M34 = Eigen::Matrix<Real, 3, 4>;
   using V12 = Eigen::Matrix<Real, 12, 1>;
@@ -25,6 +26,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
   Real min_det = 1.0;
 #pragma omp parallel for schedule(static) reduction(min : min_det) if (n > 1024)  // tiny models: no fork-join cost
   for (Index e = 0; e < n; ++e) {
+    if (!pass.takes(b.elem[e])) continue;
     const std::size_t es = static_cast<std::size_t>(e);
     const Index* c = &b.conn[8 * es];
     const Eigen::Map<const M38> grad(&b.grad[24 * es]);
@@ -91,6 +93,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
   Index bad = -1;
   if (min_det <= 0.0) {
     for (Index e = 0; e < n && bad < 0; ++e) {
+      if (!pass.takes(b.elem[e])) continue;
       const Index* c = &b.conn[8 * static_cast<std::size_t>(e)];
       const Eigen::Map<const M38> grad(&b.grad[24 * static_cast<std::size_t>(e)]);
       M38 xe;
@@ -103,15 +106,16 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
 }
 
 template <bool Corot>
-ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s) {
+ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s, ElementPass p) {
   if (b.damped)
-    return s ? hex8_kernel<Corot, true, true>(m, b, x, v, s) : hex8_kernel<Corot, true, false>(m, b, x, v, s);
-  return s ? hex8_kernel<Corot, false, true>(m, b, x, v, s) : hex8_kernel<Corot, false, false>(m, b, x, v, s);
+    return s ? hex8_kernel<Corot, true, true>(m, b, x, v, s, p) : hex8_kernel<Corot, true, false>(m, b, x, v, s, p);
+  return s ? hex8_kernel<Corot, false, true>(m, b, x, v, s, p) : hex8_kernel<Corot, false, false>(m, b, x, v, s, p);
 }
 }  // namespace
 
-ForceStatus hex8_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress) {
-  return b.kin == Kinematics::Corotational ? dispatch<true>(m, b, x, v, stress) : dispatch<false>(m, b, x, v, stress);
+ForceStatus hex8_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress, ElementPass pass) {
+  return b.kin == Kinematics::Corotational ? dispatch<true>(m, b, x, v, stress, pass)
+                                           : dispatch<false>(m, b, x, v, stress, pass);
 }
 
 }  // namespace dspdem

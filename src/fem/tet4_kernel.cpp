@@ -14,7 +14,8 @@ namespace dspdem {
 
 namespace {
 template <bool Corot, bool Damped, bool Stress>
-ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress_out) {
+ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress_out,
+                        ElementPass pass) {
   const Index n = b.size();
   const Real* x0 = m.x0.data();
   Real* slots = m.slots.data() + b.slot0;
@@ -24,6 +25,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
   Real min_det = 1.0;
 #pragma omp parallel for schedule(static) reduction(min : min_det) if (n > 1024)  // tiny models: no fork-join cost
   for (Index e = 0; e < n; ++e) {
+    if (!pass.takes(b.elem[e])) continue;
     const Index* c = &b.conn[4 * static_cast<std::size_t>(e)];
     const Eigen::Map<const Eigen::Matrix<Real, 3, 4>> grad(&b.grad[12 * static_cast<std::size_t>(e)]);
     Eigen::Matrix<Real, 3, 4> u;
@@ -70,6 +72,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
   if (min_det <= 0.0) {
     // Serial pass to name the first inverted element deterministically.
     for (Index e = 0; e < n && bad < 0; ++e) {
+      if (!pass.takes(b.elem[e])) continue;
       const Index* c = &b.conn[4 * static_cast<std::size_t>(e)];
       Vec3 p[4];
       for (int i = 0; i < 4; ++i) p[i] = Vec3(x[3 * c[i]], x[3 * c[i] + 1], x[3 * c[i] + 2]);
@@ -80,15 +83,16 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
 }
 
 template <bool Corot>
-ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s) {
+ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s, ElementPass p) {
   if (b.damped)
-    return s ? tet4_kernel<Corot, true, true>(m, b, x, v, s) : tet4_kernel<Corot, true, false>(m, b, x, v, s);
-  return s ? tet4_kernel<Corot, false, true>(m, b, x, v, s) : tet4_kernel<Corot, false, false>(m, b, x, v, s);
+    return s ? tet4_kernel<Corot, true, true>(m, b, x, v, s, p) : tet4_kernel<Corot, true, false>(m, b, x, v, s, p);
+  return s ? tet4_kernel<Corot, false, true>(m, b, x, v, s, p) : tet4_kernel<Corot, false, false>(m, b, x, v, s, p);
 }
 }  // namespace
 
-ForceStatus tet4_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress) {
-  return b.kin == Kinematics::Corotational ? dispatch<true>(m, b, x, v, stress) : dispatch<false>(m, b, x, v, stress);
+ForceStatus tet4_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress, ElementPass pass) {
+  return b.kin == Kinematics::Corotational ? dispatch<true>(m, b, x, v, stress, pass)
+                                           : dispatch<false>(m, b, x, v, stress, pass);
 }
 
 }  // namespace dspdem

@@ -94,12 +94,12 @@ MpiHalo::MpiHalo(const Subdomain& sd) {
   }
 }
 
-void MpiHalo::exchange(Real* x, Real* v) {
-  std::vector<MPI_Request> req;
-  req.reserve(send_.size() + recv_.size());
+void MpiHalo::exchange_begin(const Real* x, const Real* v) {
+  DSPDEM_CHECK(pending_.empty(), "internal: an exchange begun twice");
+  pending_.reserve(send_.size() + recv_.size());
   for (Link& l : recv_) {
-    req.emplace_back();
-    MPI_Irecv(l.buf.data(), static_cast<int>(l.buf.size()), MPI_DOUBLE, l.peer, 23, MPI_COMM_WORLD, &req.back());
+    pending_.emplace_back();
+    MPI_Irecv(l.buf.data(), static_cast<int>(l.buf.size()), MPI_DOUBLE, l.peer, 23, MPI_COMM_WORLD, &pending_.back());
   }
   for (Link& l : send_) {
     Real* b = l.buf.data();
@@ -108,10 +108,14 @@ void MpiHalo::exchange(Real* x, Real* v) {
       b[0] = x[k], b[1] = x[k + 1], b[2] = x[k + 2], b[3] = v[k], b[4] = v[k + 1], b[5] = v[k + 2];
       b += 6;
     }
-    req.emplace_back();
-    MPI_Isend(l.buf.data(), static_cast<int>(l.buf.size()), MPI_DOUBLE, l.peer, 23, MPI_COMM_WORLD, &req.back());
+    pending_.emplace_back();
+    MPI_Isend(l.buf.data(), static_cast<int>(l.buf.size()), MPI_DOUBLE, l.peer, 23, MPI_COMM_WORLD, &pending_.back());
   }
-  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+}
+
+void MpiHalo::exchange_end(Real* x, Real* v) {
+  MPI_Waitall(static_cast<int>(pending_.size()), pending_.data(), MPI_STATUSES_IGNORE);
+  pending_.clear();
   for (const Link& l : recv_) {
     const Real* b = l.buf.data();
     for (Index n : l.nodes) {

@@ -3,6 +3,8 @@
 // non-blocking messages, one per neighbour and direction. Also the reductions of the
 // ledger and the monitors (Distribution), and what contact needs (contact::ContactExchange).
 #pragma once
+#include <mpi.h>
+
 #include <vector>
 
 #include "contact/contact_exchange.hpp"
@@ -17,7 +19,8 @@ class MpiHalo final : public Distribution, public contact::ContactExchange {
   /// each neighbour needs (the neighbours ask by global node number).
   explicit MpiHalo(const Subdomain& sd);
 
-  void exchange(Real* x, Real* v) override;
+  void exchange_begin(const Real* x, const Real* v) override;
+  void exchange_end(Real* x, Real* v) override;
   /// Collective: every copy of an element (its owner's and the ghosts') takes the smallest
   /// of their values (labels in a distributed union-find, par/fragments.hpp).
   void min_over_copies(std::vector<Index>& elem_value);
@@ -54,6 +57,7 @@ class MpiHalo final : public Distribution, public contact::ContactExchange {
   int rank_ = 0, size_ = 1;
   std::vector<Link> send_, recv_;
   std::vector<ElemLink> elem_own_, elem_ghost_;  ///< own elements others hold; ghosts by owner
+  std::vector<MPI_Request> pending_;             ///< the exchange under way (begin to end)
 };
 
 }  // namespace dspdem::par

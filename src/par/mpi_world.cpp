@@ -69,12 +69,6 @@ std::vector<long> all_gather(long value) {
   return out;
 }
 
-bool any(bool flag) {
-  int mine = flag ? 1 : 0, all = mine;
-  if (g_started) MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return all != 0;
-}
-
 #else
 // Built without MPI (DSPDEM_MPI=OFF): one process. Under mpirun every process would run the
 // whole case into the same folder, so a launch with more than one is refused.
@@ -93,7 +87,6 @@ void barrier() {}
 long broadcast(long value) { return value; }
 void abort(int code) { std::exit(code); }
 std::vector<long> all_gather(long value) { return {value}; }
-bool any(bool flag) { return flag; }
 #endif
 
 }  // namespace dspdem::par

@@ -25,7 +25,5 @@ long broadcast(long value);
 [[noreturn]] void abort(int code);
 /// Every process's value, in rank order, on every process.
 std::vector<long> all_gather(long value);
-/// True on every process when `flag` is true on one.
-bool any(bool flag);
 
 }  // namespace dspdem::par

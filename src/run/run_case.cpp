@@ -293,6 +293,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const std::string ckpt = checkpoint_piece((sdir / "checkpoint.bin").string(), my_rank);  // this process's
 
   Integrator it(model, dt, dist);
+  it.watch_flag(&g_interrupted);
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
     extrinsic.emplace(c.insertion_interval, c.insertion_stress);
@@ -509,10 +510,10 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       }
       if (last) break;
       if (it.steps() == opt.interrupt_at_step) g_interrupted = 1;
-      // Distributed: a signal reaches the processes at different steps; all stop at the step
-      // where the first one saw it (one small reduction a step). g_interrupted stays this
-      // process's own: its signal may still come, and must not count as a second one.
-      const bool stop = distributed ? par::any(g_interrupted != 0) : g_interrupted != 0;
+      // Distributed: a signal reaches the processes at different steps; all stop after the
+      // step whose reduction first carried it (Integrator::watch_flag). g_interrupted stays
+      // this process's own: its signal may still come, and must not count as a second one.
+      const bool stop = distributed ? it.flag_anywhere() : g_interrupted != 0;
       if (stop) {
         write_ckpt();
         write_summary(stage.path(), "interrupted", fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t));

@@ -45,6 +45,14 @@ Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dis
   for (const auto& c : m.constraints) v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
   for (const RigidBody& b : m.rigid) rigid_set_velocities(b, x_.data(), v_.data());
   if (m.contact.enabled()) m.contact.kick_walls(0.0, 0.0, m.gravity);  // prescribed wall velocities at t = 0
+  if (dist) {
+    // Elements with only own nodes: computed while the ghosts' values travel.
+    interior_.assign(static_cast<std::size_t>(m.fem.n_elements), 1);
+    for (const auto& b : m.fem.blocks)
+      for (Index e = 0; e < b.size(); ++e)
+        for (int i = 0; i < b.npe(); ++i)
+          if (b.conn[static_cast<std::size_t>(e) * b.npe() + i] >= m.owned_nodes) interior_[b.elem[e]] = 0;
+  }
   compute_forces(v_, 0.0, false);
   const Energy e = energy();
   e0_ = e.kinetic + e.internal + e.joint_elastic + e.contact_elastic;
@@ -59,8 +67,20 @@ Real Integrator::nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) c
   return fe;
 }
 
-void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail) {
-  const ForceStatus st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data());
+void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail, bool exchange) {
+  ForceStatus st;
+  if (exchange) {
+    // The ghosts' values travel while the elements that need none are computed; the rest
+    // after. The nodes' sums come after both, in their fixed order: the same bits.
+    dist_->exchange_begin(x_.data(), v_.data());
+    st = element_forces(m_.fem, x_.data(), vel.data(), nullptr, {interior_.data(), 1});
+    dist_->exchange_end(x_.data(), v_.data());
+    const ForceStatus s = element_forces(m_.fem, x_.data(), vel.data(), nullptr, {interior_.data(), 0});
+    if (s.inverted_element >= 0 && (st.inverted_element < 0 || s.min_detF < st.min_detF)) st = s;
+    gather_forces(m_.fem, f_.data());
+  } else {
+    st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data());
+  }
   if (st.inverted_element >= 0)
     throw NumericalError(fmt::format("element {} inverted (det F = {:.3g}) at step {}, t = {:.6g} s; the time step "
                                      "may be too large or the element too distorted",
@@ -218,9 +238,8 @@ void Integrator::step() {
   t_ += h;
   ++n_;
   // Ghosts take their owners' drifted positions and mid-step velocities, which are exactly
-  // what this process would have computed with all of their forces.
-  if (dist_) dist_->exchange(x, v);
-  compute_forces(v_, h, fused);  // v_ holds the mid-step velocity: damping is lagged by h/2
+  // what this process would have computed with all of their forces (compute_forces).
+  compute_forces(v_, h, fused, dist_ != nullptr);  // v_: the mid-step velocity (damping lagged by h/2)
   // The last pass: (fused) the damping and external forces of the dofs compute_forces left,
   // and the damping power; the end of the step's external work (at the mid-step velocity);
   // the half kick; a check that the velocities are finite (v - v is 0 unless v is not).
@@ -264,9 +283,10 @@ void Integrator::step() {
   // The reported external work is the integrator's plus the walls' (energy()). Distributed:
   // the whole work is the processes' shares added, one small reduction a step, so that the
   // peak (the ledger's scale) is the one-process run's.
-  Real whole = w_ext_;
-  if (dist_) dist_->sum(&whole, 1);
-  w_peak_ = std::max(w_peak_, std::abs(whole + (contact ? m_.contact.wall_work() : 0.0)));
+  Real whole[2] = {w_ext_, flag_ && *flag_ ? 1.0 : 0.0};
+  if (dist_) dist_->sum(whole, 2);
+  flag_anywhere_ = whole[1] > 0;
+  w_peak_ = std::max(w_peak_, std::abs(whole[0] + (contact ? m_.contact.wall_work() : 0.0)));
   kick_nonnodal(hh, t_);
   bool finite = std::isfinite(w) && bad == 0 && tail[1] == 0;
   // Rigid bodies and constraints wrote velocities after the check's pass: check them all.

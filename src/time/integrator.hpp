@@ -9,6 +9,7 @@
 // The balance error is |KE + IE + D - (E0 + W_ext)| over the largest of those terms and of
 // the largest |W_ext| reached so far.
 #pragma once
+#include <csignal>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,12 @@ class Integrator {
   void refresh_ghosts() {
     if (dist_) dist_->exchange(x_.data(), v_.data());
   }
+  /// A flag set from outside (a signal handler's), read at each step's one reduction: after a
+  /// step, flag_anywhere() says whether it was set on any process then (a distributed run's
+  /// processes agree on the step to stop at, without a reduction of their own). One process:
+  /// the flag itself.
+  void watch_flag(const volatile std::sig_atomic_t* flag) { flag_ = flag; }
+  bool flag_anywhere() const { return flag_anywhere_; }
   /// Throws NumericalError when KE + IE exceeds factor x (E0 + |W_ext| + D) + floor.
   void check_energy(Real factor) const;
   /// Value of a monitor at the current state.
@@ -107,7 +114,9 @@ class Integrator {
   /// dt_contact: time since the last evaluation (0 at the start), for contact histories.
   /// nodal_in_tail: leave damping and external forces of the dofs without a load or a
   /// constraint to the pass that ends the step (step()); otherwise add them here.
-  void compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail);
+  /// exchange: a distributed run's ghosts are brought up to date first (overlapped with the
+  /// elements that need none of them).
+  void compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail, bool exchange = false);
   /// Damping and external force of one dof at velocity vk: adds to the damping power dp,
   /// returns the external force.
   Real nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) const;
@@ -125,6 +134,9 @@ class Integrator {
 
   Model& m_;
   Distribution* dist_ = nullptr;
+  const volatile std::sig_atomic_t* flag_ = nullptr;
+  std::vector<char> interior_;  ///< distributed: per element, 1 when all its nodes are own
+  bool flag_anywhere_ = false;
   Real dt_, t_ = 0;
   long n_ = 0;
   /// f_ext_: external force per dof. Without rigid bodies it is kept only at loaded and

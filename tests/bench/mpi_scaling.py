@@ -16,7 +16,8 @@ elements, ghost nodes and messages per step of each process.
   tests/bench/mpi_scaling.py --contact [--procs 2] [--repeats 3]   (the two contact scenes)
 
 --contact times whole runs (wall_s of summary.json, set-up included) of the contact scenes on 1
-and P processes: the Brazilian disc on 12 mm elements to its split, and a packing of 1000
+and P processes: the Brazilian disc on 20 mm elements (the test's) to its split (the case's
+stop rule, checked at each series row), and a packing of 1000
 particles falling for 1.6 s. Their contact cost moves through the run (the jaws touch, the
 disc splits, the particles land), so a window of steps would not stand for the run. The
 partition's line and the contact line of the log give the shares.
@@ -74,10 +75,10 @@ def cost(binary, procs, band, steps, tmp, repeats):
 
 
 CONTACT_SCENES = {
-    "disc": ["cases/brazilian_disc.toml", "--set", "mesh.brazilian_disc.size=0.012",
-             "--set", "output.frame_interval=1"],
+    "disc": ["cases/brazilian_disc.toml", "--set", "mesh.brazilian_disc.size=0.02",
+             "--set", "output.frame_interval=1", "--set", "output.series_interval=1e-4"],
     "packing": ["cases/packing.toml", "--set", "mesh.packing.count=1000", "--set", "time.end=1.6",
-                "--set", "output.frame_interval=1"],
+                "--set", "output.frame_interval=1", "--set", "output.series_interval=0.1"],
 }
 
 
