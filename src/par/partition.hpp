@@ -13,7 +13,8 @@ namespace dspdem::par {
 std::vector<int> partition_elements(const Model& m, int parts);
 
 /// Element adjacency as compressed rows (the graph METIS cuts): elements sharing a face
-/// (three nodes) or tied by a joint. Exposed for the tests.
+/// (three nodes) or tied by a joint; with contact, also elements of separate pieces that lie
+/// close (within about half an element). Exposed for the tests.
 void element_graph(const Model& m, std::vector<int>& xadj, std::vector<int>& adjncy);
 
 }  // namespace dspdem::par
