@@ -2,8 +2,8 @@
 """Strong and weak scaling of a distributed run (mpirun) on this box, as a benchmark script.
 
 The scene: the Galvez beam (cases/galvez_beam.toml) with joints on every face
-(bodies.0.fracture = "all") and contact off, the two features a distributed run does not yet
-have. Its element count is set by the crack band's element size. Each configuration runs
+(bodies.0.fracture = "all") and contact off: the elements and joints of the bulk, whose cost
+grows with the volume (--contact times the contact scenes). Its element count is set by the crack band's element size. Each configuration runs
 for S and 2S steps, and the cost of a step is the difference over S, the median of a few
 repeats: meshing, model building and the partition drop out. Per run the log line of the partition gives the own
 elements, ghost nodes and messages per step of each process.
