@@ -266,9 +266,6 @@ int main(int argc, char** argv) {
   par::init(&argc, &argv);
   const int code = run_main(argc, argv);
   if (code != 0 && code != kExitInterrupted && par::size() > 1) par::abort(code);
-  // mpirun ends the job as soon as one process exits non-zero: none leaves before process 0
-  // has moved the interrupted run's folder into place.
-  if (code == kExitInterrupted) par::barrier();
   par::finalize();
   return code;
 }

@@ -65,7 +65,7 @@ std::string checkpoint_build_id() {
   return DSPDEM_BUILD_ID;
 }
 
-void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body) {
+void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body, bool into_place) {
   StateArchive head;
   CheckpointHeader hc = h;
   head(hc);
@@ -93,8 +93,12 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& h, const 
   const bool synced = ::fsync(fd) == 0;
   ::close(fd);
   DSPDEM_CHECK(synced, "cannot flush checkpoint '{}' to disk: {}", tmp, std::strerror(errno));
+  if (into_place) move_checkpoint_into_place(path);
+}
+
+void move_checkpoint_into_place(const std::string& path) {
   std::error_code ec;
-  fs::rename(tmp, path, ec);
+  fs::rename(path + ".tmp", path, ec);
   DSPDEM_CHECK(!ec, "cannot move checkpoint '{}' into place: {}", path, ec.message());
 }
 
@@ -135,6 +139,16 @@ std::string find_checkpoint(const std::string& run_dir) {
                run_dir, errors);
   return best;
 }
+
+namespace {
+std::string without_origin(const std::string& s) {
+  if (s.rfind("# Resolved from ", 0) != 0) return s;
+  const std::size_t nl = s.find('\n');
+  return nl == std::string::npos ? std::string() : s.substr(nl + 1);
+}
+}  // namespace
+
+bool same_case(const std::string& a, const std::string& b) { return without_origin(a) == without_origin(b); }
 
 std::string first_difference(const std::string& a, const std::string& b) {
   std::istringstream sa(a), sb(b);

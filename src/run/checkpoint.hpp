@@ -45,8 +45,13 @@ std::string checkpoint_piece(const std::string& path, int rank);
 /// This build's identity, as written into checkpoints.
 std::string checkpoint_build_id();
 
-/// Writes header then body (the archive's bytes) to path atomically.
-void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body);
+/// Writes header then body (the archive's bytes) to path atomically: to path.tmp, flushed
+/// to disk, then renamed over path; with into_place = false the rename is left to
+/// move_checkpoint_into_place (a distributed run renames every process's file only once all
+/// are written, so that a crash leaves the old set or the new one, short of the renames).
+void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body,
+                      bool into_place = true);
+void move_checkpoint_into_place(const std::string& path);
 
 /// Reads and checks (magic, CRC, format, build) a checkpoint; returns its header and leaves
 /// `body` positioned at the state.
@@ -58,5 +63,10 @@ std::string find_checkpoint(const std::string& run_dir);
 
 /// The first line where two case texts differ, for messages ("" if equal).
 std::string first_difference(const std::string& a, const std::string& b);
+
+/// Whether two resolved case texts are the same case: equal but for their first comment,
+/// which names the file as it was given (`cases/x.toml` at the start, the absolute path the
+/// checkpoint recorded at a restart).
+bool same_case(const std::string& a, const std::string& b);
 
 }  // namespace dspdem

@@ -353,7 +353,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                  "restart: the processes' checkpoint files in {} are of different steps ({}): the run was stopped "
                  "while they were written; no restart from these",
                  fs::path(opt.restart_file).parent_path().string(), fmt::join(steps, "/"));
-    DSPDEM_CHECK(h.resolved_toml == c.resolved_toml,
+    DSPDEM_CHECK(same_case(h.resolved_toml, c.resolved_toml),
                  "restart: checkpoint '{}' was written for case {} as it was then; it has changed since ({}): run it "
                  "again, or restore the case",
                  opt.restart_file, h.case_path, first_difference(h.resolved_toml, c.resolved_toml));
@@ -367,6 +367,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (my_rank == 0) restore_outputs(fs::path(opt.restart_file).parent_path(), sdir, ls);
     par::barrier();  // the frames so far in place before anyone adds to them
     if (!distributed) frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
+#if DSPDEM_HAVE_MPI
+    if (distributed) frag = par::find_fragments(model, *halo, elem_mass, it.x().data()).fr;  // for the summary
+#endif
     log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", opt.restart_file, it.steps(),
               it.time(), ls.frames.size());
   }
@@ -445,7 +448,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     persist(body);
     ls.wall_before = before;
     head.steps = it.steps(), head.time = it.time();
-    write_checkpoint(ckpt, head, body);
+    write_checkpoint(ckpt, head, body, !distributed);
+    if (distributed) {
+      par::barrier();  // every process's new file on disk before any replaces its old one
+      move_checkpoint_into_place(ckpt);
+    }
   };
 
   auto write_summary = [&](const std::string& dir, const std::string& status, const std::string& message) {
@@ -519,6 +526,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         write_summary(stage.path(), "interrupted", fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t));
         par::barrier();  // every process's file written before process 0 moves the folder
         const std::string kept = stage.keep_as("interrupted_run");
+        // mpirun ends the job as soon as one process exits non-zero: none leaves (nor loses
+        // its signal handler, to a late signal) before process 0 has moved the folder.
+        par::barrier();
         throw Interrupted(fmt::format("interrupted at step {}, t = {:.6g} s; outputs so far and a checkpoint in {}; "
                                       "continue with: dspdem run --restart {}",
                                       it.steps(), t, kept, opt.out_dir),

@@ -261,3 +261,16 @@ TEST_F(Restart, SigtermLeavesAValidCollectionAndARestartableCheckpoint) {
 }
 
 }  // namespace
+
+// A run started as `dspdem run cases/x.toml` records the case by its absolute path, and the
+// restart reads it from there: the resolved texts then differ in their first comment only
+// (the file as it was given), which must not refuse the restart (it did until session 41).
+TEST(RestartCase, TheSameCaseGivenByARelativeOrAnAbsolutePathIsTheSameCase) {
+  const fs::path abs = fs::path(DSPDEM_SOURCE_DIR) / "tests" / "data" / "notched_bar.toml";
+  const fs::path rel = fs::relative(abs);
+  ASSERT_TRUE(rel.is_relative());
+  const std::string a = read_case(abs.string(), {}).resolved_toml, b = read_case(rel.string(), {}).resolved_toml;
+  EXPECT_NE(a, b) << "the first comment names the file as given";
+  EXPECT_TRUE(same_case(a, b));
+  EXPECT_FALSE(same_case(a, read_case(abs.string(), {"time.end=1e-4"}).resolved_toml));
+}
