@@ -181,8 +181,8 @@ class ContactSystem {
     const Real* p = at(x, lent, n);
     return {p[0], p[1], p[2]};
   }
-  /// Whether this process counts pair p's energy and wall force (the owner of its first
-  /// element; always on one process).
+  /// Whether this process counts the energy and wall force of a pair whose first element is
+  /// ea: the owner of ea does (a one-process run counts every pair).
   bool counts(Index ea) const { return !ex_ || owner_[ea] == rank_; }
 
   // Distributed runs (contact_share.cpp).
