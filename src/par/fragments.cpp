@@ -1,7 +1,5 @@
 #include "par/fragments.hpp"
 
-#include <mpi.h>
-
 #include <algorithm>
 #include <map>
 
@@ -32,21 +30,15 @@ DistributedFragments find_fragments(const Model& m, MpiHalo& halo, const std::ve
     send.push_back(static_cast<double>(id));
     send.insert(send.end(), r.begin(), r.end());
   }
-  int n = static_cast<int>(send.size()), size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  std::vector<int> counts(static_cast<std::size_t>(size)), disp(static_cast<std::size_t>(size) + 1, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  for (int p = 0; p < size; ++p) disp[p + 1] = disp[p] + counts[p];
-  std::vector<double> all(static_cast<std::size_t>(disp[size]));
-  MPI_Allgatherv(send.data(), n, MPI_DOUBLE, all.data(), counts.data(), disp.data(), MPI_DOUBLE, MPI_COMM_WORLD);
   std::map<Index, joint::FragmentInfo> by_id;
-  for (std::size_t k = 0; k + 6 <= all.size(); k += 6) {
-    joint::FragmentInfo& f = by_id[static_cast<Index>(all[k])];
-    f.id = static_cast<Index>(all[k]);
-    f.mass += all[k + 1];
-    f.elements += static_cast<Index>(all[k + 2]);
-    f.centroid += Vec3(all[k + 3], all[k + 4], all[k + 5]);
-  }
+  for (const std::vector<Real>& all : halo.all_gather(send))  // in rank order
+    for (std::size_t k = 0; k + 6 <= all.size(); k += 6) {
+      joint::FragmentInfo& f = by_id[static_cast<Index>(all[k])];
+      f.id = static_cast<Index>(all[k]);
+      f.mass += all[k + 1];
+      f.elements += static_cast<Index>(all[k + 2]);
+      f.centroid += Vec3(all[k + 3], all[k + 4], all[k + 5]);
+    }
   for (auto& [id, f] : by_id) {
     if (f.mass > 0) f.centroid /= f.mass;
     out.info.push_back(f);

@@ -42,24 +42,23 @@ struct Scene {
   std::string name, args;
   int last_frame;  ///< the frame compared cell by cell
 };
+// `run` of a case file with --set overrides and the fields the comparison reads.
+std::string run_args(const std::string& file, const std::string& sets) { return "run " + file + " " + sets + kFields; }
+const std::string kCases = std::string(DSPDEM_SOURCE_DIR) + "/cases/";
 // To 0.56 ms: past the peak force (0.40 ms) and the split into two halves (by 0.55 ms: 0.383
 // and 0.381 kg; checked below); frames at 0, 0.28 and 0.56 ms.
-const Scene kBar{"bar", "run " + kCase + " --set time.end=5.6e-4 --set output.frame_interval=2.8e-4" + kFields, 2};
+const Scene kBar{"bar", run_args(kCase, "--set time.end=5.6e-4 --set output.frame_interval=2.8e-4"), 2};
 // 20 mm elements (1034 tetrahedra): the peak load at 2.9 ms, the disc in pieces by 3.7 ms,
 // where the case's stop rule ends it (the load fallen to 40 % of the peak); 34298 steps.
-const Scene kDisc{"disc",
-                  "run " + std::string(DSPDEM_SOURCE_DIR) +
-                      "/cases/brazilian_disc.toml --set mesh.brazilian_disc.size=0.02 --set "
-                      "output.frame_interval=1e-3" +
-                      kFields,
-                  4};
+const Scene kDisc{
+    "disc",
+    run_args(kCases + "brazilian_disc.toml", "--set mesh.brazilian_disc.size=0.02 --set output.frame_interval=1e-3"),
+    4};
 // 200 particles for 1.6 s: the first land at 0.8 s; at 1.6 s some 400 contacts, between
 // particles and with the floor.
 const Scene kPacking{"packing",
-                     "run " + std::string(DSPDEM_SOURCE_DIR) +
-                         "/cases/packing.toml --set mesh.packing.count=200 --set time.end=1.6 --set "
-                         "output.frame_interval=0.8" +
-                         kFields,
+                     run_args(kCases + "packing.toml",
+                              "--set mesh.packing.count=200 --set time.end=1.6 --set output.frame_interval=0.8"),
                      2};
 
 fs::path work() {
