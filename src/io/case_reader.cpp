@@ -255,9 +255,18 @@ void apply_override(toml::table& root, const std::string& ov) {
   if (toml::array* a = cur->as_array()) {  // walls.1={...}: the whole element of an array
     char* end = nullptr;
     const long idx = std::strtol(parts.back().c_str(), &end, 10);
-    DSPDEM_CHECK(*end == '\0' && idx >= 0 && static_cast<std::size_t>(idx) < a->size(),
-                 "--set '{}': '{}' is not an index of that array (size {})", ov, parts.back(), a->size());
-    a->replace(a->cbegin() + idx, std::move(*value));  // moved: keeps its --set source
+    // One past the end appends, so a study variant can add a condition or a wall
+    // (boundary.3={group="load_outer", type="fixed", dofs="y"}).
+    DSPDEM_CHECK(*end == '\0' && idx >= 0 && static_cast<std::size_t>(idx) <= a->size(),
+                 "--set '{}': '{}' is not an index of that array (size {}; {} appends)", ov, parts.back(), a->size(),
+                 a->size());
+    if (static_cast<std::size_t>(idx) == a->size()) {
+      DSPDEM_CHECK(value->is_table(), "--set '{}': an element appended to an array of tables must be a table {{...}}",
+                   ov);
+      a->push_back(std::move(*value));
+    } else {
+      a->replace(a->cbegin() + idx, std::move(*value));  // moved: keeps its --set source
+    }
     return;
   }
   toml::table* t = cur->as_table();

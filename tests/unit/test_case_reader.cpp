@@ -133,7 +133,7 @@ TEST(CaseReader, MissingFile) { EXPECT_THROW(read_case("/nonexistent/case.toml")
 TEST(CaseReader, OverrideReplacesAWholeArrayElement) {
   // --set walls.0={...} swaps one element of an array of tables for another (a study row
   // that puts flat plates where the case has jaws must drop the jaw's radius, which a box
-  // refuses); an index past the end is refused with the array's size.
+  // refuses); an index further than one past the end is refused with the array's size.
   const std::string walls = std::string(kGood) +
                             "[contact]\nenabled = true\n[[walls]]\nname = \"j\"\ntype = \"jaw\"\n"
                             "point = [0.0, -0.5, 0.0]\nnormal = [0.0, 1.0, 0.0]\nradius = 1.5\n";
@@ -145,11 +145,20 @@ TEST(CaseReader, OverrideReplacesAWholeArrayElement) {
   EXPECT_EQ(c.walls[0].wall.type, contact::Wall::Type::Box);
   EXPECT_DOUBLE_EQ(c.walls[0].wall.centre(1), 1.1);
   try {
-    read_case(path, {"walls.1={name = \"q\"}"});
+    read_case(path, {"walls.2={name = \"q\"}"});
     ADD_FAILURE() << "no error for an index past the end";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("--set 'walls.1="), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("(size 1)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--set 'walls.2="), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("(size 1"), std::string::npos) << e.what();
+  }
+  // One past the end appends (AWholeElementOnePastTheEndIsAppended); an incomplete element is
+  // then checked like any wall of the file, and the error says it came from --set.
+  try {
+    read_case(path, {"walls.1={name = \"q\"}"});
+    ADD_FAILURE() << "no error for an appended wall without its type";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("(--set)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'type'"), std::string::npos) << e.what();
   }
 }
 
@@ -280,4 +289,23 @@ TEST(CaseReader, ContactRestitutionOrDampingNotBoth) {
                 .contact_materials.at(0)
                 .damping_ratio,
             0.3);
+}
+
+TEST(CaseReader, AWholeElementOnePastTheEndIsAppended) {
+  // A study variant adds a condition (the Galvez beam's held second top line) by --set.
+  const std::string text = std::string(kGood) + "[[boundary]]\ngroup = \"all\"\ntype = \"fixed\"\n";
+  const CaseConfig c = read_case(write_case(text), {"boundary.1={group=\"all\", type=\"fixed\", dofs=\"y\"}"});
+  ASSERT_EQ(c.boundaries.size(), 2u);
+  EXPECT_TRUE(c.boundaries[0].dof[0]);
+  EXPECT_FALSE(c.boundaries[1].dof[0]);
+  EXPECT_TRUE(c.boundaries[1].dof[1]);
+  // Further than one past the end, or not a table: refused, naming the override.
+  for (const std::string bad : {"boundary.2={group=\"all\", type=\"fixed\"}", "boundary.1=3"}) {
+    try {
+      read_case(write_case(text), {bad});
+      ADD_FAILURE() << "no error for --set " << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
 }
