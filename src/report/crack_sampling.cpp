@@ -21,6 +21,8 @@ std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_sta
   auto g = render::read_frame(joints_vtu);
   vtkDataArray* state = g->GetCellData()->GetArray("state");
   DSPDEM_CHECK(state, "'{}' has no cell array 'state' (not a joints frame)", joints_vtu);
+  vtkDataArray* opening = g->GetCellData()->GetArray("opening");
+  vtkDataArray* slip = g->GetCellData()->GetArray("slip");
   vtkNew<vtkIdList> ids;
   for (vtkIdType e = 0; e < g->GetNumberOfCells(); ++e) {
     if (state->GetComponent(e, 0) < min_state) continue;
@@ -42,6 +44,7 @@ std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_sta
       p.area += 0.5 * c.norm(), n += c;
     }
     if (n.norm() > 0) p.normal = n.normalized();
+    if (opening && slip) p.jump = std::hypot(std::max(0.0, opening->GetComponent(e, 0)), slip->GetComponent(e, 0));
     out.push_back(p);
   }
   return out;
@@ -58,14 +61,16 @@ std::vector<int> joint_states(const std::string& joints_vtu) {
 
 std::vector<std::pair<double, double>> trace_path(const std::vector<CrackPiece>& pieces, int along, int across,
                                                   double lo, double hi, int bins,
-                                                  bool (*keep)(const Vec3&, const void*), const void* ctx) {
+                                                  bool (*keep)(const Vec3&, const void*), const void* ctx,
+                                                  PathWeight weight) {
   std::vector<double> w(bins, 0), s_along(bins, 0), s_across(bins, 0);
   const double d = (hi - lo) / bins;
   for (const auto& p : pieces) {
     const double a = p.centroid(along);
     if (a <= lo || a >= hi || (keep && !keep(p.centroid, ctx))) continue;
     const int b = std::min(bins - 1, static_cast<int>((a - lo) / d));
-    w[b] += p.area, s_along[b] += p.area * a, s_across[b] += p.area * p.centroid(across);
+    const double pw = weight == PathWeight::AreaWidth ? p.area * p.jump : p.area;
+    w[b] += pw, s_along[b] += pw * a, s_across[b] += pw * p.centroid(across);
   }
   std::vector<std::pair<double, double>> path;
   for (int b = 0; b < bins; ++b)

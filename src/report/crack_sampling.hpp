@@ -13,6 +13,7 @@ struct CrackPiece {
   Vec3 centroid;
   double area = 0;              ///< mid-surface area [m^2]
   Vec3 normal = Vec3::UnitZ();  ///< unit normal of the mid-surface (sign arbitrary)
+  double jump = 0;              ///< crack width: |(max(opening, 0), slip)| [m] (0 in frames without them)
 };
 
 /// Joints of a joints_NNNN.vtu frame whose state is at least `min_state` (2: broken, the
@@ -24,14 +25,21 @@ std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_sta
 /// pieces of the first frame (`broken_joints(first, 0)`: every joint where it started).
 std::vector<int> joint_states(const std::string& joints_vtu);
 
+/// How the pieces of a slice are weighted in a traced path.
+enum class PathWeight {
+  Area,       ///< by area: every piece of the damaged zone counts alike
+  AreaWidth,  ///< by area x crack width: the visible crack, where a damaged zone has more
+              ///< than one branch (a wide crack and a band of barely softened joints beside it)
+};
+
 /// A crack traced along `along` (0, 1, 2 = x, y, z): the pieces with lo < p(along) < hi and
-/// `keep` true, binned into `bins` equal slices; per non-empty slice the area-weighted mean
-/// of the other coordinate `across` at the slice's mean position. Returns (along, across)
+/// `keep` true, binned into `bins` equal slices; per non-empty slice the weighted mean of
+/// the other coordinate `across` at the slice's mean position. Returns (along, across)
 /// pairs in increasing `along`.
 std::vector<std::pair<double, double>> trace_path(const std::vector<CrackPiece>& pieces, int along, int across,
                                                   double lo, double hi, int bins,
                                                   bool (*keep)(const Vec3&, const void*) = nullptr,
-                                                  const void* ctx = nullptr);
+                                                  const void* ctx = nullptr, PathWeight weight = PathWeight::Area);
 
 struct PathDistance {
   double mean = 0;       ///< mean over the points of `a` of the distance to polyline `b` [m]

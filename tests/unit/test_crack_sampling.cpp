@@ -37,3 +37,21 @@ TEST(CrackSampling, TraceAveragesEachSliceByArea) {
   EXPECT_NEAR(path[0].first, 0.01, 1e-15);
   EXPECT_NEAR(path[0].second, 0.002, 1e-15);
 }
+
+TEST(CrackSampling, TraceByWidthFollowsTheOpenCrackBesideASoftenedBand) {
+  // One slice: a crack 0.1 mm wide at x = 55 mm (area 1) beside a band of barely softened
+  // joints, 1 um wide, spread over x = -20..40 mm (area 2 each). By area the mean lies in
+  // the band (x = 13.0 mm, 42 mm from the crack); by area x width 5.5 mm from it (the band
+  // keeps 12 % of the weight, at its mean x = 10 mm).
+  std::vector<CrackPiece> p = {{Vec3(0.055, 0.14, 0), 1.0, Vec3::UnitX(), 1e-4}};
+  for (int i = 0; i < 7; ++i) p.push_back({Vec3(-0.02 + 0.01 * i, 0.14, 0), 2.0, Vec3::UnitX(), 1e-6});
+  const auto by_area = trace_path(p, 1, 0, 0.1, 0.15, 1);
+  const auto by_width = trace_path(p, 1, 0, 0.1, 0.15, 1, nullptr, nullptr, PathWeight::AreaWidth);
+  ASSERT_EQ(by_area.size(), 1u);
+  ASSERT_EQ(by_width.size(), 1u);
+  EXPECT_NEAR(by_area[0].second, (0.055 + 2 * 0.07) / 15.0, 1e-12);
+  EXPECT_NEAR(by_width[0].second, (0.055 * 1e-4 + 0.01 * 1.4e-5) / 1.14e-4, 1e-12);
+  // A slice whose pieces have no width (a frame without the arrays) is left out, not placed at 0.
+  EXPECT_TRUE(
+      trace_path({{Vec3(0.01, 0.12, 0), 1.0}}, 1, 0, 0.1, 0.15, 1, nullptr, nullptr, PathWeight::AreaWidth).empty());
+}

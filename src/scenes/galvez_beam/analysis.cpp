@@ -23,12 +23,19 @@ bool in_slab(const Vec3& p, const void* ctx) {
 }
 }  // namespace
 
+bool outer_line_held(const CaseConfig& c) {
+  for (const auto& b : c.boundaries)
+    if (b.group == "load_outer" && b.dof[1] && b.type != BoundaryConfig::Type::Force) return true;
+  return false;
+}
+
 GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
   DSPDEM_CHECK(c.mesh_generator == "galvez_beam", "{}: the Galvez beam scene needs the galvez_beam generator", c.path);
   GalvezResult r;
   r.run_dir = run_dir;
   r.D = mesh_param(c, "depth"), r.B = mesh_param(c, "thickness"), r.notch = mesh_param(c, "notch_depth");
-  r.load_x = mesh_param(c, "load_inner_x");
+  r.load_x = mesh_param(c, "load_inner_x"), r.outer_x = mesh_param(c, "load_outer_x");
+  r.outer_held = outer_line_held(c);
   const report::RunData run = report::RunData::open(run_dir);
   const report::Series& s = run.series;
   const auto& t = s["time"];
@@ -72,15 +79,20 @@ GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir,
   }
   if (!run.joint_frames.empty()) {
     // The crack of a test is what can be seen: here the damaged joints (softening or
-    // broken). Broken ones alone are only the part of the crack that carries nothing; in
-    // this beam the load has fallen to a fifth while most of the ligament still softens.
+    // broken), weighted by their width. Broken ones alone are only the part of the crack
+    // that carries nothing; in this beam the load has fallen to a fifth while most of the
+    // ligament still softens. By area alone, a band of barely softened joints beside the
+    // crack pulls the path into it: held at its second top line, the beam softens joints
+    // over x = -18..+43 mm under its top face while the open crack reaches it at +58 mm,
+    // and the area-weighted path ended at +21 mm.
     const auto pieces = report::broken_joints(run.joint_frames.back().file, 1);
     for (const auto& p : pieces) r.crack_area += p.area;
     const int bins = 10;
     const Slab mid{-r.B / 6, r.B / 6}, front{r.B / 3, r.B / 2 + 1e-9}, back{-r.B / 2 - 1e-9, -r.B / 3};
-    r.path_mid = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &mid);
-    r.path_front = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &front);
-    r.path_back = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &back);
+    const auto w = report::PathWeight::AreaWidth;
+    r.path_mid = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &mid, w);
+    r.path_front = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &front, w);
+    r.path_back = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &back, w);
     if (!r.path_mid.empty()) r.top_y = r.path_mid.back().first, r.top_x = r.path_mid.back().second;
   }
   if (write_files) {

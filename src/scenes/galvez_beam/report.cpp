@@ -58,7 +58,27 @@ std::vector<report::Variant> galvez_variants(const CaseConfig& base) {
     if (base.bodies[i].fracture == BodyConfig::Fracture::Groups)
       all.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("all")));
   if (!all.empty()) v.push_back({"joints_everywhere", "joints on every face (reference: the crack band)", all});
+  // The test's other loading condition: the second top line held (nonproportional, K =
+  // infinity) or let free (proportional, K = 0); it moves the crack (Galvez et al. 1998).
+  if (!outer_line_held(base)) {
+    v.push_back(
+        {"nonproportional",
+         "second top line held in y (K = infinity)",
+         {fmt::format("boundary.{}={{group=\"load_outer\", type=\"fixed\", dofs=\"y\"}}", base.boundaries.size())}});
+  } else {
+    std::vector<std::string> free;
+    for (std::size_t i = 0; i < base.boundaries.size(); ++i)
+      if (base.boundaries[i].group == "load_outer")
+        free.insert(free.end(), {override_of(fmt::format("boundary.{}.type", i), std::string("force")),
+                                 override_of(fmt::format("boundary.{}.value", i), Vec3(Vec3::Zero()))});
+    v.push_back({"proportional", "second top line free (K = 0)", free});
+  }
   return v;
+}
+std::string loading_text(const GalvezResult& r) {
+  return fmt::format("the second top line at x = {:+.0f} mm {}", 1e3 * r.outer_x,
+                     r.outer_held ? "held in y: the nonproportional loading (K = infinity)"
+                                  : "free: the proportional loading (K = 0)");
 }
 }  // namespace
 
@@ -125,8 +145,9 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       c.path, c.name, doc.run_link("")));
   doc.para(fmt::format(
       "Beam depth D = {:.0f} mm, thickness {:.0f} mm, notch {:.0f} mm; {} elements, {} joints; loading line at x = "
-      "{:+.0f} mm. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
-      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, r.steps, r.dt, r.wall_s));
+      "{:+.0f} mm; {}. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
+      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, loading_text(r), r.steps, r.dt,
+      r.wall_s));
   doc.section("Load");
   doc.para(fmt::format(
       "Peak actuator load {:.3f} kN at t = {:.3f} ms, CMOD {:.4f} mm, load-point deflection {:.4f} mm. "
@@ -177,10 +198,10 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   h.scene = "galvez_beam", h.title = "Galvez notched beam (paper 2.3)";
   h.summary = fmt::format(
       "A concrete beam {:.0f} mm deep with a notch {:.0f} mm deep at mid-span, loaded on one top line at x = {:+.0f} "
-      "mm: mixed-mode fracture, the crack leaves the notch and turns towards the load. {} elements, {} joints. The "
+      "mm, {}: mixed-mode fracture, the crack leaves the notch and turns towards the load. {} elements, {} joints. The "
       "experiment's load records and trajectory (Galvez et al. 1998) were not found in a readable source: the "
       "comparison is with the paper's description.",
-      1e3 * r.D, 1e3 * r.notch, 1e3 * r.load_x, r.elements, r.joints);
+      1e3 * r.D, 1e3 * r.notch, 1e3 * r.load_x, loading_text(r), r.elements, r.joints);
   const auto yes = report::agrees;
   const bool cracked = r.first_crack_frame >= 0;
   h.rows = {{"where the crack starts", "at the notch tip",
@@ -189,12 +210,19 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
                      : "no crack",
              yes(cracked && std::abs(r.start_x) < 0.015 && std::abs(r.start_y - r.notch) < 0.015),
              "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"},
-            {"where it runs", "from the notch towards the loading side, curving (the test's trajectory: not found)",
+            // Free second line: nearly mode I, the crack leans; held: it curves more than half
+            // way to the loading line (REFERENCE.md, "The two loading conditions").
+            {"where it runs",
+             r.outer_held ? "from the notch, curving to the top face near the loading line (the test's trajectory: "
+                            "not found)"
+                          : "from the notch towards the loading side (the test's trajectory: not found)",
              cracked ? fmt::format("highest at y = {:.1f} mm, x = {:+.1f} mm (load at x = {:+.0f} mm)", 1e3 * r.top_y,
                                    1e3 * r.top_x, 1e3 * r.load_x)
                      : "no crack",
-             yes(cracked && r.top_x * r.load_x > 0 && r.top_y > r.notch + 0.5 * (r.D - r.notch)),
-             "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"},
+             yes(cracked && r.top_x * r.load_x > 0 && r.top_y > r.notch + 0.5 * (r.D - r.notch) &&
+                 (!r.outer_held || (r.top_x / r.load_x > 0.5 && r.top_x / r.load_x < 1))),
+             r.outer_held ? "Galvez.HeldAtItsSecondTopLineTheBeamCurvesItsCrackToTheLoadingLine"
+                          : "Galvez.CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas"},
             {"peak actuator load", "a load-CMOD curve in qualitative agreement (no number)",
              fmt::format("{:.2f} kN at CMOD {:.3f} mm", 1e-3 * r.P_peak, 1e3 * r.cmod_peak), "", ""},
             {"quasi-static: kinetic / internal energy at the peak", "-", fmt::format("{:.3f}", r.ke_ratio_peak),
