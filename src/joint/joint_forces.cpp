@@ -54,6 +54,8 @@ const QuadratureTables& quadrature_tables() {
 // For each node a joint touches, its slots in joint order (see JointSet::gather_*).
 void build_gather(JointSet& js) {
   const Index nj = js.size();
+  js.gather_active.resize(static_cast<std::size_t>(nj));
+  for (Index j = 0; j < nj; ++j) js.gather_active[j] = !js.inactive(j);
   Index n_max = 0;
   for (Index j = 0; j < nj; ++j)
     for (int k = 0; k < js.npf[j]; ++k)
@@ -61,7 +63,7 @@ void build_gather(JointSet& js) {
           {n_max, js.a[4 * static_cast<std::size_t>(j) + k] + 1, js.b[4 * static_cast<std::size_t>(j) + k] + 1});
   std::vector<Index> count(static_cast<std::size_t>(n_max), 0);
   for (Index j = 0; j < nj; ++j)
-    for (int k = 0; k < js.npf[j]; ++k)
+    for (int k = 0; k < js.npf[j] && js.gather_active[j]; ++k)
       ++count[js.a[4 * static_cast<std::size_t>(j) + k]], ++count[js.b[4 * static_cast<std::size_t>(j) + k]];
   std::vector<Index> row(static_cast<std::size_t>(n_max), -1);
   js.gather_node.clear();
@@ -78,7 +80,7 @@ void build_gather(JointSet& js) {
   // is stored as 2 x (offset of side A's force) + side: side B's force is exactly -A's, so
   // only A's is kept and side B's nodes subtract it (f - a is f + (-a) to the bit).
   for (Index j = 0; j < nj; ++j)
-    for (int side = 0; side < 2; ++side)
+    for (int side = 0; side < 2 && js.gather_active[j]; ++side)
       for (int k = 0; k < js.npf[j]; ++k) {
         const Index n = (side == 0 ? js.a : js.b)[4 * static_cast<std::size_t>(j) + k];
         js.gather_slot[fill[row[n]]++] = 2 * (12 * j + 3 * k) + side;
@@ -299,7 +301,11 @@ void run_kernel(JointSet& js, Index j0, const Real* x, const QuadratureTables& q
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots) {
   const Index nj = js.size();
   if (nj == 0) return;
-  if (js.gather_joints != nj) build_gather(js);
+  // An inactive joint's slots are left out of the gather (they would add zeros), so the
+  // gather follows the active set. Checking it is a pass over two byte arrays.
+  bool stale = js.gather_joints != nj;
+  for (Index j = 0; !stale && j < nj; ++j) stale = js.gather_active[j] != static_cast<char>(!js.inactive(j));
+  if (stale) build_gather(js);
   slots.resize(12 * static_cast<std::size_t>(nj));
   js.newly_failed.resize(nj);
   const QuadratureTables& qt = quadrature_tables();
@@ -308,7 +314,9 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
 #pragma omp parallel for schedule(static) if (nj > 1024)
   for (Index q = 0; q < nb; ++q) {
     const Index j0 = batch * q, j1 = std::min(j0 + batch, nj);
-    for (Index j = j0; j < j1; ++j) js.newly_failed[j] = 0;
+    bool any = false;
+    for (Index j = j0; j < j1; ++j) js.newly_failed[j] = 0, any = any || js.gather_active[j];
+    if (!any) continue;  // nothing of this batch is gathered
     if (j1 - j0 == batch && uniform_batch<batch>(js, j0)) {
       Real* out = &slots[12 * static_cast<std::size_t>(j0)];
       const bool lean = js.npf[j0] == 3 && js.rule(j0) == Quadrature::Nodal &&

@@ -59,8 +59,12 @@ struct JointSet {
   /// over the joints.
   /// (Joints writing straight into per-node slots, so that the gather streams, measured 1.2x
   /// slower on the Brazilian disc: the scattered writes cost more than the gathered reads.)
+  /// Only active joints are gathered: an extrinsic body's closed joints (most of its faces,
+  /// most of the run) and released ones add nothing, and summing their zeros was a fifth of
+  /// the extrinsic disc's step. The gather is rebuilt when the active set changes.
   std::vector<Index> gather_node, gather_ptr, gather_slot;
-  Index gather_joints = -1;  ///< joint count the gather was built for (rebuilt when it changes)
+  Index gather_joints = -1;         ///< joint count the gather was built for (rebuilt when it changes)
+  std::vector<char> gather_active;  ///< per joint: active when the gather was built
   Index size() const { return static_cast<Index>(npf.size()); }
   /// Point i (= 4 joint + g) as a full state, whichever form it is kept in.
   CohesiveState point_state(std::size_t i) const {
