@@ -340,13 +340,21 @@ void Integrator::tie_forces() {
   const Index* node = ties_.node.data();
   const Index* ptr = ties_.ptr.data();
   Real* f = f_.data();
+  // One pass over a group's copies for all three components (each summed in copy order,
+  // as before): the copies are scattered, and three passes read each one's line three times.
 #pragma omp parallel for schedule(static) if (ng > 2048)
-  for (Index g = 0; g < ng; ++g)
-    for (int d = 0; d < 3; ++d) {
-      Real F = f[3 * static_cast<std::size_t>(node[ptr[g]]) + d];
-      for (Index q = ptr[g] + 1; q < ptr[g + 1]; ++q) F += f[3 * static_cast<std::size_t>(node[q]) + d];
-      for (Index q = ptr[g]; q < ptr[g + 1]; ++q) f[3 * static_cast<std::size_t>(node[q]) + d] = F;
+  for (Index g = 0; g < ng; ++g) {
+    const Real* f0 = f + 3 * static_cast<std::size_t>(node[ptr[g]]);
+    Real F0 = f0[0], F1 = f0[1], F2 = f0[2];
+    for (Index q = ptr[g] + 1; q < ptr[g + 1]; ++q) {
+      const Real* fq = f + 3 * static_cast<std::size_t>(node[q]);
+      F0 += fq[0], F1 += fq[1], F2 += fq[2];
     }
+    for (Index q = ptr[g]; q < ptr[g + 1]; ++q) {
+      Real* fq = f + 3 * static_cast<std::size_t>(node[q]);
+      fq[0] = F0, fq[1] = F1, fq[2] = F2;
+    }
+  }
 }
 
 void Integrator::non_finite_state() const {
