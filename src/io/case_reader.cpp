@@ -261,6 +261,10 @@ void apply_override(toml::table& root, const std::string& ov) {
                  "--set '{}': '{}' is not an index of that array (size {}; {} appends)", ov, parts.back(), a->size(),
                  a->size());
     if (static_cast<std::size_t>(idx) == a->size()) {
+      DSPDEM_CHECK(a->is_array_of_tables() && !a->empty(),
+                   "--set '{}': only an array of tables the case has ([[...]]) takes an appended element; '{}' is past "
+                   "the end of this one (size {})",
+                   ov, parts.back(), a->size());
       DSPDEM_CHECK(value->is_table(), "--set '{}': an element appended to an array of tables must be a table {{...}}",
                    ov);
       a->push_back(std::move(*value));

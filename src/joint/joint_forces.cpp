@@ -302,7 +302,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
   const Index nj = js.size();
   if (nj == 0) return;
   // An inactive joint's slots are left out of the gather (they would add zeros), so the
-  // gather follows the active set. Checking it is a pass over two byte arrays.
+  // gather follows the active set. Checking it is a pass over three byte arrays.
   bool stale = js.gather_joints != nj;
   for (Index j = 0; !stale && j < nj; ++j) stale = js.gather_active[j] != static_cast<char>(!js.inactive(j));
   if (stale) build_gather(js);

@@ -75,13 +75,13 @@ struct JointSet {
     if (!full[i]) state[i] = full_state(params[param[i / 4]], lean[i]), full[i] = 1;
     return state[i];
   }
-  /// Joint j applies no force: released, or closed.
   /// What changes during a run, for checkpoints (core/archive.hpp); the rest is built from
-  /// the mesh and the case, and the gather from the joint count alone.
+  /// the mesh and the case, and the gather from the joint count and the active set.
   template <class Ar>
   void persist(Ar& ar) {
     ar(lean, full, state, status, failed, released, released_energy, closed, offset);
   }
+  /// Joint j applies no force: released, or closed.
   bool inactive(Index j) const { return released[j] || (!closed.empty() && closed[j]); }
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };

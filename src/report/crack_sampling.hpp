@@ -13,7 +13,9 @@ struct CrackPiece {
   Vec3 centroid;
   double area = 0;              ///< mid-surface area [m^2]
   Vec3 normal = Vec3::UnitZ();  ///< unit normal of the mid-surface (sign arbitrary)
-  double jump = 0;              ///< crack width: |(max(opening, 0), slip)| [m] (0 in frames without them)
+  /// Crack width: |(max(opening, 0), slip)| [m] (0 in frames without them). A joint released
+  /// to contact (its pieces apart) keeps the width it had when it was released.
+  double jump = 0;
 };
 
 /// Joints of a joints_NNNN.vtu frame whose state is at least `min_state` (2: broken, the

@@ -7,7 +7,8 @@
 // - the crack (damaged joints, weighted by their width) starts at the notch tip (within one
 //   band element, 15 mm), climbs into the top quarter of the ligament and curves towards the
 //   loading line: its highest mid-plane point lies more than half way to that line (at
-//   +75 mm) and not past it (measured +55 mm; the free beam's crack, below, ends at +10 mm);
+//   +75 mm; measured +55 mm; the free beam's crack, below, ends at +10 mm; joints stop at
+//   the band's edge, +70 mm, so the crack cannot pass the line);
 // - the peak is quasi-static (kinetic / internal energy there below 0.05; measured 0.005)
 //   and the energy balance closes within 1 % of the largest term;
 // - regression: the mid-plane path within 5 mm on average (a third of an element) and
@@ -46,7 +47,6 @@ TEST(Galvez, CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas) {
   EXPECT_TRUE(g.outer_held);
   EXPECT_GT(g.top_y, g.notch + 0.75 * (g.D - g.notch)) << "the crack stopped below the top quarter of the ligament";
   EXPECT_GT(g.top_x, 0.5 * g.load_x) << "the crack did not curve towards the loading line";
-  EXPECT_LT(g.top_x, g.load_x) << "the crack ran past the loading line";
   RecordProperty("peak_kN", fmt::format("{:.3f}", 1e-3 * g.P_peak));
   RecordProperty("top_x_mm", fmt::format("{:.1f}", 1e3 * g.top_x));
   EXPECT_LT(g.ke_ratio_peak, 0.05);

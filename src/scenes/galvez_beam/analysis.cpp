@@ -25,7 +25,15 @@ bool in_slab(const Vec3& p, const void* ctx) {
 
 bool outer_line_held(const CaseConfig& c) {
   for (const auto& b : c.boundaries)
-    if (b.group == "load_outer" && b.dof[1] && b.type != BoundaryConfig::Type::Force) return true;
+    if (b.group == "load_outer" && b.dof[1] &&
+        (b.type == BoundaryConfig::Type::Fixed || (b.type == BoundaryConfig::Type::Velocity && b.value(1) == 0)))
+      return true;
+  return false;
+}
+
+bool outer_line_driven(const CaseConfig& c) {
+  for (const auto& b : c.boundaries)
+    if (b.group == "load_outer" && b.dof[1] && b.type != BoundaryConfig::Type::Fixed && b.value(1) != 0) return true;
   return false;
 }
 
@@ -35,7 +43,7 @@ GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir,
   r.run_dir = run_dir;
   r.D = mesh_param(c, "depth"), r.B = mesh_param(c, "thickness"), r.notch = mesh_param(c, "notch_depth");
   r.load_x = mesh_param(c, "load_inner_x"), r.outer_x = mesh_param(c, "load_outer_x");
-  r.outer_held = outer_line_held(c);
+  r.outer_held = outer_line_held(c), r.outer_driven = outer_line_driven(c);
   const report::RunData run = report::RunData::open(run_dir);
   const report::Series& s = run.series;
   const auto& t = s["time"];

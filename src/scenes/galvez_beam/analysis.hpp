@@ -15,7 +15,8 @@ struct GalvezResult {
   std::string run_dir;
   Real D = 0, B = 0, notch = 0, load_x = 0;  ///< depth, thickness, notch depth, loading line x [m]
   Real outer_x = 0;                          ///< the second top line's x [m]
-  bool outer_held = false;                   ///< the second top line held in y (nonproportional) or free (proportional)
+  bool outer_held = false;                   ///< the second top line held in y (nonproportional) or not
+  bool outer_driven = false;  ///< the second top line driven or loaded in y (neither of the test's kinds)
   Real P_peak = 0, t_peak = 0, cmod_peak = 0, defl_peak = 0;
   Real ke_ratio_max = 0;  ///< largest kinetic / internal energy from half the peak load to the peak
   Real ke_ratio_peak = 0;
@@ -38,6 +39,8 @@ struct GalvezResult {
 /// nonproportional loading, where that line's actuator keeps its place (a spring K = infinity);
 /// free, the proportional one (K = 0).
 bool outer_line_held(const CaseConfig& c);
+/// Whether a condition moves or loads that line in y (a nonzero velocity or force).
+bool outer_line_driven(const CaseConfig& c);
 
 /// Analyses the run in `run_dir` of case `c`; with `write_files`, writes load.csv and
 /// crack_path.csv there.
