@@ -1,5 +1,7 @@
 #include "report/study_runner.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 
 #include "core/error.hpp"
@@ -36,6 +38,19 @@ CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std:
   o.out_dir = run_dir;
   run_case(c, o);
   return c;
+}
+
+std::vector<std::string> extrinsic_overrides(const CaseConfig& base) {
+  std::vector<std::string> sets;
+  for (std::size_t i = 0; i < base.bodies.size(); ++i)
+    if (base.bodies[i].fracture != BodyConfig::Fracture::None)
+      sets.push_back(override_of(fmt::format("bodies.{}.fracture_insertion", i), std::string("extrinsic")));
+  if (sets.empty()) return sets;
+  sets.push_back(override_of("time.insertion_interval", 10.0));
+  for (std::size_t i = 0; i < base.materials.size(); ++i)
+    if (base.joint_materials[i].given)
+      sets.push_back(override_of("materials." + base.materials[i].name + ".joint_penalty", 1.0));
+  return sets;
 }
 
 }  // namespace dspdem::report

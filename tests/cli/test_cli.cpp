@@ -426,6 +426,25 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
 }
 
+TEST_F(Cli, ReportStudyOfTheGalvezBeamRunsEveryVariant) {
+  // The beam's sweep machinery for 0.1 ms (this checks the variants run and are tabulated,
+  // not their numbers): its nine rows, the held line's other loading condition (free) and
+  // the extrinsic row among them.
+  const std::string beam = std::string(DSPDEM_SOURCE_DIR) + "/cases/galvez_beam.toml";
+  const Result r = run("-q report " + beam + " --study --no-render --out " + (dir_ / "rep").string() +
+                       " --set time.end=1e-4 --set output.frame_interval=2e-5");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string md = slurp(dir_ / "rep" / "report.md");
+  for (const char* row :
+       {"| crack_size_15.0mm | reference |", "| crack_size_10.0mm |", "| crack_size_22.5mm |", "| rate_x0.5 |",
+        "| penalty_other |", "| paper_law |", "| joints_everywhere |", "| extrinsic |", "| proportional |"})
+    EXPECT_NE(md.find(row), std::string::npos) << row;
+  EXPECT_NE(md.find("held in y: the nonproportional loading"), std::string::npos);
+  // The free row's case lets the second top line free: a zero force on it, no constraint.
+  const std::string free = slurp(dir_ / "rep" / "study" / "proportional" / "case.resolved.toml");
+  EXPECT_NE(free.find("group = 'load_outer'\nramp = 0.0\ntype = 'force'"), std::string::npos) << free;
+}
+
 TEST_F(Cli, ReportStudyOfARunThatNeverLoadsStillWritesTheReport) {
   // Plates too slow to reach the disc in 0.2 ms: no profile load, so the stress check is
   // skipped (and said so) and the study's elastic row fails with a reason; the other rows

@@ -164,14 +164,8 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     // larger; checked every 10 steps (under the old mean-stress rule 1 step read +20.8 % and
     // 311 s, 10 steps +18.9 % and 195 s on 2 threads; under the default "larger" rule 10 steps
     // read +1.7 % in 67 s: cases/README.md).
-    std::vector<std::string> sets{override_of("time.insertion_interval", 10.0)};
-    for (std::size_t i = 0; i < base.bodies.size(); ++i)
-      if (base.bodies[i].fracture != BodyConfig::Fracture::None)
-        sets.push_back(override_of(fmt::format("bodies.{}.fracture_insertion", i), std::string("extrinsic")));
-    for (std::size_t i = 0; i < base.materials.size(); ++i)
-      if (base.joint_materials[i].given)
-        sets.push_back(override_of("materials." + base.materials[i].name + ".joint_penalty", 1.0));
-    if (sets.size() > 1)
+    const auto sets = report::extrinsic_overrides(base);
+    if (!sets.empty())
       add("extrinsic", "joints inserted where the traction reaches the strength, penalty 1 (reference: intrinsic)",
           sets);
   }
