@@ -290,7 +290,15 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
   } catch (const toml::parse_error& e) {
     fail("{}:{}:{}: TOML syntax error: {}", path, e.source().begin.line, e.source().begin.column, e.description());
   }
-  for (const auto& ov : overrides) apply_override(root, ov);
+  // A bad --set names the case it was applied to: a study or a sweep applies its overrides
+  // to cases it resolved itself, and the user should see which one refused them.
+  for (const auto& ov : overrides) {
+    try {
+      apply_override(root, ov);
+    } catch (const Error& e) {
+      fail("{}: {}", path, e.what());
+    }
+  }
 
   for (const auto& [key, node] : root) {
     const std::string k(key.str());
