@@ -115,6 +115,10 @@ int run_main(int argc, char** argv) {
                   "Impact speeds of the sphere impact's study [m/s] (default 7.5,20; each costs a mesh x2 and x4 run)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
+  rep->add_option("--realisations", rpa.realisations,
+                  "Runs per speed of a velocity sweep, the first the case itself, the others with the mesh turned "
+                  "another way (mesh.<generator>.orientation): how often each speed gives the pattern")
+      ->check(CLI::Range(1, 100));
   rep->add_option("-j,--jobs", rpa.jobs,
                   "Runs of a sweep or study at once, each a process with -t 1 (default: one per core)")
       ->check(CLI::Range(1, 256));

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "scenes/registry.hpp"
@@ -19,7 +20,11 @@ int report_command(const report::ReportArgs& a) {
       c = read_case(resolved.string());
     }
   }
-  return scenes::of_case(c).report(c, a);
+  const scenes::Scene& scene = scenes::of_case(c);
+  DSPDEM_CHECK(scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1),
+               "{}: --speeds, --study-speeds and --realisations belong to a velocity sweep; scene '{}' has none",
+               c.path, scene.name);
+  return scene.report(c, a);
 }
 
 }  // namespace dspdem

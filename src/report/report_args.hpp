@@ -14,7 +14,8 @@ struct ReportArgs {
   bool no_stress_check = false;      ///< skip a scene's extra verification runs (the disc's stress check)
   std::vector<double> speeds;        ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
   std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)
-  int jobs = 0;                      ///< runs of a sweep or study in parallel processes (0: one per core)
+  int realisations = 1;  ///< runs per speed of a sweep, each with the mesh turned another way (the sphere impact)
+  int jobs = 0;          ///< runs of a sweep or study in parallel processes (0: one per core)
 };
 
 }  // namespace dspdem::report

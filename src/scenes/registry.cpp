@@ -43,7 +43,8 @@ const std::vector<Scene>& all() {
        "rock sphere striking a rigid plate, a sweep over speeds (paper 2.5)",
        sphere_impact_report,
        "cases/sphere_impact.toml",
-       {"--set", "mesh.sphere_plate.size=0.04", "--speeds", "2.5,7.5,20"}},
+       {"--set", "mesh.sphere_plate.size=0.04", "--speeds", "2.5,7.5,20"},
+       true},
   };
   return s;
 }

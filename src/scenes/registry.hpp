@@ -17,6 +17,7 @@ struct Scene {
   std::function<int(const CaseConfig&, const report::ReportArgs&)> report;
   std::string case_file;                ///< its shipped case, relative to the source tree
   std::vector<std::string> quick_args;  ///< `dspdem report` arguments for a CI-sized run (figures --quick)
+  bool speed_sweep = false;             ///< its report takes --speeds, --study-speeds and --realisations
 };
 
 const std::vector<Scene>& all();

@@ -60,6 +60,12 @@ class Cli : public ::testing::Test {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;
   }
+  /// `dspdem -q report` of the shipped case cases/<name>.toml into dir_/rep, without images,
+  /// with `options` (further flags and --set overrides).
+  Result report(const std::string& name, const std::string& options) {
+    const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/" + name + ".toml";
+    return run("-q report " + file + " --no-render --out " + (dir_ / "rep").string() + " " + options);
+  }
   fs::path dir_;
   std::string good_;
 };
@@ -395,11 +401,10 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   // the variants run and are tabulated, not their numbers): the reference row reuses the
   // main run, the elastic row the stress check (run under stress_check/ on a finer mesh),
   // the fifteen others run under study/, and study.csv has one row for each fracture run.
-  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
-  const Result r = run("-q report " + disc + " --study --no-render --out " + (dir_ / "rep").string() +
-                       " --set mesh.brazilian_disc.size=0.02 --set materials.rock.joint_penalty=30"
-                       " --set time.end=2e-4 --set output.frame_interval=2e-5"
-                       " --set walls.0.velocity=[0,-0.2,0] --set walls.1.velocity=[0,0.2,0]");
+  const Result r = report("brazilian_disc",
+                          "--study --set mesh.brazilian_disc.size=0.02 --set materials.rock.joint_penalty=30"
+                          " --set time.end=2e-4 --set output.frame_interval=2e-5"
+                          " --set walls.0.velocity=[0,-0.2,0] --set walls.1.velocity=[0,0.2,0]");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
   for (const char* row : {"| size_32.0mm |", "| size_25.0mm |", "| size_20.0mm | reference |", "| penalty_100 |",
@@ -430,9 +435,7 @@ TEST_F(Cli, ReportStudyOfTheGalvezBeamRunsEveryVariant) {
   // The beam's sweep machinery for 0.1 ms (this checks the variants run and are tabulated,
   // not their numbers): its nine rows, the held line's other loading condition (free) and
   // the extrinsic row among them.
-  const std::string beam = std::string(DSPDEM_SOURCE_DIR) + "/cases/galvez_beam.toml";
-  const Result r = run("-q report " + beam + " --study --no-render --out " + (dir_ / "rep").string() +
-                       " --set time.end=1e-4 --set output.frame_interval=2e-5");
+  const Result r = report("galvez_beam", "--study --set time.end=1e-4 --set output.frame_interval=2e-5");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
   for (const char* row :
@@ -445,13 +448,40 @@ TEST_F(Cli, ReportStudyOfTheGalvezBeamRunsEveryVariant) {
   EXPECT_NE(free.find("group = 'load_outer'\nramp = 0.0\ntype = 'force'"), std::string::npos) << free;
 }
 
+TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
+  // --realisations 3: each speed on the case's mesh and on two turned ones (orientations 1
+  // and 2, each run with its own resolved case), tabulated per speed and in orientations.csv.
+  // This checks the machinery on a 330-tet sphere for 0.1 ms after contact, not the numbers.
+  const Result r = report("sphere_impact",
+                          "--speeds 2.5,7.5 --realisations 3 -j 2 --set mesh.sphere_plate.size=0.04"
+                          " --set time.end=1e-4 --set output.frame_interval=2.5e-5");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string md = slurp(dir_ / "rep" / "report.md");
+  EXPECT_NE(md.find("### The pattern over 3 orientations of the mesh"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 7.5 | a few large pieces | 3 |"), std::string::npos) << md;
+  for (const char* o : {"v2.5_o1", "v2.5_o2", "v7.5_o1", "v7.5_o2"})
+    EXPECT_TRUE(fs::exists(dir_ / "rep" / "orientations" / o / "summary.json")) << o;
+  EXPECT_NE(slurp(dir_ / "rep" / "orientations" / "v7.5_o2" / "case.resolved.toml").find("orientation = 2"),
+            std::string::npos);
+  std::ifstream csv(dir_ / "rep" / "orientations.csv");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(csv, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 1u + 6u);
+  EXPECT_EQ(lines[1].rfind("2.5,0,330,", 0), 0u) << lines[1];  // the case's own mesh first
+  EXPECT_EQ(lines[6].rfind("7.5,2,", 0), 0u) << lines[6];
+  // A scene without a velocity sweep refuses the sweep's options instead of ignoring them.
+  const Result disc = report("brazilian_disc", "--realisations 2");
+  EXPECT_EQ(disc.code, 2) << disc.out;
+  EXPECT_NE(disc.out.find("scene 'brazilian_disc' has none"), std::string::npos) << disc.out;
+}
+
 TEST_F(Cli, ReportStudyOfARunThatNeverLoadsStillWritesTheReport) {
   // Plates too slow to reach the disc in 0.2 ms: no profile load, so the stress check is
   // skipped (and said so) and the study's elastic row fails with a reason; the other rows
   // and report.md are still written.
-  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
-  const Result r = run("-q report " + disc + " --study --no-render --out " + (dir_ / "rep").string() +
-                       " --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5");
+  const Result r =
+      report("brazilian_disc",
+             "--study --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
   EXPECT_NE(md.find("Stress check skipped"), std::string::npos);
@@ -463,9 +493,9 @@ TEST_F(Cli, ReportStudyOfARunThatNeverLoadsStillWritesTheReport) {
 
 TEST_F(Cli, ReportWithoutStressCheckRunsTheSceneOnly) {
   // --no-stress-check: the report has the scene's profile and no check section or folder.
-  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
-  const Result r = run("-q report " + disc + " --no-stress-check --no-render --out " + (dir_ / "rep").string() +
-                       " --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5");
+  const Result r = report(
+      "brazilian_disc",
+      "--no-stress-check --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string md = slurp(dir_ / "rep" / "report.md");
   EXPECT_NE(md.find("## Stresses along the loaded diameter"), std::string::npos);

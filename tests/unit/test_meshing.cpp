@@ -3,6 +3,8 @@
 // overlaps and reproducible, and parameter errors that name the key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -193,6 +195,24 @@ TEST(Generators, SpherePlate) {
   EXPECT_EQ(alone.find_group("plate"), nullptr);
   EXPECT_EQ(alone.n_elements(), count(alone, "sphere"));
   EXPECT_NEAR(count(alone, "sphere") / 4539.0, 1.0, 0.10);
+}
+
+TEST(Generators, SphereOrientationIsAnotherMeshOfTheSameSphere) {
+  // orientation = k > 0 turns the sphere before meshing: the same sphere (every node on or
+  // inside it, the volume as exact as the unturned mesh's), meshed differently, and the same
+  // k gives the same mesh every time (the sequence of rotations is fixed).
+  const Mesh m0 = meshing::generate(params("sphere_plate", {"plate=0"}));
+  const Mesh m1 = meshing::generate(params("sphere_plate", {"plate=0", "orientation=1"}));
+  const Mesh again = meshing::generate(params("sphere_plate", {"plate=0", "orientation=1"}));
+  EXPECT_TRUE(m1.x == again.x);
+  EXPECT_FALSE(m1.x == m0.x);
+  const double R = 0.1, exact = 4.0 / 3.0 * M_PI * R * R * R;
+  double rmax = 0;
+  for (std::size_t i = 0; i < m1.x.size(); i += 3)
+    rmax = std::max(rmax, std::sqrt(m1.x[i] * m1.x[i] + m1.x[i + 1] * m1.x[i + 1] + m1.x[i + 2] * m1.x[i + 2]));
+  EXPECT_NEAR(rmax, R, 1e-9 * R);
+  EXPECT_LT(std::abs(group_volume(m1, "sphere") / exact - 1), 0.03);  // as SpherePlate's bound at this size
+  EXPECT_NEAR(count(m1, "sphere") / static_cast<double>(count(m0, "sphere")), 1.0, 0.05);
 }
 
 TEST(Generators, ElementCountTarget) {
