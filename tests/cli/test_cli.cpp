@@ -469,6 +469,19 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   ASSERT_EQ(lines.size(), 1u + 6u);
   EXPECT_EQ(lines[1].rfind("2.5,0,330,", 0), 0u) << lines[1];  // the case's own mesh first
   EXPECT_EQ(lines[6].rfind("7.5,2,", 0), 0u) << lines[6];
+  // --from-run analyses those runs again without running any; it needs every realisation asked for.
+  const std::string from = "--from-run " + (dir_ / "rep").string() +
+                           " --speeds 2.5,7.5 --set mesh.sphere_plate.size=0.04 --set time.end=1e-4"
+                           " --set output.frame_interval=2.5e-5 --out " +
+                           (dir_ / "again").string();
+  const Result again = run("-q report " + std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml --no-render " +
+                           from + " --realisations 3");
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_EQ(slurp(dir_ / "again" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
+  const Result more = run("-q report " + std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml --no-render " +
+                          from + " --realisations 4");
+  EXPECT_EQ(more.code, 2) << more.out;
+  EXPECT_NE(more.out.find("v2.5_o3"), std::string::npos) << more.out;
   // A scene without a velocity sweep refuses the sweep's options instead of ignoring them.
   const Result disc = report("brazilian_disc", "--realisations 2");
   EXPECT_EQ(disc.code, 2) << disc.out;

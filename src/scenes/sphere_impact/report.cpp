@@ -191,7 +191,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     errors = run_planned(c, plan, jobs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i)
-      DSPDEM_CHECK(i - n_sweep < n_study || fs::exists(fs::path(plan[i].dir) / "summary.json"),
+      DSPDEM_CHECK((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json"),
                    "--from-run {}: no finished run at {} (the sweep's speeds/ and orientations/ folders of an "
                    "earlier report, with as many --realisations)",
                    a.from_run, plan[i].dir);
