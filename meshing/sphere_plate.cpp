@@ -14,7 +14,8 @@ namespace dspdem::meshing {
 namespace {
 // The k-th of a fixed sequence of rotations, uniform over all rotations (Shoemake's
 // quaternion from three uniform numbers). mt19937_64's output is fixed by the standard and
-// the doubles are made from its bits here, so every platform turns the sphere the same way.
+// the doubles are made from its bits here, so every platform draws the same numbers (the
+// axis and angle may still differ in the last bits of sin and cos between libm versions).
 Eigen::AngleAxisd orientation(int k) {
   std::mt19937_64 g(static_cast<std::uint64_t>(k));
   const auto u = [&g] { return static_cast<double>(g() >> 11) * 0x1.0p-53; };

@@ -60,11 +60,11 @@ class Cli : public ::testing::Test {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;
   }
-  /// `dspdem -q report` of the shipped case cases/<name>.toml into dir_/rep, without images,
+  /// `dspdem -q report` of the shipped case cases/<name>.toml into dir_/<out>, without images,
   /// with `options` (further flags and --set overrides).
-  Result report(const std::string& name, const std::string& options) {
+  Result report(const std::string& name, const std::string& options, const std::string& out = "rep") {
     const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/" + name + ".toml";
-    return run("-q report " + file + " --no-render --out " + (dir_ / "rep").string() + " " + options);
+    return run("-q report " + file + " --no-render --out " + (dir_ / out).string() + " " + options);
   }
   fs::path dir_;
   std::string good_;
@@ -470,18 +470,28 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   EXPECT_EQ(lines[1].rfind("2.5,0,330,", 0), 0u) << lines[1];  // the case's own mesh first
   EXPECT_EQ(lines[6].rfind("7.5,2,", 0), 0u) << lines[6];
   // --from-run analyses those runs again without running any; it needs every realisation asked for.
-  const std::string from = "--from-run " + (dir_ / "rep").string() +
-                           " --speeds 2.5,7.5 --set mesh.sphere_plate.size=0.04 --set time.end=1e-4"
-                           " --set output.frame_interval=2.5e-5 --out " +
-                           (dir_ / "again").string();
-  const Result again = run("-q report " + std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml --no-render " +
-                           from + " --realisations 3");
+  const auto from_run = [&](const std::string& out, int realisations) {
+    return report("sphere_impact",
+                  fmt::format("--from-run {} --realisations {} --speeds 2.5,7.5 --set mesh.sphere_plate.size=0.04 "
+                              "--set time.end=1e-4 --set output.frame_interval=2.5e-5",
+                              (dir_ / "rep").string(), realisations),
+                  out);
+  };
+  const Result again = from_run("again", 3);
   ASSERT_EQ(again.code, 0) << again.out;
   EXPECT_EQ(slurp(dir_ / "again" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
-  const Result more = run("-q report " + std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml --no-render " +
-                          from + " --realisations 4");
+  const Result more = from_run("again", 4);
   EXPECT_EQ(more.code, 2) << more.out;
   EXPECT_NE(more.out.find("v2.5_o3"), std::string::npos) << more.out;
+  // A realisation that ran and was lost (its log is there, its results are not) is a failed
+  // row, named by its orientation, and the others keep their own orientation numbers.
+  fs::remove(dir_ / "rep" / "orientations" / "v2.5_o1" / "summary.json");
+  const Result lost = from_run("again2", 3);
+  ASSERT_EQ(lost.code, 0) << lost.out;
+  const std::string md2 = slurp(dir_ / "again2" / "report.md");
+  EXPECT_NE(md2.find("- 2.5 m/s, orientation 1: no finished run"), std::string::npos) << md2;
+  EXPECT_NE(md2.find("| 2.5 | no through crack | 2 |"), std::string::npos) << md2;
+  EXPECT_NE(md2.find("0: 1, 2: 1 |"), std::string::npos) << md2;
   // A scene without a velocity sweep refuses the sweep's options instead of ignoring them.
   const Result disc = report("brazilian_disc", "--realisations 2");
   EXPECT_EQ(disc.code, 2) << disc.out;

@@ -190,11 +190,19 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   if (a.from_run.empty()) {
     errors = run_planned(c, plan, jobs);
   } else {
-    for (std::size_t i = 0; i < plan.size(); ++i)
-      DSPDEM_CHECK((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json"),
-                   "--from-run {}: no finished run at {} (the sweep's speeds/ and orientations/ folders of an "
-                   "earlier report, with as many --realisations)",
-                   a.from_run, plan[i].dir);
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+      if ((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json")) continue;
+      // A realisation the earlier report ran and lost (its log is there) is a failed row, as
+      // it was in that report; one it never ran means it had fewer --realisations.
+      if (plan[i].orientation >= 0 && fs::exists(plan[i].dir + ".log")) {
+        errors[i] = fmt::format("no finished run (see {}.log)", plan[i].dir);
+        continue;
+      }
+      fail(
+          "--from-run {}: no finished run at {} (the sweep's speeds/ and orientations/ folders of an earlier "
+          "report, with as many --realisations)",
+          a.from_run, plan[i].dir);
+    }
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
       const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs);
@@ -321,54 +329,54 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                          lb.empty() ? "never rises" : "rises between " + lb));
   }
   if (a.realisations > 1) {
-    // Each speed over its realisations: the case's own run first, then the turned meshes.
-    std::vector<std::vector<std::pair<int, const SphereImpactResult*>>> by_speed(sweep.size());
+    // Each speed over its realisations, by orientation: the case's own run (k0) first, then
+    // the turned meshes; a failed run is listed, not counted, and labels stay with their runs.
     std::vector<std::string> failed;
-    for (std::size_t s = 0; s < sweep.size(); ++s) by_speed[s].push_back({k0, &sweep[s]});
-    for (std::size_t i = n_sweep + n_study; i < plan.size(); ++i) {
-      if (!errors[i].empty()) {
-        failed.push_back(fmt::format("{}: {}", plan[i].name, errors[i]));
-        continue;
-      }
-      for (std::size_t s = 0; s < sweep.size(); ++s)
-        if (std::abs(sweep[s].speed - plan[i].speed) < 1e-9) by_speed[s].push_back({plan[i].orientation, &res[i]});
-    }
     std::ofstream csv(fs::path(dir) / "orientations.csv");
     csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
            "paper_pattern\n";
     std::vector<std::vector<std::string>> rows_o;
-    for (std::size_t s = 0; s < sweep.size(); ++s) {
-      int through = 0, met = 0;
+    for (std::size_t si = 0; si < speeds.size(); ++si) {
+      std::vector<std::size_t> runs = {si};
+      for (std::size_t i = n_sweep + n_study; i < plan.size(); ++i)
+        if (std::abs(plan[i].speed - speeds[si]) < 1e-9) runs.push_back(i);
+      int n = 0, through = 0, met = 0;
       std::string largest, pieces;
-      for (std::size_t k = 0; k < by_speed[s].size(); ++k) {
-        const auto& [o, r] = by_speed[s][k];
-        through += r->through_crack, met += pattern_met(*r);
-        largest += fmt::format("{}{:.2f}", k ? ", " : "", r->fragments.largest_fraction());
-        pieces += fmt::format("{}{}", k ? ", " : "", r->pieces_10pct);
-        csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{}\n", r->speed, o, r->elements, r->fragments.count(),
-                           r->fragments.single_element(), r->pieces_10pct, r->fragments.largest_fraction(),
-                           r->second_fraction, int(r->through_crack), int(pattern_met(*r)));
+      for (std::size_t i : runs) {
+        const int o = plan[i].orientation < 0 ? k0 : plan[i].orientation;
+        if (!errors[i].empty()) {
+          failed.push_back(fmt::format("{} m/s, orientation {}: {}", speeds[si], o, errors[i]));
+          continue;
+        }
+        const SphereImpactResult& r = res[i];
+        through += r.through_crack, met += pattern_met(r);
+        largest += fmt::format("{}{}: {:.2f}", n ? ", " : "", o, r.fragments.largest_fraction());
+        pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
+        ++n;
+        csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{}\n", r.speed, o, r.elements, r.fragments.count(),
+                           r.fragments.single_element(), r.pieces_10pct, r.fragments.largest_fraction(),
+                           r.second_fraction, int(r.through_crack), int(pattern_met(r)));
       }
-      rows_o.push_back({fmt::format("{:g}", sweep[s].speed), expected_pattern(sweep[s].speed),
-                        std::to_string(by_speed[s].size()), fmt::format("{} of {}", through, by_speed[s].size()),
-                        pieces, largest, fmt::format("{} of {}", met, by_speed[s].size())});
+      rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
+                        fmt::format("{} of {}", through, n), pieces.empty() ? "-" : pieces,
+                        largest.empty() ? "-" : largest, fmt::format("{} of {}", met, n)});
     }
+    const int last = k0 + a.realisations - 1;
     doc.subsection(fmt::format("The pattern over {} orientations of the mesh", a.realisations));
     doc.para(fmt::format(
         "Fracture at an impact is chaotic: which elements meet the plate first decides where cracks run. Each speed "
-        "was run again with the sphere turned {} other ways before meshing (`mesh.sphere_plate.orientation` {}-{}: "
-        "gmsh meshes each differently at the same size), so the pattern can be told from one mesh's chance. Per "
-        "run, in order: "
-        "the case's own mesh, then orientations {}, {}, ... Folders: `orientations/`; every run in "
-        "`orientations.csv`.",
-        a.realisations - 1, k0 + 1, k0 + a.realisations - 1, k0 + 1, k0 + 2));
+        "was run again with the sphere turned before meshing (`mesh.sphere_plate.orientation` {}: gmsh meshes each "
+        "differently at the same size), so the pattern can be told from one mesh's chance. Per run, by "
+        "orientation ({} is the case's own mesh). Folders: `{}`; every run in `orientations.csv`.",
+        last == k0 + 1 ? std::to_string(last) : fmt::format("{} to {}", k0 + 1, last), k0,
+        fs::relative(fs::path(sweep_root) / "orientations", dir).string()));
     if (!failed.empty()) {
       std::string f;
       for (const auto& e : failed) f += "\n- " + e;
       doc.para("Runs that failed:" + f);
     }
-    doc.table({"speed [m/s]", "paper", "runs", "through crack", "pieces >= 10 % (each run)", "largest (each run)",
-               "matches the paper"},
+    doc.table({"speed [m/s]", "paper", "runs", "through crack", "pieces >= 10 %, by orientation",
+               "largest, by orientation", "matches the paper"},
               rows_o);
   }
   if (!a.no_render) {
