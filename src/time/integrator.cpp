@@ -117,10 +117,8 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
         })[0];
     dpower_ = mass_dpower + element_dpower();
   }
-  if (ties_.groups() > 0) {
-    DSPDEM_CHECK(!nodal_in_tail, "internal: tied nodes need their forces complete before the tie");
-    tie_forces();
-  }
+  // (nodal_in_tail: the step's last pass sums each group after its copies' damping and weight.)
+  if (ties_.groups() > 0 && !nodal_in_tail) tie_forces();
   // Reaction = the force the support must supply so the dof follows its prescribed motion.
   // A tied group is one point: its reaction is the group's, booked once, at its first node.
   const Real* mass = m_.fem.mass.data();
@@ -163,6 +161,10 @@ void Integrator::kick_nonnodal(Real h, Real t_target) {
 // kick and the finite check. Each runs in parallel over fixed chunks of nodes, and its sums
 // (work, the finite check) are added in chunk order, so a step is the same to the bit on
 // any thread count.
+// Groups per chunk in the passes over tied groups: a group has tens of copies, so the
+// nodes' 2048 per chunk would leave a disc's 3277 groups in two unequal chunks.
+constexpr std::size_t kGroupChunk = 128;
+
 void Integrator::step() {
   const Real h = dt_, hh = 0.5 * h;
   // The own nodes: a distributed run's ghosts get their motion from their owners below.
@@ -179,13 +181,42 @@ void Integrator::step() {
   // Without rigid bodies, the external force of a dof with no load or constraint is its
   // weight, computed where it is needed rather than stored (fused passes below); in a quiet
   // model it is zero and its terms are skipped.
-  const bool fused = m_.rigid.empty() && ties_.groups() == 0;
+  // Tied copies (extrinsic insertion) fuse too, unless a load or a support holds one. A
+  // group is one point: each pass first moves every group at its first copy (where the
+  // group's force is kept), then the pass over the nodes copies that motion to the other
+  // copies, in node order: an extrinsic body has tens of copies per point, and copying them
+  // in order costs less than their arithmetic and far less than visiting them group by group.
+  const bool fused = m_.rigid.empty() && (ties_.groups() == 0 || ties_fuse_);
+  const std::size_t ng = fused ? static_cast<std::size_t>(ties_.groups()) : 0;
+  const Index* rep = ng > 0 ? rep_.data() : nullptr;
+  const Index* gptr = ties_.ptr.data();
+  const Index* gnode = ties_.node.data();
+  const Real* gmass = group_mass_.data();
   Real w = 0, bad = 0;
   if (fused) {
     // Half kick and drift in one pass: a constrained dof takes its prescribed velocity (the
     // last constraint on it wins, as in kick_nonnodal) before it drifts.
     Real* vt = v_target_.data();
     for (const auto& c : m_.constraints) vt[c.dof] = c.value * ramp_factor(t_ + hh, c.ramp);
+    const std::array<Real, 2> rg = chunked_sums<2>(
+        ng,
+        [&](std::size_t b, std::size_t e) {
+          Real s = 0;
+          bool finite = true;
+          for (std::size_t gi = b; gi < e; ++gi) {
+            const std::size_t i = static_cast<std::size_t>(gnode[gptr[gi]]);
+            for (int d = 0; d < 3; ++d) {
+              const std::size_t k = 3 * i + d;
+              v[k] += hh * f[k] * im[i];
+              const Real dx = h * v[k];
+              x[k] += dx;
+              finite &= x[k] - x[k] == 0;
+              if (!quiet_) s += 0.5 * (gmass[gi] * g(d)) * dx;
+            }
+          }
+          return std::array<Real, 2>{s, finite ? 0.0 : 1.0};
+        },
+        kGroupChunk);
     const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
       // The arrays in locals: through the closure's references they were reloaded after
       // every store. The finite check is a flag, not a sum: a sum is a chain of dependent
@@ -197,7 +228,13 @@ void Integrator::step() {
       const bool quiet = quiet_;
       Real s = 0;
       bool finite = true;
-      for (std::size_t i = b; i < e; ++i)
+      for (std::size_t i = b; i < e; ++i) {
+        if (rep && rep[i] >= 0) {
+          const std::size_t r = static_cast<std::size_t>(rep[i]);
+          if (r != i)
+            for (int d = 0; d < 3; ++d) vl[3 * i + d] = vl[3 * r + d], xl[3 * i + d] = xl[3 * r + d];
+          continue;
+        }
         for (int d = 0; d < 3; ++d) {
           const std::size_t k = 3 * i + d;
           const Real vk = cl[k] ? vtl[k] : vl[k] + hh * fl[k] * iml[i];
@@ -210,9 +247,10 @@ void Integrator::step() {
           else if (!quiet)
             s += 0.5 * (ml[i] * g(d)) * dx;
         }
+      }
       return std::array<Real, 2>{s, finite ? 0.0 : 1.0};
     });
-    w = r[0], bad = r[1];
+    w = rg[0] + r[0], bad = rg[1] + r[1];
     if (m_.contact.enabled()) m_.contact.kick_walls(hh, t_ + hh, m_.gravity);
   } else {
     // Rigid bodies set their nodes' velocities from the whole kick: kick, then drift.
@@ -245,6 +283,35 @@ void Integrator::step() {
   // the half kick; a check that the velocities are finite (v - v is 0 unless v is not).
   // Quiet: no damping and no weight, so f = (f + (+-0)) + (+0) is f + 0 (which only turns
   // -0 into +0) and the work and power terms are +-0, which change no sum.
+  // The groups first: at a group's first copy, each copy's damping and weight, then their
+  // sum (in copy order, as tie_forces), then its velocity; the force is kept at the first
+  // copy only, the one the first pass reads (the next force evaluation writes every copy's).
+  const std::array<Real, 3> tg = chunked_sums<3>(
+      ng,
+      [&](std::size_t b, std::size_t e) {
+        Real s = 0, dp = 0;
+        bool finite = true;
+        for (std::size_t gi = b; gi < e; ++gi) {
+          const Index *q0 = gnode + gptr[gi], *q1 = gnode + gptr[gi + 1];
+          Real F[3] = {0, 0, 0};
+          for (const Index* q = q0; q < q1; ++q)
+            for (int d = 0; d < 3; ++d) {
+              const std::size_t n = static_cast<std::size_t>(*q), k = 3 * n + d;
+              Real fk = f[k];
+              if (!quiet_) s += 0.5 * nodal_force(n, d, v[k], fk, dp) * h * v[k];
+              F[d] = q == q0 ? fk : F[d] + fk;
+            }
+          const std::size_t i = static_cast<std::size_t>(*q0);
+          for (int d = 0; d < 3; ++d) {
+            const std::size_t k = 3 * i + d;
+            f[k] = F[d];
+            v[k] += hh * F[d] * im[i];
+            finite &= v[k] - v[k] == 0;
+          }
+        }
+        return std::array<Real, 3>{s, finite ? 0.0 : 1.0, dp};
+      },
+      kGroupChunk);
   const std::array<Real, 3> tail = chunked_sums<3>(nn, [&](std::size_t b, std::size_t e) {
     Real* const fl = f;  // locals and a flag, as in the first pass
     Real* const vl = v;
@@ -253,7 +320,13 @@ void Integrator::step() {
     const bool quiet = quiet_;
     Real s = 0, dp = 0;
     bool finite = true;
-    for (std::size_t i = b; i < e; ++i)
+    for (std::size_t i = b; i < e; ++i) {
+      if (rep && rep[i] >= 0) {
+        const std::size_t r = static_cast<std::size_t>(rep[i]);
+        if (r != i)
+          for (int d = 0; d < 3; ++d) vl[3 * i + d] = vl[3 * r + d];
+        continue;
+      }
       for (int d = 0; d < 3; ++d) {
         const std::size_t k = 3 * i + d;
         const Real vk = vl[k];
@@ -273,11 +346,12 @@ void Integrator::step() {
         vl[k] = vk + hh * fl[k] * iml[i];
         finite &= cl[k] || vl[k] - vl[k] == 0;  // constrained: checked below
       }
+    }
     return std::array<Real, 3>{s, finite ? 0.0 : 1.0, dp};
   });
-  if (fused) dpower_ = tail[2] + element_dpower();
+  if (fused) dpower_ = (tg[2] + tail[2]) + element_dpower();
   damp_ += h * dpower_;
-  w += tail[0];
+  w += tg[0] + tail[0];
   w_ext_ += w;
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
   // The reported external work is the integrator's plus the walls' (energy()). Distributed:
@@ -288,7 +362,7 @@ void Integrator::step() {
   flag_anywhere_ = whole[1] > 0;
   w_peak_ = std::max(w_peak_, std::abs(whole[0] + (contact ? m_.contact.wall_work() : 0.0)));
   kick_nonnodal(hh, t_);
-  bool finite = std::isfinite(w) && bad == 0 && tail[1] == 0;
+  bool finite = std::isfinite(w) && bad == 0 && tg[1] == 0 && tail[1] == 0;
   // Rigid bodies and constraints wrote velocities after the check's pass: check them all.
   for (std::size_t k = 0; k < v_.size() && finite && !m_.rigid.empty(); ++k) finite = std::isfinite(v_[k]);
   for (const auto& c : m_.constraints) finite = finite && std::isfinite(v_[c.dof]);
@@ -312,6 +386,14 @@ void Integrator::retie(bool average) {
   const Real* mass = m_.fem.mass.data();
   for (Index i = 0; i < m_.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / mass[i];
   group_mass_.assign(static_cast<std::size_t>(ties_.groups()), 0.0);
+  // The fused step finishes a group's force in its last pass, after the reactions and loads
+  // were booked per copy: a group that holds a loaded or supported dof takes the other path.
+  ties_fuse_ = true;
+  if (ties_.groups() > 0)
+    for (std::size_t k : special_list_) ties_fuse_ = ties_fuse_ && ties_.group[k / 3] < 0;
+  rep_.assign(static_cast<std::size_t>(m_.fem.n_nodes), -1);
+  for (Index g = 0; g < ties_.groups(); ++g)
+    for (Index q = ties_.ptr[g]; q < ties_.ptr[g + 1]; ++q) rep_[ties_.node[q]] = ties_.node[ties_.ptr[g]];
   for (Index g = 0; g < ties_.groups(); ++g) {
     const Index b = ties_.ptr[g], e = ties_.ptr[g + 1];
     Real M = 0;

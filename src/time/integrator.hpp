@@ -152,6 +152,8 @@ class Integrator {
   Real w_ext_ = 0, w_peak_ = 0, damp_ = 0, e0_ = 0;
   Real dpower_ = 0;               ///< dissipation rate at the last force evaluation
   joint::Ties ties_;              ///< nodes tied through closed joints (none: no groups)
+  bool ties_fuse_ = true;         ///< no tied node is loaded or supported: the step fuses its passes
+  std::vector<Index> rep_;        ///< per node: its group's first copy, or -1 when untied
   std::vector<Real> group_mass_;  ///< per tied group, its copies' mass [kg]
 };
 

@@ -473,6 +473,56 @@ TEST(Joints, ClosedJointsAddNoCompliance) {
         ASSERT_EQ(tied.x[3 * t.node[q] + d], tied.x[3 * t.node[t.ptr[g]] + d]) << "group " << g;
 }
 
+// A free block with all its joints closed moves as the block without joints: tumbling and
+// breathing (an initial velocity that spins and stretches it), falling under its weight and
+// damped by its mass. No dof is loaded or supported, so the step moves each tied group once,
+// at its first copy, and copies that motion (Integrator::step), where a supported block
+// (ClosedJointsAddNoCompliance) takes the per-copy passes. Tolerance: the two runs differ in
+// the order nodal forces are added (per copy, then per group) and the weight and damping
+// sums (per group mass), rounding of 1e-16 per step over 2000 steps; 1e-9 of the motion.
+TEST(Joints, AFreeTiedBlockMovesAsTheBlockWithoutJoints) {
+  auto build = [](bool joints) {
+    CaseConfig c = simple_case(30e9, 0.2, 2400);
+    if (joints) make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+    Model m = build_model(c, box_mesh(CellType::Tet4, 3, 3, 3, Vec3(0.1, 0.1, 0.1)));
+    if (joints) m.joints.closed.assign(m.joints.size(), 1);
+    m.gravity = Vec3(0, -9.81, 0);
+    m.fem.node_alpha.assign(m.fem.n_nodes, 200.0);
+    for (Index i = 0; i < m.fem.n_nodes; ++i) {
+      const Vec3 r = Vec3(m.fem.x0[3 * i], m.fem.x0[3 * i + 1], m.fem.x0[3 * i + 2]) - Vec3(0.05, 0.05, 0.05);
+      const Vec3 v = Vec3(1, 2, 3) + Vec3(30, -20, 10).cross(r) + Vec3(20 * r(0), -10 * r(1), 5 * r(2));
+      for (int d = 0; d < 3; ++d) m.v0[3 * i + d] = v(d);
+    }
+    return m;
+  };
+  Model plain = build(false), tied = build(true);
+  const Real dt = 0.9 * critical_dt(plain);
+  Integrator ip(plain, dt), itd(tied, dt);
+  ASSERT_EQ(itd.ties().groups(), 64);  // the 4 x 4 x 4 nodes of the box
+  for (int n = 0; n < 2000; ++n) ip.step(), itd.step();
+  Real worst = 0, largest = 0;
+  const auto& copies = tied.joint_report.copies;
+  for (std::size_t n = 0; n < copies.size(); ++n)
+    for (int d = 0; d < 3; ++d) {
+      const Real u = ip.x()[3 * n + d] - plain.fem.x0[3 * n + d];
+      largest = std::max(largest, std::abs(u));
+      for (Index k : copies[n]) {
+        worst = std::max(worst, std::abs(itd.x()[3 * k + d] - tied.fem.x0[3 * k + d] - u));
+        EXPECT_EQ(itd.v()[3 * k + d], itd.v()[3 * copies[n].front() + d]) << "node " << n;
+        EXPECT_EQ(itd.x()[3 * k + d], itd.x()[3 * copies[n].front() + d]) << "node " << n;
+      }
+    }
+  EXPECT_GT(largest, 1e-4);  // it moved: 2000 steps at about 1 m/s
+  EXPECT_LE(worst, 1e-9 * largest);
+  const Energy ep = ip.energy(), et = itd.energy();
+  EXPECT_GT(ep.damping, 1e-3 * ep.largest());  // the damping is at work
+  for (auto [a, b] : {std::pair{ep.kinetic, et.kinetic}, std::pair{ep.internal, et.internal},
+                      std::pair{ep.damping, et.damping}, std::pair{ep.external_work, et.external_work}})
+    EXPECT_NEAR(b, a, 1e-9 * ep.largest());
+  // The ledger's own error (the lagged damping's, 1e-3 here) is the block's, not the ties'.
+  EXPECT_NEAR(et.balance_error(), ep.balance_error(), 1e-9);
+}
+
 namespace {
 // The bar of break_bar with extrinsic joints (penalty 1: it acts only once a face opens):
 // {fracture energy / (G_fI x broken area), broken area, largest ledger error, opened joints,
