@@ -49,7 +49,7 @@ struct Planned {
   std::string name, knob, dir;
   std::vector<std::string> sets;  // on top of the case's own overrides
   double speed = 0;
-  int orientation = -1;  // a realisation of the sweep: mesh.sphere_plate.orientation (-1: not one)
+  int orientation = 0;  // its mesh's mesh.sphere_plate.orientation
 };
 
 // Each planned run is read in-process first (a bad override fails here, with its message,
@@ -141,10 +141,12 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   // --from-run: an earlier report's folder, whose speeds/ runs are analysed again.
   const std::string sweep_root = a.from_run.empty() ? dir : a.from_run;
 
+  // The case's own orientation: the sweep's and the study's mesh; realisations turn it further.
+  const int k0 = static_cast<int>(mesh_param(c, "orientation"));
   std::vector<Planned> plan;
   for (double v : speeds)
     plan.push_back({speed_name(v), fmt::format("{:g} m/s", v),
-                    (fs::path(sweep_root) / "speeds" / speed_name(v)).string(), speed_overrides(c, v), v});
+                    (fs::path(sweep_root) / "speeds" / speed_name(v)).string(), speed_overrides(c, v), v, k0});
   const std::size_t n_sweep = plan.size();
   // The study: at 7.5 and 20 m/s (--study-speeds), each knob moved alone from the case.
   const std::vector<double> study_speeds = a.study_speeds.empty() ? std::vector<double>{7.5, 20.0} : a.study_speeds;
@@ -165,7 +167,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       auto add = [&](const std::string& name, const std::string& knob, std::vector<std::string> sets) {
         sets.insert(sets.begin(), vo.begin(), vo.end());
         plan.push_back({fmt::format("{}_{}", speed_name(v), name), knob,
-                        (fs::path(dir) / "study" / fmt::format("{}_{}", speed_name(v), name)).string(), sets, v});
+                        (fs::path(dir) / "study" / fmt::format("{}_{}", speed_name(v), name)).string(), sets, v, k0});
       };
       add("mesh_x2", "2x the paper's elements", {override_of("mesh.sphere_plate.target_elements", 2 * n_paper)});
       add("mesh_x4", "4x the paper's elements", {override_of("mesh.sphere_plate.target_elements", 4 * n_paper)});
@@ -177,7 +179,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   const std::size_t n_study = plan.size() - n_sweep;
   // Realisations (--realisations N): each speed again with the sphere's mesh turned N - 1
   // other ways, orientations k0 + 1 ... k0 + N - 1 after the case's own k0.
-  const int k0 = static_cast<int>(mesh_param(c, "orientation"));
+  const std::size_t first_realisation = plan.size();
   for (double v : speeds)
     for (int r = 1; r < a.realisations; ++r) {
       std::vector<std::string> sets = speed_overrides(c, v);
@@ -194,7 +196,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       if ((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json")) continue;
       // A realisation the earlier report ran and lost (its log is there) is a failed row, as
       // it was in that report; one it never ran means it had fewer --realisations.
-      if (plan[i].orientation >= 0 && fs::exists(plan[i].dir + ".log")) {
+      if (i >= first_realisation && fs::exists(plan[i].dir + ".log")) {
         errors[i] = fmt::format("no finished run (see {}.log)", plan[i].dir);
         continue;
       }
@@ -338,12 +340,12 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<std::vector<std::string>> rows_o;
     for (std::size_t si = 0; si < speeds.size(); ++si) {
       std::vector<std::size_t> runs = {si};
-      for (std::size_t i = n_sweep + n_study; i < plan.size(); ++i)
+      for (std::size_t i = first_realisation; i < plan.size(); ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) runs.push_back(i);
       int n = 0, through = 0, met = 0;
       std::string largest, pieces;
       for (std::size_t i : runs) {
-        const int o = plan[i].orientation < 0 ? k0 : plan[i].orientation;
+        const int o = plan[i].orientation;
         if (!errors[i].empty()) {
           failed.push_back(fmt::format("{} m/s, orientation {}: {}", speeds[si], o, errors[i]));
           continue;
