@@ -6,7 +6,9 @@ namespace dspdem {
 
 Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
   joint::JointSet& js = m.joints;
-  if (js.closed.empty() || it.steps() % interval_ != 0) return 0;
+  if (js.closed.empty()) return 0;
+  it.keep_stresses_every(interval_);  // the steps checked keep their force evaluation's stresses
+  if (it.steps() % interval_ != 0) return 0;
   it.stresses(stress_);
   const Real* x = it.x().data();
   const Index nj = js.size();

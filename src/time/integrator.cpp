@@ -67,7 +67,8 @@ Real Integrator::nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) c
   return fe;
 }
 
-void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail, bool exchange) {
+void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail, bool exchange,
+                                Real* stress) {
   ForceStatus st;
   if (exchange) {
     // The ghosts' values travel while the elements that need none are computed; the rest
@@ -79,7 +80,7 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
     if (s.inverted_element >= 0 && (st.inverted_element < 0 || s.min_detF < st.min_detF)) st = s;
     gather_forces(m_.fem, f_.data());
   } else {
-    st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data());
+    st = internal_forces(m_.fem, x_.data(), vel.data(), f_.data(), stress);
   }
   if (st.inverted_element >= 0)
     throw NumericalError(fmt::format("element {} inverted (det F = {:.3g}) at step {}, t = {:.6g} s; the time step "
@@ -277,7 +278,14 @@ void Integrator::step() {
   ++n_;
   // Ghosts take their owners' drifted positions and mid-step velocities, which are exactly
   // what this process would have computed with all of their forces (compute_forces).
-  compute_forces(v_, h, fused, dist_ != nullptr);  // v_: the mid-step velocity (damping lagged by h/2)
+  Real* keep = nullptr;
+  if (stress_every_ > 0 && n_ % stress_every_ == 0 && !m_.fem.any_stiffness_damping && !dist_) {
+    stress_kept_.resize(6 * static_cast<std::size_t>(m_.fem.n_elements));
+    keep = stress_kept_.data();
+  }
+  stress_step_ = -1;
+  compute_forces(v_, h, fused, dist_ != nullptr, keep);  // v_: the mid-step velocity (damping lagged by h/2)
+  if (keep) stress_step_ = n_;
   // The last pass: (fused) the damping and external forces of the dofs compute_forces left,
   // and the damping power; the end of the step's external work (at the mid-step velocity);
   // the half kick; a check that the velocities are finite (v - v is 0 unless v is not).
@@ -583,9 +591,16 @@ Real Integrator::monitor(const MonitorSet& ms) const {
 }
 
 void Integrator::stresses(std::vector<Real>& out) {
+  if (stress_step_ == n_) {  // this step's force evaluation kept them (keep_stresses_every)
+    out.swap(stress_kept_);
+    stress_step_ = -1;
+    return;
+  }
   out.assign(6 * static_cast<std::size_t>(m_.fem.n_elements), 0.0);
-  std::vector<Real> scratch(f_.size());
-  internal_forces(m_.fem, x_.data(), v_.data(), scratch.data(), out.data());
+  // The stresses only: the element force slots this leaves are rewritten by the next force
+  // evaluation, so they are not gathered into nodal forces (the insertion check calls this
+  // every few steps).
+  element_forces(m_.fem, x_.data(), v_.data(), out.data(), {});
 }
 
 }  // namespace dspdem

@@ -73,6 +73,11 @@ class Integrator {
   Real monitor(const MonitorSet& ms) const;
   /// Cauchy stress of every element at the current state (6 per element).
   void stresses(std::vector<Real>& out);
+  /// Keep the element stresses of the force evaluation of every step whose count is a
+  /// multiple of k (0: none), so that stresses() at the end of such a step hands them out
+  /// rather than evaluating the elements again. Only without stiffness damping, whose stress
+  /// would be the mid-step velocity's there.
+  void keep_stresses_every(long k) { stress_every_ = k; }
   /// Rebuilds the groups of tied nodes from the joints' closed flags (joint/ties.hpp), after
   /// joints opened: each copy then takes its new group's inverse mass, and the forces are
   /// evaluated again so that each new group gets its own copies' forces (and the opened
@@ -116,7 +121,8 @@ class Integrator {
   /// constraint to the pass that ends the step (step()); otherwise add them here.
   /// exchange: a distributed run's ghosts are brought up to date first (overlapped with the
   /// elements that need none of them).
-  void compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail, bool exchange = false);
+  void compute_forces(const std::vector<Real>& vel, Real dt_contact, bool nodal_in_tail, bool exchange = false,
+                      Real* stress = nullptr);
   /// Damping and external force of one dof at velocity vk: adds to the damping power dp,
   /// returns the external force.
   Real nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) const;
@@ -150,10 +156,13 @@ class Integrator {
   /// no nodal force besides f_ (its weight and damping are exactly +-0).
   bool quiet_ = false;
   Real w_ext_ = 0, w_peak_ = 0, damp_ = 0, e0_ = 0;
-  Real dpower_ = 0;               ///< dissipation rate at the last force evaluation
-  joint::Ties ties_;              ///< nodes tied through closed joints (none: no groups)
-  bool ties_fuse_ = true;         ///< no tied node is loaded or supported: the step fuses its passes
-  std::vector<Index> rep_;        ///< per node: its group's first copy, or -1 when untied
+  Real dpower_ = 0;         ///< dissipation rate at the last force evaluation
+  joint::Ties ties_;        ///< nodes tied through closed joints (none: no groups)
+  bool ties_fuse_ = true;   ///< no tied node is loaded or supported: the step fuses its passes
+  std::vector<Index> rep_;  ///< per node: its group's first copy, or -1 when untied
+  long stress_every_ = 0;   ///< keep_stresses_every
+  long stress_step_ = -1;   ///< the step whose stresses stress_kept_ holds (-1: none)
+  std::vector<Real> stress_kept_;
   std::vector<Real> group_mass_;  ///< per tied group, its copies' mass [kg]
 };
 
