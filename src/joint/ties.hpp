@@ -4,11 +4,11 @@
 // elements gets a joint and its own copy of each node), but a face's joint stays closed
 // until the traction on it reaches the strength: while it is closed, the node pairs across
 // it are one node. The copies joined this way, directly or through other closed faces, form
-// a group that moves as one point: the integrator gives every copy of a group the group's
-// summed force and inverse mass, so that all keep the same position and velocity to the bit
-// (time/integrator.cpp). A closed joint applies no force, so it adds no compliance: its
-// penalty acts only once it is open (the step allows for that from the start, joint_dt.cpp),
-// and can be low, where an intrinsic joint's must be high. Opening joints splits the groups of their
+// a group that moves as one point: the integrator moves every copy of a group with the
+// group's summed force and inverse mass, so that all keep the same position and velocity to
+// the bit (time/integrator.cpp; its fused step keeps the sum at the group's first copy only). A closed joint applies no
+// force, so it adds no compliance: its penalty acts only once it is open (the step allows for that from the start,
+// joint_dt.cpp), and can be low, where an intrinsic joint's must be high. Opening joints splits the groups of their
 // nodes where no closed face joins the copies any more: a crack frees a node only once it
 // has cut all the way around it.
 #pragma once

@@ -119,6 +119,8 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
     dpower_ = mass_dpower + element_dpower();
   }
   // (nodal_in_tail: the step's last pass sums each group after its copies' damping and weight.)
+  DSPDEM_CHECK(!nodal_in_tail || ties_.groups() == 0 || ties_fuse_,
+               "internal: tied nodes with loads or supports need their forces complete before the tie");
   if (ties_.groups() > 0 && !nodal_in_tail) tie_forces();
   // Reaction = the force the support must supply so the dof follows its prescribed motion.
   // A tied group is one point: its reaction is the group's, booked once, at its first node.
@@ -182,7 +184,7 @@ void Integrator::step() {
   // Without rigid bodies, the external force of a dof with no load or constraint is its
   // weight, computed where it is needed rather than stored (fused passes below); in a quiet
   // model it is zero and its terms are skipped.
-  // Tied copies (extrinsic insertion) fuse too, unless a load or a support holds one. A
+  // Tied copies (extrinsic insertion) fuse too, unless a load or a support holds any. A
   // group is one point: each pass first moves every group at its first copy (where the
   // group's force is kept), then the pass over the nodes copies that motion to the other
   // copies, in node order: an extrinsic body has tens of copies per point, and copying them
@@ -279,7 +281,7 @@ void Integrator::step() {
   // Ghosts take their owners' drifted positions and mid-step velocities, which are exactly
   // what this process would have computed with all of their forces (compute_forces).
   Real* keep = nullptr;
-  if (stress_every_ > 0 && n_ % stress_every_ == 0 && !m_.fem.any_stiffness_damping && !dist_) {
+  if (stress_every_ > 0 && n_ % stress_every_ == 0 && !dist_) {
     stress_kept_.resize(6 * static_cast<std::size_t>(m_.fem.n_elements));
     keep = stress_kept_.data();
   }
@@ -395,7 +397,11 @@ void Integrator::retie(bool average) {
   for (Index i = 0; i < m_.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / mass[i];
   group_mass_.assign(static_cast<std::size_t>(ties_.groups()), 0.0);
   // The fused step finishes a group's force in its last pass, after the reactions and loads
-  // were booked per copy: a group that holds a loaded or supported dof takes the other path.
+  // were booked per copy: if any group holds a loaded or supported dof, the whole model
+  // takes the per-copy path. Distributed runs refuse closed joints (par/subdomain.cpp); the
+  // group passes would count a ghost group's work twice.
+  DSPDEM_CHECK(dist_ == nullptr || ties_.groups() == 0, "internal: tied nodes in a distributed run");
+  stress_step_ = -1;  // kept stresses are for the step's own state only
   ties_fuse_ = true;
   if (ties_.groups() > 0)
     for (std::size_t k : special_list_) ties_fuse_ = ties_fuse_ && ties_.group[k / 3] < 0;

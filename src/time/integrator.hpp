@@ -75,8 +75,8 @@ class Integrator {
   void stresses(std::vector<Real>& out);
   /// Keep the element stresses of the force evaluation of every step whose count is a
   /// multiple of k (0: none), so that stresses() at the end of such a step hands them out
-  /// rather than evaluating the elements again. Only without stiffness damping, whose stress
-  /// would be the mid-step velocity's there.
+  /// rather than evaluating the elements again. (The stresses are the elastic ones, which
+  /// depend on the positions only, and those do not change after the step's evaluation.)
   void keep_stresses_every(long k) { stress_every_ = k; }
   /// Rebuilds the groups of tied nodes from the joints' closed flags (joint/ties.hpp), after
   /// joints opened: each copy then takes its new group's inverse mass, and the forces are
@@ -107,6 +107,7 @@ class Integrator {
     ar.parts(m_.rigid, "rigid bodies");
     ar.section("end of model");
     if (!ar.loading()) return;
+    stress_step_ = -1;  // kept stresses are not the loaded state's
     const std::size_t nd = 3 * static_cast<std::size_t>(m_.fem.n_nodes);
     DSPDEM_CHECK(x_.size() == nd && v_.size() == nd && f_.size() == nd && f_ext_.size() == nd && reaction_.size() == nd,
                  "checkpoint: {} nodal values for a model of {} dofs", x_.size(), nd);
@@ -135,7 +136,8 @@ class Integrator {
   /// average: give each group its copies' mean velocity (momentum kept), at the start.
   void retie(bool average);
   /// Every copy of a tied group gets the group's force (its copies' forces summed in node
-  /// order): with the group's inverse mass they then move alike to the bit.
+  /// order): with the group's inverse mass they then move alike to the bit. (The per-copy
+  /// path only: the fused step sums each group in its last pass.)
   void tie_forces();
 
   Model& m_;
@@ -147,6 +149,8 @@ class Integrator {
   long n_ = 0;
   /// f_ext_: external force per dof. Without rigid bodies it is kept only at loaded and
   /// constrained dofs (special_); elsewhere it is the weight, computed where it is used.
+  /// f_ after a fused step with tied groups: the group's force at its first copy, and each
+  /// other copy's own (without its damping and weight); x_ and v_ are every copy's.
   std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_, joint_slots_;
   std::vector<Real> v_target_;  ///< prescribed velocities of constrained dofs (scratch)
   std::vector<char> constrained_;

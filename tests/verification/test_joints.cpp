@@ -643,6 +643,54 @@ TEST(Joints, ExtrinsicInsertionIsTheSameOnOneAndTwoThreads) {
   for (std::size_t k = 0; k < x1.size(); ++k) ASSERT_EQ(x1[k], x2[k]) << "dof " << k;
 }
 
+TEST(Joints, AFreeExtrinsicBlockIsTheSameOnOneAndTwoThreadsAndOnEitherPath) {
+  // The block of ExtrinsicInsertionIsTheSameOnOneAndTwoThreads unsupported, torn apart by
+  // its initial velocity (a stretch along x, 100 1/s), mass-damped and falling: no dof is
+  // loaded or supported, so its step moves each tied group once (Integrator::step), in
+  // passes of several chunks of groups and of nodes (729 groups, 12288 copies). The same
+  // to the bit on 1 and 2 threads, and as the per-copy path, which a zero load on one copy
+  // forces: both add each copy's damping and weight, then sum a group's copies in copy order.
+  auto run = [](int threads, bool zero_load) {
+    omp_set_num_threads(threads);
+    CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
+    make_fracturable(c, 3e6, 10, 6e6, 30, 100, 1);
+    c.joint_materials[0].nodal_quadrature = true;
+    c.joint_materials[0].coupled = true;
+    c.bodies[0].extrinsic = true;
+    Model m = build_model(c, box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2));
+    m.gravity = Vec3(0, -9.81, 0);
+    m.fem.node_alpha.assign(m.fem.n_nodes, 100.0);
+    for (Index i = 0; i < m.fem.n_nodes; ++i) m.v0[3 * i] = 100 * (m.fem.x0[3 * i] - 0.05);
+    for (const auto& cp : m.joint_report.copies)  // on a copy of a node with several
+      if (zero_load && cp.size() > 1) {
+        m.loads.push_back({3 * cp.back() + 1, 0.0, 0.0});
+        break;
+      }
+    Integrator it(m, 0.9 * critical_dt(m));
+    ExtrinsicInsertion ins(1, joint::FaceStress::Larger);
+    const Index groups0 = it.ties().groups();
+    for (int s = 0; s < 400; ++s) {
+      it.step();
+      ins.check(m, it);
+    }
+    return std::make_tuple(it.x(), it.v(), ins.opened(), groups0, it.ties().groups());
+  };
+  const auto [x1, v1, opened1, g0, g1] = run(1, false);
+  EXPECT_EQ(g0, 729);
+  EXPECT_GT(opened1, 100);
+  EXPECT_NE(g1, g0);  // groups split or came apart: the passes ran over changing groups
+  for (auto [threads, zero_load] : {std::pair{2, false}, std::pair{1, true}, std::pair{2, true}}) {
+    const auto [x, v, opened, unused0, groups] = run(threads, zero_load);
+    EXPECT_EQ(opened, opened1) << threads << " thread(s), zero load " << zero_load;
+    EXPECT_EQ(groups, g1);
+    ASSERT_EQ(x.size(), x1.size());
+    for (std::size_t k = 0; k < x1.size(); ++k) {
+      ASSERT_EQ(x[k], x1[k]) << "dof " << k << ", " << threads << " thread(s), zero load " << zero_load;
+      ASSERT_EQ(v[k], v1[k]) << "dof " << k << ", " << threads << " thread(s), zero load " << zero_load;
+    }
+  }
+}
+
 TEST(Joints, InsertionKeepsTheTractionAndMakesNoEnergy) {
   // The bar of BarWithExtrinsicJointsBreaksDissipatingGfTimesArea (mode I, penalty 10, 4
   // cells): at the step a face opens, its joint starts with the face's normal traction, and
