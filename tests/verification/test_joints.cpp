@@ -571,6 +571,19 @@ ExtrinsicBar break_bar_extrinsic(int n, bool mode_i, Real penalty) {
           ins.opened(),
           e.broken_joints};
 }
+
+// A 0.1 m tet block (8x8x8 cells, 3072 tets, some 6000 joints: the parallel paths run),
+// its coupled nodal joints (f_t 3 MPa, G_fI 10, penalty 1) closed until their faces reach
+// the strength. Supports and loads are the caller's.
+CaseConfig extrinsic_tet_block() {
+  CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
+  make_fracturable(c, 3e6, 10, 6e6, 30, 100, 1);
+  c.joint_materials[0].nodal_quadrature = true;
+  c.joint_materials[0].coupled = true;
+  c.bodies[0].extrinsic = true;
+  return c;
+}
+Mesh extrinsic_tet_block_mesh() { return box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2); }
 }  // namespace
 
 TEST(Joints, BarWithExtrinsicJointsBreaksDissipatingGfTimesArea) {
@@ -614,16 +627,12 @@ TEST(Joints, ExtrinsicInsertionIsTheSameOnOneAndTwoThreads) {
   // the joints opened and the ledger the same to the bit on 1 and 2 threads.
   auto run = [](int threads) {
     omp_set_num_threads(threads);
-    CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
-    make_fracturable(c, 3e6, 10, 6e6, 30, 100, 1);
-    c.joint_materials[0].nodal_quadrature = true;
-    c.joint_materials[0].coupled = true;
-    c.bodies[0].extrinsic = true;
+    CaseConfig c = extrinsic_tet_block();
     c.boundaries.push_back(fixed("xmin"));
     BoundaryConfig pull;
     pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(2.0, 0.3, 0);
     c.boundaries.push_back(pull);
-    Model m = build_model(c, box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2));
+    Model m = build_model(c, extrinsic_tet_block_mesh());
     Integrator it(m, 0.9 * critical_dt(m));
     ExtrinsicInsertion ins(1, joint::FaceStress::Larger);
     for (int s = 0; s < 400; ++s) {
@@ -652,12 +661,8 @@ TEST(Joints, AFreeExtrinsicBlockIsTheSameOnOneAndTwoThreadsAndOnEitherPath) {
   // forces: both add each copy's damping and weight, then sum a group's copies in copy order.
   auto run = [](int threads, bool zero_load) {
     omp_set_num_threads(threads);
-    CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
-    make_fracturable(c, 3e6, 10, 6e6, 30, 100, 1);
-    c.joint_materials[0].nodal_quadrature = true;
-    c.joint_materials[0].coupled = true;
-    c.bodies[0].extrinsic = true;
-    Model m = build_model(c, box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2));
+    CaseConfig c = extrinsic_tet_block();
+    Model m = build_model(c, extrinsic_tet_block_mesh());
     m.gravity = Vec3(0, -9.81, 0);
     m.fem.node_alpha.assign(m.fem.n_nodes, 100.0);
     for (Index i = 0; i < m.fem.n_nodes; ++i) m.v0[3 * i] = 100 * (m.fem.x0[3 * i] - 0.05);
