@@ -50,8 +50,8 @@ bool write_appended(Writer& w, vtkUnstructuredGrid* grid, const std::string& pat
   w.EncodeAppendedDataOff();
   if (compress) {
     // Level 1 (VTK's default is 5): frames of doubles shrink little more at higher levels
-    // (the Brazilian disc's frames: 6 % smaller at 5) but take several times
-    // longer, and a frame is written while the other threads wait.
+    // but take longer (26 frames of the Brazilian disc: 6 % smaller at 5, written in
+    // 0.8-1.1 s more), and a frame is written while the other threads wait.
     w.SetCompressorTypeToZLib();
     w.SetCompressionLevel(1);
   } else
