@@ -6,11 +6,12 @@
 // it are one node. The copies joined this way, directly or through other closed faces, form
 // a group that moves as one point: the integrator moves every copy of a group with the
 // group's summed force and inverse mass, so that all keep the same position and velocity to
-// the bit (time/integrator.cpp; its fused step keeps the sum at the group's first copy only). A closed joint applies no
-// force, so it adds no compliance: its penalty acts only once it is open (the step allows for that from the start,
-// joint_dt.cpp), and can be low, where an intrinsic joint's must be high. Opening joints splits the groups of their
-// nodes where no closed face joins the copies any more: a crack frees a node only once it
-// has cut all the way around it.
+// the bit (time/integrator.cpp; its fused step keeps the sum at the group's first copy
+// only). A closed joint applies no force, so it adds no compliance: its penalty acts only
+// once it is open (the step allows for that from the start, joint_dt.cpp), and can be low,
+// where an intrinsic joint's must be high. Opening joints splits the groups of their nodes
+// where no closed face joins the copies any more: a crack frees a node only once it has cut
+// all the way around it.
 #pragma once
 #include <vector>
 
