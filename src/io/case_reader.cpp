@@ -670,6 +670,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     c.max_steps = s.integer("max_steps");
     c.insertion_interval = s.integer("insertion_interval");
     c.insertion_stress = s.str("insertion_stress") == "mean" ? joint::FaceStress::Mean : joint::FaceStress::Larger;
+    c.insertion_cut_front = s.str("insertion_front") == "cut";
     if (s.has("stop_series")) c.stop_series = s.str("stop_series");
     c.stop_fraction = s.real("stop_fraction");
     c.stop_min_peak = s.real("stop_min_peak");

@@ -296,7 +296,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   it.watch_flag(&g_interrupted);
   std::optional<ExtrinsicInsertion> extrinsic;
   if (!model.joints.closed.empty()) {
-    extrinsic.emplace(c.insertion_interval, c.insertion_stress);
+    extrinsic.emplace(c.insertion_interval, c.insertion_stress,
+                      c.insertion_cut_front ? InsertionFront::Cut : InsertionFront::Tied);
     log::info(
         "  extrinsic insertion: {} joint(s) closed until their faces reach the strength (traction from the {} "
         "stress), checked every {} step(s)",
@@ -564,7 +565,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     throw NumericalError(fmt::format("{}\n  partial results (frames up to the failure) kept in {}", e.what(), kept),
                          e.step, e.time);
   }
-  if (extrinsic) log::info("  extrinsic insertion: {} joint(s) opened", extrinsic->opened());
+  if (extrinsic)
+    log::info("  extrinsic insertion: {} joint(s) opened, {} of them to free a crack front", extrinsic->opened(),
+              extrinsic->forced());
   if (distributed && model.contact.enabled()) {
     // How the contact work fell on the processes (the partition is the elements', made once).
     const contact::ContactSystem::ShareLoad l = model.contact.share_load();

@@ -1,8 +1,46 @@
 #include "time/extrinsic.hpp"
 
 #include <algorithm>
+#include <array>
+
+#include "joint/min_cut.hpp"
 
 namespace dspdem {
+
+namespace {
+// The current unit normal of closed face j from A to B, as the joint kernel takes it (a closed
+// face's two sides coincide); zero for a degenerate face.
+Vec3 face_normal(const joint::JointSet& js, const Real* x, Index j) {
+  const std::size_t j4 = 4 * static_cast<std::size_t>(j);
+  Vec3 xm[4];
+  for (int k = 0; k < js.npf[j]; ++k) xm[k] = node_pos_ptr(x, js.a[j4 + k]);
+  const Vec3 n =
+      js.npf[j] == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
+  const Real nl = n.norm();
+  return nl > 0 ? Vec3(n / nl) : Vec3::Zero();
+}
+
+// Opens closed joint j: every point of the face starts where its law's elastic branch gives
+// the traction t (normal part tn, shear vector ts) the face carries.
+void open_face(joint::JointSet& js, Index j, Real tn, const Vec3& ts) {
+  js.closed[j] = 0;
+  const std::size_t j4 = 4 * static_cast<std::size_t>(j);
+  const joint::CohesiveParams& p = js.params[js.param[j]];
+  joint::CohesiveState s;
+  s.dn = tn / p.kn;
+  s.ds = ts.norm() / p.ks;
+  s.dn_max = std::max<Real>(0.0, s.dn);
+  s.ds_max = s.ds;
+  s.sn = p.kn * s.dn, s.ss = p.ks * s.ds;
+  for (int g = 0; g < js.npf[j]; ++g) {
+    Real* o = &js.offset[4 * (j4 + g)];
+    o[0] = s.dn;
+    for (int d = 0; d < 3; ++d) o[1 + d] = ts(d) / p.ks;
+    js.state[j4 + g] = s;
+    js.full[j4 + g] = 1;
+  }
+}
+}  // namespace
 
 Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
   joint::JointSet& js = m.joints;
@@ -31,14 +69,8 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
     const Real bound = stress_rule_ == joint::FaceStress::Mean ? 0.5 * (ba + bb) : std::max(ba, bb);
     if (!js.closed[j] || bound * (1 + 1e-9) < floor_[j]) continue;
     const std::size_t j4 = 4 * static_cast<std::size_t>(j);
-    // The face's current normal from A to B, as the joint kernel takes it (a closed face's
-    // two sides coincide).
-    Vec3 xm[4];
-    for (int k = 0; k < js.npf[j]; ++k) xm[k] = node_pos_ptr(x, js.a[j4 + k]);
-    Vec3 n = js.npf[j] == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
-    const Real nl = n.norm();
-    if (!(nl > 0)) continue;
-    n /= nl;
+    const Vec3 n = face_normal(js, x, j);
+    if (n.isZero()) continue;
     const Real* sa = &stress_[6 * static_cast<std::size_t>(js.ea[j])];
     const Real* sb = &stress_[6 * static_cast<std::size_t>(js.eb[j])];
     const joint::FaceOnset fo = joint::face_onset(js.params[js.param[j]], sa, sb, n, stress_rule_);
@@ -49,33 +81,94 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
     traction_[j4] = tn;
     for (int d = 0; d < 3; ++d) traction_[j4 + 1 + d] = ts(d);
   }
-  Index count = 0;
+  std::vector<Index> opened;
   for (Index j = 0; j < nj; ++j) {
     if (!open_[j]) continue;
-    ++count;
-    js.closed[j] = 0;
+    opened.push_back(j);
     const std::size_t j4 = 4 * static_cast<std::size_t>(j);
-    const joint::CohesiveParams& p = js.params[js.param[j]];
-    const Real tn = traction_[j4];
-    const Vec3 ts(traction_[j4 + 1], traction_[j4 + 2], traction_[j4 + 3]);
-    // Every point of the face starts where its law's elastic branch gives the face's traction.
-    joint::CohesiveState s;
-    s.dn = tn / p.kn;
-    s.ds = ts.norm() / p.ks;
-    s.dn_max = std::max<Real>(0.0, s.dn);
-    s.ds_max = s.ds;
-    s.sn = p.kn * s.dn, s.ss = p.ks * s.ds;
-    for (int g = 0; g < js.npf[j]; ++g) {
-      Real* o = &js.offset[4 * (j4 + g)];
-      o[0] = s.dn;
-      for (int d = 0; d < 3; ++d) o[1 + d] = ts(d) / p.ks;
-      js.state[j4 + g] = s;
-      js.full[j4 + g] = 1;
-    }
+    open_face(js, j, traction_[j4], Vec3(traction_[j4 + 1], traction_[j4 + 2], traction_[j4 + 3]));
+  }
+  Index count = static_cast<Index>(opened.size());
+  if (front_ == InsertionFront::Cut && count > 0) {
+    const Index forced = cut_fronts(js, x, opened);
+    forced_ += forced, count += forced;
   }
   if (count > 0) it.retie();
   opened_ += count;
   return count;
+}
+
+Index ExtrinsicInsertion::cut_fronts(joint::JointSet& js, const Real* x, const std::vector<Index>& opened) {
+  const Index nj = js.size();
+  if (node_ptr_.empty()) {  // the joints at each node: the topology is fixed from the start
+    Index nn = 0;
+    for (Index v : js.a) nn = std::max(nn, v + 1);
+    for (Index v : js.b) nn = std::max(nn, v + 1);
+    node_ptr_.assign(static_cast<std::size_t>(nn) + 1, 0);
+    for (Index j = 0; j < nj; ++j)
+      for (int k = 0; k < js.npf[j]; ++k) ++node_ptr_[js.a[4 * j + k] + 1], ++node_ptr_[js.b[4 * j + k] + 1];
+    for (Index i = 0; i < nn; ++i) node_ptr_[i + 1] += node_ptr_[i];
+    node_joint_.resize(static_cast<std::size_t>(node_ptr_.back()));
+    std::vector<Index> fill(node_ptr_.begin(), node_ptr_.end() - 1);
+    for (Index j = 0; j < nj; ++j)
+      for (int k = 0; k < js.npf[j]; ++k)
+        node_joint_[fill[js.a[4 * j + k]]++] = j, node_joint_[fill[js.b[4 * j + k]]++] = j;
+    local_.assign(static_cast<std::size_t>(nn), -1);
+  }
+  // The copy across joint j from copy c (the same original node on the other side).
+  auto across = [&](Index j, Index c) {
+    for (int k = 0; k < js.npf[j]; ++k) {
+      if (js.a[4 * j + k] == c) return js.b[4 * j + k];
+      if (js.b[4 * j + k] == c) return js.a[4 * j + k];
+    }
+    return Index{-1};
+  };
+  Index forced = 0;
+  std::vector<Index> star;               // the copies tied to s, in the order reached
+  std::vector<Index> edge_joint;         // per edge of the star, its closed joint
+  std::vector<std::array<int, 2>> edge;  // its two copies, as vertices of the star
+  std::vector<Real> cap;
+  for (Index j : opened)
+    for (int k = 0; k < js.npf[j]; ++k) {
+      const Index s = js.a[4 * j + k], t = js.b[4 * j + k];
+      // The copies tied to s through closed faces (breadth first), and those faces.
+      star.assign(1, s), edge_joint.clear(), edge.clear();
+      local_[s] = 0;
+      for (std::size_t q = 0; q < star.size(); ++q)
+        for (Index p = node_ptr_[star[q]]; p < node_ptr_[star[q] + 1]; ++p) {
+          const Index jj = node_joint_[p];
+          if (!js.closed[jj]) continue;
+          const Index o = across(jj, star[q]);
+          if (local_[o] < 0) local_[o] = static_cast<Index>(star.size()), star.push_back(o);
+          if (star[q] < o)
+            edge_joint.push_back(jj), edge.push_back({static_cast<int>(local_[star[q]]), static_cast<int>(local_[o])});
+        }
+      const bool tied = local_[t] >= 0;
+      const int tv = tied ? static_cast<int>(local_[t]) : -1;
+      for (Index c : star) local_[c] = -1;
+      if (!tied) continue;
+      // Each face costs how far its traction (the two elements' mean) stands from its onset,
+      // so that the cut runs through the faces nearest to opening by themselves.
+      cap.resize(edge.size());
+      for (std::size_t e = 0; e < edge.size(); ++e) {
+        const Index jj = edge_joint[e];
+        const Vec3 n = face_normal(js, x, jj);
+        const joint::FaceOnset fo =
+            joint::face_onset(js.params[js.param[jj]], &stress_[6 * static_cast<std::size_t>(js.ea[jj])],
+                              &stress_[6 * static_cast<std::size_t>(js.eb[jj])], n, joint::FaceStress::Mean);
+        cap[e] = std::max<Real>(1e-3, 1 - fo.ratio);
+      }
+      for (int e : joint::min_cut(static_cast<int>(star.size()), edge, cap, 0, tv)) {
+        const Index jj = edge_joint[e];
+        const Vec3 n = face_normal(js, x, jj);
+        const Vec3 tr = joint::face_traction_vector(&stress_[6 * static_cast<std::size_t>(js.ea[jj])],
+                                                    &stress_[6 * static_cast<std::size_t>(js.eb[jj])], n);
+        const Real tn = tr.dot(n);
+        open_face(js, jj, tn, tr - tn * n);
+        ++forced;
+      }
+    }
+  return forced;
 }
 
 }  // namespace dspdem

@@ -18,25 +18,43 @@
 
 namespace dspdem {
 
+/// What opening a face does to the nodes of its crack front. Tied: nothing; a node's copies
+/// part only once the opened faces cut all the way round it, so an opened face whose nodes are
+/// still tied cannot open, and the stress does not redistribute until a whole ring of faces
+/// round a node has reached the strength by itself. Cut: at each of an opened face's nodes
+/// still tied across it, the closed faces of a least cut between its two sides (each costing
+/// how far it stands from its onset, joint/min_cut.hpp) open too, as elastic joints carrying
+/// their current traction, so that the opened face opens at once, as an intrinsic joint
+/// would, and the faces next to it feel the redistribution.
+enum class InsertionFront : char { Tied = 0, Cut = 1 };
+
 class ExtrinsicInsertion {
  public:
   /// Checks every `interval` steps, a face's traction taken by rule `stress`.
-  ExtrinsicInsertion(long interval, joint::FaceStress stress) : interval_(interval), stress_rule_(stress) {}
+  ExtrinsicInsertion(long interval, joint::FaceStress stress, InsertionFront front = InsertionFront::Tied)
+      : interval_(interval), stress_rule_(stress), front_(front) {}
   /// After a step: on a checking step, opens the closed joints whose face traction has
   /// reached their law's onset (decided in parallel, applied in joint order: the same on
   /// any thread count) and reties the nodes. Returns how many opened.
   Index check(Model& m, Integrator& it);
   Index opened() const { return opened_; }
+  /// Of those, how many were opened below their onset to free a crack front (InsertionFront::Cut).
+  Index forced() const { return forced_; }
   template <class Ar>
   void persist(Ar& ar) {
-    ar(opened_);
+    ar(opened_, forced_);
   }
 
  private:
   long interval_;
   joint::FaceStress stress_rule_;
-  Index opened_ = 0;
-  std::vector<Real> stress_, traction_;  ///< per element; per joint (t_n, then t_s as a vector)
+  InsertionFront front_;
+  Index opened_ = 0, forced_ = 0;
+  /// Opens the closed faces that tie the nodes of the faces `opened` across them (front_ Cut).
+  Index cut_fronts(joint::JointSet& js, const Real* x, const std::vector<Index>& opened);
+  std::vector<Index> node_ptr_, node_joint_;  ///< per node, the joints touching it (CSR)
+  std::vector<Index> local_;                  ///< per node: its vertex in the star being cut, or -1
+  std::vector<Real> stress_, traction_;       ///< per element; per joint (t_n, then t_s as a vector)
   std::vector<char> open_;
   std::vector<Real> floor_, bound_;  ///< per joint, its law's onset_floor; per element, stress_bound
 };

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <limits>
 #include <tuple>
 
 #include "core/error.hpp"
@@ -724,4 +725,77 @@ TEST(Joints, InsertionKeepsTheTractionAndMakesNoEnergy) {
   ins.check(m, it);
   for (int g = 0; g < 4; ++g)
     EXPECT_NEAR(m.joints.point_state(4 * static_cast<std::size_t>(j) + g).sn / tn, 1.0, 0.01) << "point " << g;
+}
+
+TEST(Joints, ACutFrontFreesEveryOpenedFaceWithoutAJumpOrEnergy) {
+  // The tet block of ExtrinsicInsertionIsTheSameOnOneAndTwoThreads pulled along x, checked
+  // until a check opens faces. Tied, some of those faces keep nodes tied across them (their
+  // neighbours still closed), so they cannot open. Cut (time.insertion_front = "cut"): after
+  // the same check no opened face has a node tied across it; every face opened, by its onset
+  // or to free a front, starts with the normal traction it carried (the more stressed
+  // element's or the two elements' mean: no jump, to rounding); the check changes no term of
+  // the ledger's balance (the skipped elastic energy is booked against dissipation).
+  auto run = [](InsertionFront front, auto&& inspect) {
+    CaseConfig c = extrinsic_tet_block();
+    c.boundaries.push_back(fixed("xmin"));
+    BoundaryConfig pull;
+    pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.5, 0, 0);
+    c.boundaries.push_back(pull);
+    Model m = build_model(c, extrinsic_tet_block_mesh());
+    Integrator it(m, 0.9 * critical_dt(m));
+    ExtrinsicInsertion ins(1, joint::FaceStress::Larger, front);
+    while (it.time() < 1e-3) {
+      it.step();
+      const std::vector<char> was = m.joints.closed;
+      const Real before = it.energy().balance();
+      if (ins.check(m, it) == 0) continue;
+      EXPECT_NEAR(it.energy().balance(), before, 1e-12 * it.energy().largest());
+      inspect(m, it, ins, was);
+      return;
+    }
+    FAIL() << "no face opened";
+  };
+  auto tied_across = [](const Model& m, const Integrator& it, Index j) {
+    const auto& g = it.ties().group;
+    int n = 0;
+    for (int k = 0; k < m.joints.npf[j]; ++k) {
+      const Index a = m.joints.a[4 * j + k], b = m.joints.b[4 * j + k];
+      n += g[a] >= 0 && g[a] == g[b];
+    }
+    return n;
+  };
+  int tied_nodes = 0;
+  run(InsertionFront::Tied, [&](Model& m, Integrator& it, const ExtrinsicInsertion&, const std::vector<char>& was) {
+    for (Index j = 0; j < m.joints.size(); ++j)
+      if (was[j] && !m.joints.closed[j]) tied_nodes += tied_across(m, it, j);
+  });
+  EXPECT_GT(tied_nodes, 0);
+  run(InsertionFront::Cut, [&](Model& m, Integrator& it, const ExtrinsicInsertion& ins, const std::vector<char>& was) {
+    std::vector<Real> stress;
+    it.stresses(stress);
+    const Real* x = it.x().data();
+    const joint::JointSet& js = m.joints;
+    Index by_onset = 0, forced = 0;
+    for (Index j = 0; j < js.size(); ++j) {
+      if (!was[j] || js.closed[j]) continue;
+      const Vec3 p0 = node_pos_ptr(x, js.a[4 * j]), p1 = node_pos_ptr(x, js.a[4 * j + 1]),
+                 p2 = node_pos_ptr(x, js.a[4 * j + 2]);
+      const Vec3 n = (p1 - p0).cross(p2 - p0).normalized();
+      const Real* sa = &stress[6 * static_cast<std::size_t>(js.ea[j])];
+      const Real* sb = &stress[6 * static_cast<std::size_t>(js.eb[j])];
+      if (joint::face_onset(js.params[js.param[j]], sa, sb, n, joint::FaceStress::Larger).ratio >= 1) {
+        ++by_onset;  // its own law: free to open at every node
+        EXPECT_EQ(tied_across(m, it, j), 0) << "joint " << j;
+        continue;
+      }
+      // Opened to free a front: still on its elastic branch, at the mean traction.
+      ++forced;
+      EXPECT_NEAR(js.point_state(4 * static_cast<std::size_t>(j)).sn, joint::face_traction(sa, sb, n).tn, 1e-9 * 3e6)
+          << "joint " << j;
+    }
+    EXPECT_GT(by_onset, 0);
+    EXPECT_GT(forced, 0);
+    EXPECT_EQ(forced, ins.forced());
+    EXPECT_EQ(by_onset + forced, ins.opened());
+  });
 }
