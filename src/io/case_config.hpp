@@ -109,8 +109,8 @@ struct CaseConfig {
   long max_steps = 0;
   long insertion_interval = 1;  ///< extrinsic insertion: steps between checks of the closed faces
   joint::FaceStress insertion_stress = joint::FaceStress::Larger;  ///< extrinsic insertion: the face traction's rule
-  bool insertion_cut_front = false;  ///< extrinsic insertion: open the faces that tie an opened face's nodes
-  std::string stop_series;           ///< empty: run to t_end
+  bool insertion_cut_front = true;  ///< extrinsic insertion: open the faces that tie an opened face's nodes
+  std::string stop_series;          ///< empty: run to t_end
   Real stop_fraction = 0.3, stop_min_peak = 0, stop_delay = 0;
   // output
   Real frame_interval = 0, series_interval = 0;

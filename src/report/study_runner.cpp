@@ -49,7 +49,7 @@ std::vector<std::string> extrinsic_overrides(const CaseConfig& base) {
   sets.push_back(override_of("time.insertion_interval", 10.0));
   for (std::size_t i = 0; i < base.materials.size(); ++i)
     if (base.joint_materials[i].given)
-      sets.push_back(override_of("materials." + base.materials[i].name + ".joint_penalty", 1.0));
+      sets.push_back(override_of("materials." + base.materials[i].name + ".joint_penalty", 2.0));
   return sets;
 }
 

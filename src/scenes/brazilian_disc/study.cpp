@@ -166,7 +166,7 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
     // read +1.7 % in 67 s: cases/README.md).
     const auto sets = report::extrinsic_overrides(base);
     if (!sets.empty())
-      add("extrinsic", "joints inserted where the traction reaches the strength, penalty 1 (reference: intrinsic)",
+      add("extrinsic", "joints inserted where the traction reaches the strength, penalty 2 (reference: intrinsic)",
           sets);
   }
   {

@@ -61,7 +61,7 @@ std::vector<report::Variant> galvez_variants(const CaseConfig& base) {
   // Extrinsic insertion (issue 20; measured on the held beam: peak -1.1 %, the same two
   // pieces, path within 3 mm on average, 1.7x less wall time: cases/README.md).
   if (const auto ext = report::extrinsic_overrides(base); !ext.empty())
-    v.push_back({"extrinsic", "joints inserted where the traction reaches the strength, penalty 1", ext});
+    v.push_back({"extrinsic", "joints inserted where the traction reaches the strength, penalty 2", ext});
   // The test's other loading condition: the second top line held (nonproportional, K =
   // infinity) or let free (proportional, K = 0); it moves the crack (Galvez et al. 1998).
   if (!outer_line_held(base)) {
