@@ -100,26 +100,32 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
 
 Index ExtrinsicInsertion::cut_fronts(joint::JointSet& js, const Real* x, const std::vector<Index>& opened) {
   const Index nj = js.size();
-  if (node_ptr_.empty()) {  // the joints at each node: the topology is fixed from the start
+  if (node_ptr_.empty() || joints_indexed_ != nj) {  // the joints at each node (fixed topology)
+    joints_indexed_ = nj;
     Index nn = 0;
     for (Index v : js.a) nn = std::max(nn, v + 1);
     for (Index v : js.b) nn = std::max(nn, v + 1);
     node_ptr_.assign(static_cast<std::size_t>(nn) + 1, 0);
     for (Index j = 0; j < nj; ++j)
-      for (int k = 0; k < js.npf[j]; ++k) ++node_ptr_[js.a[4 * j + k] + 1], ++node_ptr_[js.b[4 * j + k] + 1];
+      for (int k = 0; k < js.npf[j]; ++k)
+        ++node_ptr_[js.a[4 * static_cast<std::size_t>(j) + k] + 1],
+            ++node_ptr_[js.b[4 * static_cast<std::size_t>(j) + k] + 1];
     for (Index i = 0; i < nn; ++i) node_ptr_[i + 1] += node_ptr_[i];
     node_joint_.resize(static_cast<std::size_t>(node_ptr_.back()));
     std::vector<Index> fill(node_ptr_.begin(), node_ptr_.end() - 1);
     for (Index j = 0; j < nj; ++j)
       for (int k = 0; k < js.npf[j]; ++k)
-        node_joint_[fill[js.a[4 * j + k]]++] = j, node_joint_[fill[js.b[4 * j + k]]++] = j;
+        node_joint_[fill[js.a[4 * static_cast<std::size_t>(j) + k]]++] = j,
+                                                                node_joint_[fill[js.b[4 * static_cast<std::size_t>(j) +
+                                                                                      k]]++] = j;
     local_.assign(static_cast<std::size_t>(nn), -1);
   }
   // The copy across joint j from copy c (the same original node on the other side).
   auto across = [&](Index j, Index c) {
+    const std::size_t j4 = 4 * static_cast<std::size_t>(j);
     for (int k = 0; k < js.npf[j]; ++k) {
-      if (js.a[4 * j + k] == c) return js.b[4 * j + k];
-      if (js.b[4 * j + k] == c) return js.a[4 * j + k];
+      if (js.a[j4 + k] == c) return js.b[j4 + k];
+      if (js.b[j4 + k] == c) return js.a[j4 + k];
     }
     return Index{-1};
   };
@@ -130,7 +136,7 @@ Index ExtrinsicInsertion::cut_fronts(joint::JointSet& js, const Real* x, const s
   std::vector<Real> cap;
   for (Index j : opened)
     for (int k = 0; k < js.npf[j]; ++k) {
-      const Index s = js.a[4 * j + k], t = js.b[4 * j + k];
+      const Index s = js.a[4 * static_cast<std::size_t>(j) + k], t = js.b[4 * static_cast<std::size_t>(j) + k];
       // The copies tied to s through closed faces (breadth first), and those faces.
       star.assign(1, s), edge_joint.clear(), edge.clear();
       local_[s] = 0;

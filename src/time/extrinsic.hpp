@@ -24,9 +24,14 @@ namespace dspdem {
 /// round a node has reached the strength by itself. Cut: at each of an opened face's nodes
 /// still tied across it, the closed faces of a least cut between its two sides (each costing
 /// how far it stands from its onset, joint/min_cut.hpp) open too, as elastic joints carrying
-/// their current traction, so that the opened face opens at once, as an intrinsic joint
-/// would, and the faces next to it feel the redistribution. Measured on the Brazilian disc
-/// (opened joints' penalty 2): tied +14.5 % of the intrinsic peak, cut -1.7 % (cases/README.md).
+/// their current traction (the two elements' mean), so that the opened face opens at once,
+/// as an intrinsic joint would, and the faces next to it feel the redistribution. A face so
+/// forced is freed at that node only: at its other nodes it may stay tied until the crack
+/// reaches them. (Under the coupled law the mean of two stresses each below the onset can
+/// lie just above it, where the ellipse meets the friction cone; such a face starts past its
+/// onset and its law takes it to the softening curve at its first update.) Measured on the
+/// Brazilian disc (opened joints' penalty 2): tied +14.5 % of the intrinsic peak, cut -1.7 %
+/// (cases/README.md).
 enum class InsertionFront : char { Tied = 0, Cut = 1 };
 
 class ExtrinsicInsertion {
@@ -55,6 +60,7 @@ class ExtrinsicInsertion {
   /// Opens the closed faces that tie the nodes of the faces `opened` across them (front_ Cut).
   Index cut_fronts(joint::JointSet& js, const Real* x, const std::vector<Index>& opened);
   std::vector<Index> node_ptr_, node_joint_;  ///< per node, the joints touching it (CSR)
+  Index joints_indexed_ = -1;                 ///< the joint count node_ptr_ was built for
   std::vector<Index> local_;                  ///< per node: its vertex in the star being cut, or -1
   std::vector<Real> stress_, traction_;       ///< per element; per joint (t_n, then t_s as a vector)
   std::vector<char> open_;
