@@ -134,6 +134,7 @@ Index ExtrinsicInsertion::cut_fronts(joint::JointSet& js, const Real* x, const s
   std::vector<Index> edge_joint;         // per edge of the star, its closed joint
   std::vector<std::array<int, 2>> edge;  // its two copies, as vertices of the star
   std::vector<Real> cap;
+  std::vector<Vec3> traction, normal;  // per edge: the face's mean traction and its normal
   for (Index j : opened)
     for (int k = 0; k < js.npf[j]; ++k) {
       const Index s = js.a[4 * static_cast<std::size_t>(j) + k], t = js.b[4 * static_cast<std::size_t>(j) + k];
@@ -155,22 +156,19 @@ Index ExtrinsicInsertion::cut_fronts(joint::JointSet& js, const Real* x, const s
       if (!tied) continue;
       // Each face costs how far its traction (the two elements' mean) stands from its onset,
       // so that the cut runs through the faces nearest to opening by themselves.
-      cap.resize(edge.size());
+      cap.resize(edge.size()), traction.resize(edge.size()), normal.resize(edge.size());
       for (std::size_t e = 0; e < edge.size(); ++e) {
         const Index jj = edge_joint[e];
-        const Vec3 n = face_normal(js, x, jj);
+        normal[e] = face_normal(js, x, jj);
         const joint::FaceOnset fo =
             joint::face_onset(js.params[js.param[jj]], &stress_[6 * static_cast<std::size_t>(js.ea[jj])],
-                              &stress_[6 * static_cast<std::size_t>(js.eb[jj])], n, joint::FaceStress::Mean);
+                              &stress_[6 * static_cast<std::size_t>(js.eb[jj])], normal[e], joint::FaceStress::Mean);
         cap[e] = std::max<Real>(1e-3, 1 - fo.ratio);
+        traction[e] = fo.t;
       }
       for (int e : joint::min_cut(static_cast<int>(star.size()), edge, cap, 0, tv)) {
-        const Index jj = edge_joint[e];
-        const Vec3 n = face_normal(js, x, jj);
-        const Vec3 tr = joint::face_traction_vector(&stress_[6 * static_cast<std::size_t>(js.ea[jj])],
-                                                    &stress_[6 * static_cast<std::size_t>(js.eb[jj])], n);
-        const Real tn = tr.dot(n);
-        open_face(js, jj, tn, tr - tn * n);
+        const Real tn = traction[e].dot(normal[e]);
+        open_face(js, edge_joint[e], tn, traction[e] - tn * normal[e]);
         ++forced;
       }
     }

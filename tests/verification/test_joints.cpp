@@ -585,6 +585,15 @@ CaseConfig extrinsic_tet_block() {
   return c;
 }
 Mesh extrinsic_tet_block_mesh() { return box_mesh(CellType::Tet4, 8, 8, 8, Vec3(0.1, 0.1, 0.1), 0.2); }
+// The block fixed at x = 0 and its face x = 0.1 m moved at velocity v.
+Model pulled_extrinsic_tet_block(const Vec3& v) {
+  CaseConfig c = extrinsic_tet_block();
+  c.boundaries.push_back(fixed("xmin"));
+  BoundaryConfig pull;
+  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = v;
+  c.boundaries.push_back(pull);
+  return build_model(c, extrinsic_tet_block_mesh());
+}
 }  // namespace
 
 TEST(Joints, BarWithExtrinsicJointsBreaksDissipatingGfTimesArea) {
@@ -630,12 +639,7 @@ TEST(Joints, ExtrinsicInsertionIsTheSameOnOneAndTwoThreads) {
   for (InsertionFront front : {InsertionFront::Cut, InsertionFront::Tied}) {
     auto run = [front](int threads) {
       omp_set_num_threads(threads);
-      CaseConfig c = extrinsic_tet_block();
-      c.boundaries.push_back(fixed("xmin"));
-      BoundaryConfig pull;
-      pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(2.0, 0.3, 0);
-      c.boundaries.push_back(pull);
-      Model m = build_model(c, extrinsic_tet_block_mesh());
+      Model m = pulled_extrinsic_tet_block(Vec3(2.0, 0.3, 0));
       Integrator it(m, 0.9 * critical_dt(m));
       ExtrinsicInsertion ins(1, joint::FaceStress::Larger, front);
       for (int s = 0; s < 400; ++s) {
@@ -741,12 +745,7 @@ TEST(Joints, ACutFrontFreesEveryOpenedFaceWithoutAJumpOrEnergy) {
   // (The stresses read after the check are evaluated again from the same positions: the
   // elastic stresses depend on them only.)
   auto run = [](InsertionFront front, auto&& inspect) {
-    CaseConfig c = extrinsic_tet_block();
-    c.boundaries.push_back(fixed("xmin"));
-    BoundaryConfig pull;
-    pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.5, 0, 0);
-    c.boundaries.push_back(pull);
-    Model m = build_model(c, extrinsic_tet_block_mesh());
+    Model m = pulled_extrinsic_tet_block(Vec3(0.5, 0, 0));
     Integrator it(m, 0.9 * critical_dt(m));
     ExtrinsicInsertion ins(1, joint::FaceStress::Larger, front);
     while (it.time() < 1e-3) {
