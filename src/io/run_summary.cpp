@@ -54,6 +54,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   j["message"] = s.message;
   j["steps"] = s.steps;
   j["dt"] = num(s.dt);
+  j["dt_start"] = num(s.dt_start);
   j["dt_critical"] = num(s.dt_critical);
   j["dt_limiter"] = s.dt_limiter;
   j["dt_limiting_element"] = s.dt_limiting_element;
@@ -93,6 +94,8 @@ RunSummary read_run_summary(const std::string& path) {
   get(j, "message", s.message, path);
   get(j, "steps", s.steps, path);
   get(j, "dt", s.dt, path);
+  s.dt_start = s.dt;
+  if (j.contains("dt_start")) get(j, "dt_start", s.dt_start, path);  // not in older run folders
   get(j, "dt_critical", s.dt_critical, path);
   get(j, "dt_limiter", s.dt_limiter, path);
   get(j, "dt_limiting_element", s.dt_limiting_element, path);

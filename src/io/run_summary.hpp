@@ -22,7 +22,9 @@ struct RunSummary {
   std::string status;   ///< "completed", "failed" or "interrupted"
   std::string message;  ///< why it failed, or why it ended before [time] end
   long steps = 0;
-  double dt = 0, dt_critical = 0;
+  /// dt: the step at the end (extrinsic insertion lowers it as joints open; dt_start the
+  /// first); dt_critical and its limiter: the critical step then.
+  double dt = 0, dt_start = 0, dt_critical = 0;
   std::string dt_limiter;
   long dt_limiting_element = 0;
   double t_end = 0, wall_s = 0;

@@ -3,14 +3,24 @@
 // the element already gives. Per node: w^2 <= w_e^2 + 2 K_n / m_n, w_e the largest
 // frequency of the node's elements (element eigenvalue bound), K_n the sum over its joints;
 // dt = 2 / w. The limiter is "joint" when the joint term is the larger one.
+//
+// With extrinsic insertion (joint/ties.hpp) a closed joint has no spring, and the copies it
+// ties move as one point: at the current state, only the open joints count, and a point's
+// mass is its copies' masses added (Gershgorin on M^-1 K holds for any masses), its element
+// term the largest of its copies'. Joints only open and groups only split as a run goes on,
+// so that step only falls; with every joint open it is the one above.
 #pragma once
 #include "fem/fem_model.hpp"
 #include "fem/stable_dt.hpp"
 #include "joint/joint_set.hpp"
+#include "joint/ties.hpp"
 
 namespace dspdem::joint {
 
-/// Combines the element step (`per_element` critical steps) with the joint penalties.
-StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const std::vector<Real>& per_element);
+/// Combines the element step (`per_element` critical steps) with the joint penalties: every
+/// joint as if open (ties null), or at the state `ties` describes (open joints only, tied
+/// copies one point).
+StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const std::vector<Real>& per_element,
+                                   const Ties* ties = nullptr);
 
 }  // namespace dspdem::joint

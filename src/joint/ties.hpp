@@ -8,7 +8,7 @@
 // group's summed force and inverse mass, so that all keep the same position and velocity to
 // the bit (time/integrator.cpp; its fused step keeps the sum at the group's first copy
 // only). A closed joint applies no force, so it adds no compliance: its penalty acts only
-// once it is open (the step allows for that from the start, joint_dt.cpp), and can be low,
+// once it is open (a run's step falls as joints open, joint_dt.hpp), and can be low,
 // where an intrinsic joint's must be high. Opening joints splits the groups of their nodes
 // where no closed face joins the copies any more: a crack frees a node only once it has cut
 // all the way around it.

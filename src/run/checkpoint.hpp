@@ -20,7 +20,7 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  int format = 3;                 // 3: processes and rank (2: ContactTotals names the deepest contact)
+  int format = 4;                 // 4: the integrator's step (3: processes and rank; 2: the deepest contact)
   std::string build;              ///< dspdem version, commit, compiler and build type
   std::string case_path;          ///< absolute path of the case file
   std::vector<std::string> sets;  ///< the run's --set overrides

@@ -53,12 +53,13 @@ struct LoopState {
   std::vector<std::pair<double, std::string>> frames, joint_frames;
   Real next_frame = 0, next_series = 0, next_checkpoint = 0;
   Real stop_at = -1;
+  long n_steps = 0;  ///< the step the run ends at, unless a stop rule ends it first
   std::string stop_message;
   std::uint64_t series_bytes = 0, fragments_bytes = 0;
   double wall_before = 0;  ///< wall time of the run before its last restart [s]
   template <class Ar>
   void persist(Ar& ar) {
-    ar(frames, joint_frames, next_frame, next_series, next_checkpoint, stop_at, stop_message, series_bytes,
+    ar(frames, joint_frames, next_frame, next_series, next_checkpoint, stop_at, n_steps, stop_message, series_bytes,
        fragments_bytes, wall_before);
   }
 };
@@ -217,17 +218,36 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         "{} node(s) were split into unconnected copies with no joint between them (elements meeting only at an "
         "edge or a vertex, or across a tet/hex interface): the pieces there are not tied together",
         model.joint_report.split_without_joint);
-  const StableStep crit = stable_step(model);
+  // The elements' own critical steps are kept: with extrinsic insertion and the step left to
+  // dspdem, closed joints have no spring yet, so the step starts from the elements and the
+  // contact and is recomputed each time joints open (in the loop below; it only falls). A
+  // fixed [time] dt never changes, so it is checked against every joint open.
+  std::vector<Real> per_element;
+  element_stable_step(fem, model.materials, &per_element);
+  const StableStep crit_all_open = stable_step(model, per_element);
+  const bool adaptive_dt = !model.joints.closed.empty() && !(c.dt > 0);
+  StableStep crit = crit_all_open;
+  if (adaptive_dt) {
+    const joint::Ties ties = joint::build_ties(model.joints, fem.n_nodes);
+    crit = stable_step(model, per_element, &ties);
+  }
   if (crit.element < 0 && !(c.dt > 0))
     fail("{}: nothing limits the time step (only rigid bodies, and no contact): set [time] dt", c.path);
+  auto limiter_text = [&](const StableStep& s) {
+    return fmt::format("{} {} (body '{}')",
+                       s.limiter == "joint"     ? "a joint of element"
+                       : s.limiter == "contact" ? "the contact springs of element"
+                                                : "element",
+                       s.element >= 0 ? fem.elem_tag[s.element] : 0,
+                       s.element >= 0 ? model.body_names[fem.elem_body[s.element]] : "-");
+  };
   const std::size_t lim_tag = crit.element >= 0 ? fem.elem_tag[crit.element] : 0;
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
-  log::info("  critical step {:.4g} s, limited by {} {} (body '{}'); using dt = {:.4g} s{}", crit.dt,
-            crit.limiter == "joint"     ? "a joint of element"
-            : crit.limiter == "contact" ? "the contact springs of element"
-                                        : "element",
-            lim_tag, crit.element >= 0 ? model.body_names[fem.elem_body[crit.element]] : "-", dt,
+  log::info("  critical step {:.4g} s, limited by {}; using dt = {:.4g} s{}", crit.dt, limiter_text(crit), dt,
             c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
+  if (adaptive_dt)
+    log::info("  the step falls as joints open (extrinsic insertion); with every joint open it would be {:.4g} s",
+              c.safety * crit_all_open.dt);
   if (model.contact.enabled())
     log::info("  contact: on, {} wall(s); candidates: elements with a free face, refreshed as joints fail",
               model.contact.walls().size());
@@ -242,8 +262,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         "by the stability checks",
         c.dt, c.dt / crit.dt, crit.dt, lim_tag);
   }
-  long n_steps = static_cast<long>(std::ceil(c.t_end / dt - 1e-9));
-  if (c.max_steps > 0) n_steps = std::min(n_steps, c.max_steps);
+  // Steps from step s0 at time t0 to [time] end at step h (or max_steps): the loop's end,
+  // worked out again when the step changes.
+  auto last_step = [&](long s0, Real t0, Real h) {
+    long n = s0 + static_cast<long>(std::ceil((c.t_end - t0) / h - 1e-9));
+    return c.max_steps > 0 ? std::min(n, c.max_steps) : n;
+  };
 
   // A distributed run (mpirun -n N): the whole model was built on every process, as above,
   // and each keeps its share (par/subdomain.hpp); the step is the whole model's.
@@ -316,6 +340,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
   LoopState ls;
   ls.next_frame = c.frame_interval, ls.next_series = c.series_interval, ls.next_checkpoint = opt.checkpoint_every;
+  ls.n_steps = last_step(0, 0.0, dt);
 
   CheckpointHeader head;
   head.build = checkpoint_build_id();
@@ -363,6 +388,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                  "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
                  opt.restart_file, h.nodes, h.elements, h.joints, h.dt, whole_nodes, whole_elements, whole_joints, dt);
     persist(body);
+    if (adaptive_dt) crit = stable_step(model, per_element, &it.ties());  // at the loaded state, for the summary
     DSPDEM_CHECK(body.remaining() == 0, "checkpoint '{}': {} bytes left after the state (corrupt file)",
                  opt.restart_file, body.remaining());
     if (my_rank == 0) restore_outputs(fs::path(opt.restart_file).parent_path(), sdir, ls);
@@ -461,8 +487,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (my_rank != 0) return;
     RunSummary s;
     s.case_name = c.name, s.case_file = c.path, s.status = status, s.message = message;
-    s.steps = it.steps(), s.dt = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
-    s.dt_limiting_element = static_cast<long>(lim_tag);
+    s.steps = it.steps(), s.dt = it.dt(), s.dt_start = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
+    s.dt_limiting_element = static_cast<long>(crit.element >= 0 ? fem.elem_tag[crit.element] : 0);
     s.t_end = it.time(), s.wall_s = ls.wall_before + wall.seconds(), s.threads = omp_get_max_threads();
     s.processes = n_ranks;
     s.nodes = whole_nodes, s.elements = whole_elements, s.frames = static_cast<long>(frames.size());
@@ -492,10 +518,17 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     }
     Timer loop;
     double last_report = 0;
-    for (long s = s0; s < n_steps; ++s) {
+    for (long s = s0; s < ls.n_steps; ++s) {
       it.step();
-      if (extrinsic) extrinsic->check(model, it);
-      bool last = s + 1 == n_steps;
+      if (extrinsic && extrinsic->check(model, it) > 0 && adaptive_dt) {
+        // Joints opened: their springs act from the next step, at their points' masses.
+        crit = stable_step(model, per_element, &it.ties());
+        if (c.safety * crit.dt < it.dt()) {
+          it.set_dt(c.safety * crit.dt);
+          ls.n_steps = last_step(s + 1, it.time(), it.dt());
+        }
+      }
+      bool last = s + 1 == ls.n_steps;
       const Real t = it.time();
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {
         it.check_energy(c.energy_blowup_factor);
@@ -542,8 +575,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       if (tty_progress && loop.seconds() - last_report > 0.5) {
         last_report = loop.seconds();
         const double rate = static_cast<double>(s + 1 - s0) / last_report;
-        fmt::print(stderr, "\r  step {}/{}  t = {:.4g} s  {:.0f} steps/s  ETA {}   ", s + 1, n_steps, t, rate,
-                   format_duration(static_cast<double>(n_steps - s - 1) / rate));
+        fmt::print(stderr, "\r  step {}/{}  t = {:.4g} s  {:.0f} steps/s  ETA {}   ", s + 1, ls.n_steps, t, rate,
+                   format_duration(static_cast<double>(ls.n_steps - s - 1) / rate));
       }
     }
     if (tty_progress) fmt::print(stderr, "\n");
@@ -566,8 +599,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                          e.step, e.time);
   }
   if (extrinsic)
-    log::info("  extrinsic insertion: {} joint(s) opened, {} of them to free a crack front", extrinsic->opened(),
-              extrinsic->forced());
+    log::info("  extrinsic insertion: {} joint(s) opened, {} of them to free a crack front{}", extrinsic->opened(),
+              extrinsic->forced(),
+              adaptive_dt ? fmt::format("; the step fell from {:.4g} s to {:.4g} s (critical {:.4g} s, limited by {})",
+                                        dt, it.dt(), crit.dt, limiter_text(crit))
+                          : std::string());
   if (distributed && model.contact.enabled()) {
     // How the contact work fell on the processes (the partition is the elements', made once).
     const contact::ContactSystem::ShareLoad l = model.contact.share_load();

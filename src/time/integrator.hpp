@@ -9,6 +9,7 @@
 // The balance error is |KE + IE + D - (E0 + W_ext)| over the largest of those terms and of
 // the largest |W_ext| reached so far.
 #pragma once
+#include <cmath>
 #include <csignal>
 #include <string>
 #include <vector>
@@ -51,6 +52,12 @@ class Integrator {
   Real time() const { return t_; }
   long steps() const { return n_; }
   Real dt() const { return dt_; }
+  /// The step from the next one on (extrinsic insertion lowers it as joints open). Velocity
+  /// Verlet's step ends with the whole kick, so the state is the same whatever step follows.
+  void set_dt(Real dt) {
+    DSPDEM_CHECK(dt > 0 && std::isfinite(dt), "time step must be positive, got {}", dt);
+    dt_ = dt;
+  }
   const std::vector<Real>& x() const { return x_; }
   const std::vector<Real>& v() const { return v_; }
   const std::vector<Real>& reaction() const { return reaction_; }
@@ -96,7 +103,7 @@ class Integrator {
   template <class Ar>
   void persist(Ar& ar) {
     ar.section("integrator");
-    ar(t_, n_, x_, v_, f_, f_ext_, reaction_, w_ext_, w_peak_, damp_, e0_, dpower_);
+    ar(dt_, t_, n_, x_, v_, f_, f_ext_, reaction_, w_ext_, w_peak_, damp_, e0_, dpower_);
     ar.section("elements");
     ar(m_.fem.elem_energy, m_.fem.elem_dpower);
     ar.section("joints");

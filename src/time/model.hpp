@@ -8,6 +8,7 @@
 #include "fem/fem_model.hpp"
 #include "fem/stable_dt.hpp"
 #include "joint/joint_set.hpp"
+#include "joint/ties.hpp"
 #include "mesh/mesh.hpp"
 #include "time/monitor.hpp"
 #include "time/rigid_body.hpp"
@@ -66,7 +67,11 @@ inline Real ramp_factor(Real t, Real ramp) { return ramp > 0 ? std::min<Real>(1.
 inline Real ramp_rate(Real t, Real ramp) { return ramp > 0 && t < ramp ? 1.0 / ramp : 0.0; }
 
 /// Critical time step of the model: elements, joint penalties and contact springs
-/// (limiter says which).
+/// (limiter says which). Closed joints (extrinsic insertion) count as if open.
 StableStep stable_step(const Model& m);
+/// The same from the elements' own critical steps (element_stable_step's per_element), at
+/// the state `ties` describes when given: only the open joints count, and tied copies are
+/// one point (joint/joint_dt.hpp): extrinsic insertion's step as joints open.
+StableStep stable_step(const Model& m, const std::vector<Real>& per_element, const joint::Ties* ties = nullptr);
 
 }  // namespace dspdem

@@ -444,6 +444,82 @@ TEST(Joints, ClosedJointsTieEachNodesCopiesIntoOneGroup) {
   EXPECT_EQ(joint::build_ties(js, m.fem.n_nodes).groups(), 125 + 25);
 }
 
+// Extrinsic insertion's step at a state (joint/joint_dt.hpp): a closed joint has no spring
+// and the copies it ties are one point, so the step starts at the elements' and falls as
+// joints open, to the every-joint-open step when all are.
+TEST(Joints, TheStepAtAStateCountsOpenJointsAtTheirPointsMasses) {
+  // Two equal hexahedra and their one quadrilateral joint, worked out by hand: closed, each
+  // pair of copies on the face is one point and no spring acts, dt = 2 / w_e; open, each
+  // copy (mass rho V / 8) carries a quarter of the face's spring k A:
+  // dt = 2 / sqrt(w_e^2 + 2 (k A / 4) / (rho V / 8)).
+  {
+    Model m = two_blocks();
+    std::vector<Real> pe;
+    element_stable_step(m.fem, m.materials, &pe);
+    ASSERT_EQ(pe.size(), 2u);
+    ASSERT_NEAR(pe[0], pe[1], 1e-12 * pe[0]);  // equal cubes, to rounding
+    const Real we = 2.0 / std::min(pe[0], pe[1]);
+    const Real k = joint::max_stiffness(m.joints.params[m.joints.param[0]]);
+    const Real A = 0.1 * 0.1, V = 0.1 * 0.1 * 0.1, rho = 2400;
+    m.joints.closed.assign(1, 1);
+    const joint::Ties closed = joint::build_ties(m.joints, m.fem.n_nodes);
+    ASSERT_EQ(closed.groups(), 4);
+    const StableStep sc = stable_step(m, pe, &closed);
+    EXPECT_EQ(sc.dt, std::min(pe[0], pe[1]));
+    EXPECT_EQ(sc.limiter, "element");
+    m.joints.closed.assign(1, 0);
+    const joint::Ties open = joint::build_ties(m.joints, m.fem.n_nodes);
+    ASSERT_EQ(open.groups(), 0);
+    const StableStep so = stable_step(m, pe, &open);
+    EXPECT_NEAR(so.dt, 2.0 / std::sqrt(we * we + 2 * (k * A / 4) / (rho * V / 8)), 1e-12 * so.dt);
+    EXPECT_EQ(so.limiter, "joint");
+    EXPECT_EQ(so.dt, stable_step(m).dt);  // every joint open: the step of a run without insertion
+  }
+  // A tet block: the step only falls as faces open. One open face frees no node (its copies
+  // stay tied round it through closed faces), so no spring stretches and the step is the
+  // elements'; a plane of open faces splits its nodes, and its springs act on half-points; a
+  // second plane lowers it no further than every joint open.
+  CaseConfig c = simple_case(30e9, 0.2, 2400);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  Model m = build_model(c, box_mesh(CellType::Tet4, 4, 4, 4, Vec3(0.1, 0.1, 0.1)));
+  ASSERT_FALSE(m.contact.enabled());
+  joint::JointSet& js = m.joints;
+  std::vector<Real> pe;
+  const StableStep elements = element_stable_step(m.fem, m.materials, &pe);
+  const Real all_open = stable_step(m).dt;
+  auto step_now = [&]() {
+    const joint::Ties t = joint::build_ties(js, m.fem.n_nodes);
+    return stable_step(m, pe, &t);
+  };
+  js.closed.assign(js.size(), 1);
+  EXPECT_EQ(step_now().dt, elements.dt);
+  auto on_plane = [&](Index j, int axis, Real at) {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(m.fem.x0[3 * static_cast<std::size_t>(js.a[4 * static_cast<std::size_t>(j) + k]) + axis] - at) >
+          1e-12)
+        return false;
+    return true;
+  };
+  Index first = -1;
+  for (Index j = 0; j < js.size() && first < 0; ++j)
+    if (on_plane(j, 0, 0.05)) first = j;
+  ASSERT_GE(first, 0);
+  js.closed[first] = 0;
+  EXPECT_EQ(step_now().dt, elements.dt);
+  for (Index j = 0; j < js.size(); ++j)
+    if (on_plane(j, 0, 0.05)) js.closed[j] = 0;
+  const StableStep one_plane = step_now();
+  EXPECT_LT(one_plane.dt, elements.dt);
+  EXPECT_EQ(one_plane.limiter, "joint");
+  for (Index j = 0; j < js.size(); ++j)
+    if (on_plane(j, 1, 0.05)) js.closed[j] = 0;
+  const StableStep two_planes = step_now();
+  EXPECT_LE(two_planes.dt, one_plane.dt);
+  EXPECT_GT(two_planes.dt, all_open);
+  std::fill(js.closed.begin(), js.closed.end(), 0);
+  EXPECT_EQ(step_now().dt, all_open);
+}
+
 TEST(Joints, ClosedJointsAddNoCompliance) {
   // The block of AddedComplianceWithTheDefaultPenalty relaxed under 1 MPa: with its joints
   // closed it is the block without joints, every node's displacement the same to 1e-9 of
@@ -451,8 +527,8 @@ TEST(Joints, ClosedJointsAddNoCompliance) {
   // differ only in the order nodal forces are added (per element copy, then per tied group),
   // rounding of 1e-16 per step, against the 1.5 % the open joints' penalty adds.
   const RelaxedBlock plain = relaxed_block(false, 0);
-  // The same step: the elements' (the closed joints act on nothing; a run's step allows for
-  // their springs only because any of them may open).
+  // The same step: the elements' (the closed joints act on nothing; a run's step falls
+  // below it only as they open).
   const RelaxedBlock tied = relaxed_block(true, 100, joint::Quadrature::Gauss, true, plain.dt);
   // Each copy's displacement against its node's in the block without joints.
   Real worst = 0, largest = 0;

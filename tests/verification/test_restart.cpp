@@ -121,6 +121,43 @@ TEST_F(Restart, FracturingRunWithContactStoppedTwiceEndsBitwiseAsTheUninterrupte
   expect_same_outputs(full_, dir);
 }
 
+// The same bar with extrinsic insertion: the step starts at the elements' and contact's and
+// falls each time joints open (run/run_case.cpp), so a checkpoint must carry the step, and
+// the run's end (in steps) worked out at the last fall. Stopped part way through the falls
+// and continued on one thread, it ends as the uninterrupted run, to the bit.
+TEST_F(Restart, AnExtrinsicRunWhoseStepFallsRestartsBitwise) {
+  std::vector<std::string> sets = kSets;
+  sets.push_back("bodies.0.fracture_insertion=\"extrinsic\"");
+  const CaseConfig c = read_case(kCase, sets);
+  const fs::path full = root_ / "extrinsic_full", dir = root_ / "extrinsic_stopped";
+  RunOptions opt;
+  opt.out_dir = full.string();
+  opt.sets = sets;
+  run_case(c, opt);
+  auto j = nlohmann::json::parse(slurp(full / "summary.json"));
+  ASSERT_LT(j["dt"].get<double>(), 0.9 * j["dt_start"].get<double>());  // the step fell
+  ASSERT_GE(j["fragments"].get<long>(), 2);
+
+  // The first faces open between steps 1000 and 1100 (t = 34-37 us, as the pull reaches the
+  // notches), and
+  // the step falls over the next 900 steps, to its last value at step 2000 of some 12000.
+  opt.out_dir = dir.string();
+  opt.checkpoint_every = 5e-5;
+  opt.interrupt_at_step = 1300;
+  EXPECT_THROW(run_case(c, opt), Interrupted);
+  // Stopped there, the step had fallen already and had still to fall.
+  auto half = nlohmann::json::parse(slurp(dir / "interrupted_run" / "summary.json"));
+  EXPECT_LT(half["dt"].get<double>(), j["dt_start"].get<double>());
+  EXPECT_GT(half["dt"].get<double>(), j["dt"].get<double>());
+  opt.restart_file = find_checkpoint(dir.string());
+  opt.interrupt_at_step = -1;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  EXPECT_EQ(run_case(c, opt), 0);
+  omp_set_num_threads(threads);
+  expect_same_outputs(full, dir);
+}
+
 TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   const fs::path dir = root_ / "refuse";
   RunOptions opt;
