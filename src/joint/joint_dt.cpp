@@ -25,15 +25,15 @@ StableStep stable_step_with_joints(const FemModel& m, const JointSet& js, const 
     }
   const bool skip_closed = ties != nullptr && !js.closed.empty();
   for (Index j = 0; j < js.size(); ++j) {
-    // Without ties, a closed joint (extrinsic insertion) counts as if open: it may open at any
-    // step, and the step allows for it from the start, so that it never has to change.
+    // Without ties, a closed joint (extrinsic insertion) counts as if open: the step with
+    // every joint open, which bounds every state's and which a fixed [time] dt must respect.
     if (skip_closed && js.closed[j]) continue;
     const CohesiveParams& p = js.params[js.param[j]];
     const Real k = max_stiffness(p) * js.area0[j] / js.npf[j];
     for (int s = 0; s < js.npf[j]; ++s) {
       const Index a = point(js.a[4 * static_cast<std::size_t>(j) + s]);
       const Index b = point(js.b[4 * static_cast<std::size_t>(j) + s]);
-      if (a == b) continue;  // an open face whose copies are still tied round it: no stretch
+      if (tied && a == b) continue;  // an open face whose copies are still tied round it: no stretch
       kj[a] += k, joint_elem[a] = js.ea[j];
       kj[b] += k, joint_elem[b] = js.eb[j];
     }

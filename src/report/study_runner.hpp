@@ -34,8 +34,9 @@ CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std:
 
 /// The overrides of a study's extrinsic-insertion row (issue 20): every fracturing body of
 /// `base` extrinsic (the crack front cut, time.insertion_front's default), checked every 10
-/// steps, its joint materials' penalty 2 (opened joints only, so it can be low; 2-3 gave the
-/// intrinsic disc's strength within 2 %, cases/README.md). Empty when no body fractures.
+/// steps, its joint materials' penalty 2 (opened joints only, so it can be low; on the disc 2
+/// reads -4.0 % of the intrinsic strength and 3 +2.3 %, cases/README.md). Empty when no body
+/// fractures.
 std::vector<std::string> extrinsic_overrides(const CaseConfig& base);
 
 }  // namespace dspdem::report

@@ -137,10 +137,13 @@ TEST_F(Restart, AnExtrinsicRunWhoseStepFallsRestartsBitwise) {
   auto j = nlohmann::json::parse(slurp(full / "summary.json"));
   ASSERT_LT(j["dt"].get<double>(), 0.9 * j["dt_start"].get<double>());  // the step fell
   ASSERT_GE(j["fragments"].get<long>(), 2);
+  // The run's end, worked out again at each fall, is still [time] end, within a step.
+  EXPECT_GE(j["t_end"].get<double>(), 3e-4 * (1 - 1e-9));
+  EXPECT_LT(j["t_end"].get<double>(), 3e-4 + j["dt"].get<double>());
 
   // The first faces open between steps 1000 and 1100 (t = 34-37 us, as the pull reaches the
-  // notches), and
-  // the step falls over the next 900 steps, to its last value at step 2000 of some 12000.
+  // notches), and the step falls over the next 900 steps, to its last value at step 2000 of
+  // some 12000.
   opt.out_dir = dir.string();
   opt.checkpoint_every = 5e-5;
   opt.interrupt_at_step = 1300;

@@ -58,8 +58,9 @@ std::vector<report::Variant> galvez_variants(const CaseConfig& base) {
     if (base.bodies[i].fracture == BodyConfig::Fracture::Groups)
       all.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("all")));
   if (!all.empty()) v.push_back({"joints_everywhere", "joints on every face (reference: the crack band)", all});
-  // Extrinsic insertion (issue 20; measured on the held beam: peak -1.1 %, the same two
-  // pieces, path within 3 mm on average, 1.7x less wall time: cases/README.md).
+  // Extrinsic insertion (issue 20; measured on the held beam with the cut front at penalty 2:
+  // the same peak, the same two pieces, path within 3 mm on average, 3.5x less wall time:
+  // cases/README.md).
   if (const auto ext = report::extrinsic_overrides(base); !ext.empty())
     v.push_back({"extrinsic", "joints inserted where the traction reaches the strength, penalty 2", ext});
   // The test's other loading condition: the second top line held (nonproportional, K =
