@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "report/document.hpp"
 #include "report/headline.hpp"
+#include "report/run_data.hpp"
 #include "report/site.hpp"
 
 using namespace dspdem;
@@ -33,6 +34,12 @@ TEST(Document, LinksAreRelativeToTheReportAndTheTextComesInOrder) {
   std::stringstream ss;
   ss << f.rdbuf();
   EXPECT_EQ(ss.str(), d.text());
+}
+
+TEST(Document, AStepThatFellDuringTheRunIsGivenFirstAndLast) {
+  EXPECT_EQ(report::step_text(3e-8, 3e-8), "3e-08 s");
+  EXPECT_EQ(report::step_text(0, 3e-8), "3e-08 s");  // a summary without dt_start
+  EXPECT_EQ(report::step_text(1.67e-7, 1.36e-7), "1.67e-07 s falling to 1.36e-07 s");
 }
 
 TEST(Document, ARaggedTableRowIsAnError) {

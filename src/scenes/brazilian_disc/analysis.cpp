@@ -211,7 +211,7 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
   for (double m : sum.largest_fragment_masses) r.mass_fractions.push_back(m / sum.total_mass);
   r.wall_s = sum.wall_s;
   r.steps = sum.steps;
-  r.dt = sum.dt;
+  r.dt = sum.dt, r.dt_start = sum.dt_start;
   r.elements = sum.elements;
   r.joints = sum.joints;
   return r;

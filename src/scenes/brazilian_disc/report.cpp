@@ -10,6 +10,7 @@
 #include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
+#include "report/run_data.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
@@ -99,10 +100,10 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
       c.path, c.name, doc.run_link("")));
   doc.para(
       fmt::format("Disc D = {:.1f} mm, L = {:.1f} mm, {} elements, {} joints; plates closing at {:.3g} m/s "
-                  "in all; input f_t = {:.2f} MPa. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
+                  "in all; input f_t = {:.2f} MPa. Run: {} steps of {}, {:.1f} s wall time.",
                   1e3 * r.D, 1e3 * r.L, r.elements, r.joints,
                   c.walls[0].wall.velocity_target.norm() + c.walls[1].wall.velocity_target.norm(), 1e-6 * r.ft, r.steps,
-                  r.dt, r.wall_s));
+                  report::step_text(r.dt_start, r.dt), r.wall_s));
   doc.section("Load and splitting strength");
   doc.para(
       fmt::format("Peak plate load P = {:.2f} kN at t = {:.3f} ms. Splitting strength 2P/(pi D L) = {:.3f} MPa, {} "

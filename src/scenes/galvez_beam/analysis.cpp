@@ -116,7 +116,8 @@ GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir,
   const RunSummary& sum = run.summary;
   r.fragments = static_cast<int>(sum.fragments);
   for (double m : sum.largest_fragment_masses) r.mass_fractions.push_back(m / sum.total_mass);
-  r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.elements = sum.elements, r.joints = sum.joints;
+  r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.dt_start = sum.dt_start, r.elements = sum.elements,
+  r.joints = sum.joints;
   return r;
 }
 

@@ -31,7 +31,7 @@ struct GalvezResult {
   Index first_crack_frame = -1, last_frame = -1;
   int fragments = 0;
   std::vector<double> mass_fractions;
-  double wall_s = 0, dt = 0;
+  double wall_s = 0, dt = 0, dt_start = 0;  ///< dt: the last step, dt_start the first
   long steps = 0, elements = 0, joints = 0;
 };
 

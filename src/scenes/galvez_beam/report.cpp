@@ -10,6 +10,7 @@
 #include "report/crack_sampling.hpp"
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
+#include "report/run_data.hpp"
 #include "report/study_runner.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
@@ -151,9 +152,9 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       c.path, c.name, doc.run_link("")));
   doc.para(fmt::format(
       "Beam depth D = {:.0f} mm, thickness {:.0f} mm, notch {:.0f} mm; {} elements, {} joints; loading line at x = "
-      "{:+.0f} mm; {}. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
-      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, loading_text(r), r.steps, r.dt,
-      r.wall_s));
+      "{:+.0f} mm; {}. Run: {} steps of {}, {:.1f} s wall time.",
+      1e3 * r.D, 1e3 * r.B, 1e3 * r.notch, r.elements, r.joints, 1e3 * r.load_x, loading_text(r), r.steps,
+      report::step_text(r.dt_start, r.dt), r.wall_s));
   doc.section("Load");
   doc.para(fmt::format(
       "Peak actuator load {:.3f} kN at t = {:.3f} ms, CMOD {:.4f} mm, load-point deflection {:.4f} mm. "

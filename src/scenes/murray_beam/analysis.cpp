@@ -176,7 +176,8 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
   };
   if (!r.cracks.empty()) r.first_crack_frame = frame_at(r.cracks.front().t_first);
   if (r.t_main5 >= 0) r.main5_frame = frame_at(r.t_main5);
-  r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.elements = sum.elements, r.joints = sum.joints;
+  r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.dt_start = sum.dt_start, r.elements = sum.elements,
+  r.joints = sum.joints;
   return r;
 }
 

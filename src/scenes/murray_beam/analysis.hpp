@@ -50,7 +50,7 @@ struct MurrayResult {
   double fracture_energy = 0, kinetic_start = 0, kinetic_end = 0;
   Index last_frame = -1;
   Index first_crack_frame = -1, main5_frame = -1;  ///< frames at the first broken joint and at 5 main pieces
-  double wall_s = 0, dt = 0;
+  double wall_s = 0, dt = 0, dt_start = 0;         ///< dt: the last step, dt_start the first
   long steps = 0, elements = 0, joints = 0;
 };
 

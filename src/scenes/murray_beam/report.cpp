@@ -8,6 +8,7 @@
 #include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
+#include "report/run_data.hpp"
 #include "report/study_runner.hpp"
 #include "run/render_run.hpp"
 #include "scenes/murray_beam/analysis.hpp"
@@ -133,9 +134,9 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       c.path, c.name, doc.run_link("")));
   doc.para(fmt::format(
       "Beam {:.1f} x {:.1f} x {:.1f} mm ({:.1f} kg), span {:.1f} mm, impactors {:.1f} mm apart; {} hexahedra, {} "
-      "joints. Run: {} steps of {:.3g} s, {:.1f} s wall time.",
-      1e3 * r.L, 1e3 * r.H, 1e3 * r.W, r.total_mass, 1e3 * r.span, 1e3 * r.gap, r.elements, r.joints, r.steps, r.dt,
-      r.wall_s));
+      "joints. Run: {} steps of {}, {:.1f} s wall time.",
+      1e3 * r.L, 1e3 * r.H, 1e3 * r.W, r.total_mass, 1e3 * r.span, 1e3 * r.gap, r.elements, r.joints, r.steps,
+      report::step_text(r.dt_start, r.dt), r.wall_s));
   doc.section("Pieces");
   doc.para(fmt::format(
       "{} fragments at the end, {} main pieces (at least {:.0f} % of the beam's mass){}. Main pieces, largest first:",
