@@ -241,7 +241,6 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                        s.element >= 0 ? fem.elem_tag[s.element] : 0,
                        s.element >= 0 ? model.body_names[fem.elem_body[s.element]] : "-");
   };
-  const std::size_t lim_tag = crit.element >= 0 ? fem.elem_tag[crit.element] : 0;
   Real dt = c.dt > 0 ? c.dt : c.safety * crit.dt;
   log::info("  critical step {:.4g} s, limited by {}; using dt = {:.4g} s{}", crit.dt, limiter_text(crit), dt,
             c.dt > 0 ? " (fixed)" : fmt::format(" ({} x critical)", c.safety));
@@ -254,13 +253,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   if (c.dt > crit.dt) {
     if (!c.allow_unstable)
       fail(
-          "{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by element {}); lower dt, remove it "
+          "{}: [time] dt = {:.4g} s exceeds the critical step {:.4g} s (limited by {}); lower dt, remove it "
           "for automatic, or set time.allow_unstable = true to study the instability",
-          c.path, c.dt, crit.dt, lim_tag);
+          c.path, c.dt, crit.dt, limiter_text(crit));
     log::warn(
-        "[time] dt = {:.4g} s is {:.2f} x the critical step {:.4g} s (element {}): expect the run to be stopped "
-        "by the stability checks",
-        c.dt, c.dt / crit.dt, crit.dt, lim_tag);
+        "[time] dt = {:.4g} s is {:.2f} x the critical step {:.4g} s (limited by {}): expect the run to be "
+        "stopped by the stability checks",
+        c.dt, c.dt / crit.dt, crit.dt, limiter_text(crit));
   }
   // Steps from step s0 at time t0 to [time] end at step h (or max_steps): the loop's end,
   // worked out again when the step changes.
