@@ -49,9 +49,9 @@ double value_at(const std::vector<double>& time, const std::vector<double>& valu
   return values[std::min(k, values.size() - 1)];
 }
 
-std::string step_text(double dt_start, double dt) {
-  if (dt_start > 0 && dt_start != dt) return fmt::format("{:.3g} s falling to {:.3g} s", dt_start, dt);
-  return fmt::format("{:.3g} s", dt);
+std::string step_text(double dt_start, double dt, const char* unit) {
+  if (dt_start > 0 && dt_start != dt) return fmt::format("{:.3g}{} falling to {:.3g}{}", dt_start, unit, dt, unit);
+  return fmt::format("{:.3g}{}", dt, unit);
 }
 
 }  // namespace dspdem::report

@@ -42,7 +42,8 @@ struct RunData {
 double value_at(const std::vector<double>& time, const std::vector<double>& values, double t);
 
 /// A run's step for a report: "3.1e-08 s", or "1.67e-07 s falling to 1.36e-07 s" when it
-/// fell during the run (extrinsic insertion lowers it as joints open).
-std::string step_text(double dt_start, double dt);
+/// fell during the run (extrinsic insertion lowers it as joints open). `unit` follows each
+/// value ("" in a table whose header gives the unit).
+std::string step_text(double dt_start, double dt, const char* unit = " s");
 
 }  // namespace dspdem::report

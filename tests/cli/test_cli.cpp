@@ -18,6 +18,7 @@
 
 #include "io/run_summary.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "report/run_data.hpp"
 #include "support/cli.hpp"
 
 namespace fs = std::filesystem;
@@ -415,6 +416,14 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   const auto row = md.find("| elastic_fine |");
   ASSERT_NE(row, std::string::npos);
   EXPECT_NE(md.substr(row, md.find('\n', row) - row).find("| no joints |"), std::string::npos);
+  // The extrinsic row's step as its summary gives it (first and last, when faces opened).
+  const auto ext = md.find("| extrinsic |");
+  ASSERT_NE(ext, std::string::npos);
+  const std::string ext_row = md.substr(ext, md.find('\n', ext) - ext);
+  const dspdem::RunSummary ext_sum =
+      dspdem::read_run_summary((dir_ / "rep" / "study" / "extrinsic" / "summary.json").string());
+  EXPECT_NE(ext_row.find("| " + dspdem::report::step_text(ext_sum.dt_start, ext_sum.dt, "") + " |"), std::string::npos)
+      << ext_row;
   EXPECT_EQ(md.find("Closest to f_t: elastic_fine"), std::string::npos);
   EXPECT_EQ(md.find("splits in two: elastic_fine"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "study" / "size_20.0mm"));  // reused, not run again

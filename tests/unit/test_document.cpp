@@ -40,6 +40,7 @@ TEST(Document, AStepThatFellDuringTheRunIsGivenFirstAndLast) {
   EXPECT_EQ(report::step_text(3e-8, 3e-8), "3e-08 s");
   EXPECT_EQ(report::step_text(0, 3e-8), "3e-08 s");  // a summary without dt_start
   EXPECT_EQ(report::step_text(1.67e-7, 1.36e-7), "1.67e-07 s falling to 1.36e-07 s");
+  EXPECT_EQ(report::step_text(1.67e-7, 1.36e-7, ""), "1.67e-07 falling to 1.36e-07");  // a table's cell
 }
 
 TEST(Document, ARaggedTableRowIsAnError) {

@@ -8,6 +8,7 @@
 
 #include "core/log.hpp"
 #include "render/plot.hpp"
+#include "report/run_data.hpp"
 #include "report/study_runner.hpp"
 #include "run/run_case.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
@@ -261,9 +262,9 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
                                    ? fmt::format("{:.2f} / {:.2f}", r.mass_fractions[0], r.mass_fractions[1])
                                    : std::string("-");
     const std::string path = r.crack_path_mean_x >= 0 ? fmt::format("{:.1f}", 1e3 * r.crack_path_mean_x) : "-";
-    study_md +=
-        fmt::format("| {} | {} | {} | {:.1f} | {} | {:.3g} | {} | {:.1f} % | {:.1f} % | {} | {} |\n", v.name, v.knob,
-                    r.elements, r.wall_s, r.steps, r.dt, strength, 100 * r.l2_xx, 100 * r.l2_yy, pieces, path);
+    study_md += fmt::format("| {} | {} | {} | {:.1f} | {} | {} | {} | {:.1f} % | {:.1f} % | {} | {} |\n", v.name,
+                            v.knob, r.elements, r.wall_s, r.steps, report::step_text(r.dt_start, r.dt, ""), strength,
+                            100 * r.l2_xx, 100 * r.l2_yy, pieces, path);
   }
   // Which to use: the most accurate in strength among runs that cracked (a run stopped
   // before its peak reports its last load), and the cheapest whose strength is within 5 %
