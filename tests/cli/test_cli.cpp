@@ -416,7 +416,8 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   const auto row = md.find("| elastic_fine |");
   ASSERT_NE(row, std::string::npos);
   EXPECT_NE(md.substr(row, md.find('\n', row) - row).find("| no joints |"), std::string::npos);
-  // The extrinsic row's step as its summary gives it (first and last, when faces opened).
+  // The extrinsic row's step as its summary gives it. This short run opens no face, so the
+  // row has one step; the first-and-last form is Document.AStepThatFellDuringTheRunIsGivenFirstAndLast's.
   const auto ext = md.find("| extrinsic |");
   ASSERT_NE(ext, std::string::npos);
   const std::string ext_row = md.substr(ext, md.find('\n', ext) - ext);

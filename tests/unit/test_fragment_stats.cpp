@@ -1,6 +1,7 @@
 // Fragment statistics read back from a frame (report/fragment_stats) and the montage tiling
 // (render/montage), on data whose answers are known by hand.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkImageData.h>
@@ -50,7 +51,9 @@ fs::path write_frame(bool with_displacement = true) {
   for (int v : {0, 0, 1}) mat->InsertNextValue(v);
   g->GetCellData()->AddArray(frag);
   g->GetCellData()->AddArray(mat);
-  const fs::path file = fs::temp_directory_path() / (with_displacement ? "dspdem_frag.vtu" : "dspdem_frag_nou.vtu");
+  // Named by process: ctest runs this file's tests side by side (ctest -j2).
+  const fs::path file = fs::temp_directory_path() / ((with_displacement ? "dspdem_frag_" : "dspdem_frag_nou_") +
+                                                     std::to_string(::getpid()) + ".vtu");
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetInputData(g);
   w->SetFileName(file.c_str());
@@ -60,7 +63,9 @@ fs::path write_frame(bool with_displacement = true) {
 }  // namespace
 
 TEST(FragmentStats, MassesFromReferenceVolumesAndDensities) {
-  const auto s = report::fragment_stats(write_frame().string(), {3000.0, 100.0});
+  const fs::path frame = write_frame();
+  const auto s = report::fragment_stats(frame.string(), {3000.0, 100.0});
+  fs::remove(frame);
   ASSERT_EQ(s.count(), 2);
   // Tets: 2 x 1/6 x 3000 = 1000 kg; cube: 1 x 100 = 100 kg (not 1.5 x 100, its deformed volume).
   EXPECT_NEAR(s.masses[0], 1000.0, 1e-9);
@@ -88,8 +93,11 @@ TEST(FragmentStats, RefusesAFrameWithoutWhatItNeedsNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("displacement"), std::string::npos) << e.what();
   }
+  fs::remove(f);
   // A material index the case does not have.
-  EXPECT_THROW(report::fragment_stats(write_frame().string(), {3000.0}), Error);
+  const fs::path frame = write_frame();
+  EXPECT_THROW(report::fragment_stats(frame.string(), {3000.0}), Error);
+  fs::remove(frame);
 }
 
 namespace {

@@ -2,6 +2,7 @@
 // present, no inverted elements, default element counts near the paper's, packing without
 // overlaps and reproducible, and parameter errors that name the key.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +19,17 @@ using namespace dspdem;
 namespace fs = std::filesystem;
 
 namespace {
+// One folder per process: ctest runs this file's tests side by side (ctest -j2).
+fs::path test_dir() { return fs::temp_directory_path() / ("dspdem_meshing_test_" + std::to_string(::getpid())); }
+
+// Removed when the process ends, so the per-process folders do not pile up in /tmp.
+class RemoveTestDir : public ::testing::Environment {
+  void TearDown() override { fs::remove_all(test_dir()); }
+};
+const auto* const remove_test_dir = ::testing::AddGlobalTestEnvironment(new RemoveTestDir);
+
 meshing::Params params(const std::string& gen, const std::vector<std::string>& sets = {}) {
-  const fs::path dir = fs::temp_directory_path() / "dspdem_meshing_test";
+  const fs::path dir = test_dir();
   fs::create_directories(dir);
   const fs::path f = dir / (gen + ".toml");
   std::ofstream(f)
@@ -286,7 +296,7 @@ std::string slurp(const std::string& p) {
 }  // namespace
 
 TEST(Generators, PackingNoOverlapAndReproducible) {
-  const fs::path dir = fs::temp_directory_path() / "dspdem_meshing_test";
+  const fs::path dir = test_dir();
   const std::string a = (dir / "pack_a.msh").string(), b = (dir / "pack_b.msh").string(),
                     c = (dir / "pack_c.msh").string();
   const Mesh m = meshing::generate(params("packing"), a);
