@@ -52,6 +52,17 @@ Vec3 force_on_b(Model& m, const std::vector<Real>& x, std::vector<Real>& slots) 
   for (int k = 0; k < 4; ++k) F += node_pos(f, m.joints.b[k]);
   return F;
 }
+
+// Whether joint j lies on the plane x_axis = at (its first three side-A points do; a face
+// has at least three).
+bool joint_on_plane(const Model& m, Index j, int axis, Real at) {
+  const joint::JointSet& js = m.joints;
+  for (int k = 0; k < 3; ++k) {
+    const Index n = js.a[4 * static_cast<std::size_t>(j) + k];
+    if (std::abs(m.fem.x0[3 * static_cast<std::size_t>(n) + axis] - at) > 1e-12) return false;
+  }
+  return true;
+}
 }  // namespace
 
 TEST(Joints, InsertionBetweenTwoHexes) {
@@ -430,12 +441,7 @@ TEST(Joints, ClosedJointsTieEachNodesCopiesIntoOneGroup) {
 
   // One open face frees no node (the closed faces around it still join its copies); all the
   // faces of the plane x = 0.05 open split each of its 25 nodes in two.
-  auto on_plane = [&](Index j) {
-    for (int k = 0; k < 3; ++k)
-      if (std::abs(m.fem.x0[3 * static_cast<std::size_t>(js.a[4 * static_cast<std::size_t>(j) + k])] - 0.05) > 1e-12)
-        return false;
-    return true;
-  };
+  auto on_plane = [&](Index j) { return joint_on_plane(m, j, 0, 0.05); };
   Index first = -1, plane = 0;
   for (Index j = 0; j < js.size(); ++j)
     if (on_plane(j)) first = first < 0 ? j : first, ++plane;
@@ -496,13 +502,7 @@ TEST(Joints, TheStepAtAStateCountsOpenJointsAtTheirPointsMasses) {
   };
   js.closed.assign(js.size(), 1);
   EXPECT_DOUBLE_EQ(step_now().dt, elements.dt);
-  auto on_plane = [&](Index j, int axis, Real at) {
-    for (int k = 0; k < 3; ++k)
-      if (std::abs(m.fem.x0[3 * static_cast<std::size_t>(js.a[4 * static_cast<std::size_t>(j) + k]) + axis] - at) >
-          1e-12)
-        return false;
-    return true;
-  };
+  auto on_plane = [&](Index j, int axis, Real at) { return joint_on_plane(m, j, axis, at); };
   Index first = -1;
   for (Index j = 0; j < js.size() && first < 0; ++j)
     if (on_plane(j, 0, 0.05)) first = j;
@@ -585,13 +585,7 @@ TEST(Joints, TheStepAtAStateNeverExceedsTheAssembledSystemsStep) {
   std::vector<Real> pe;
   element_stable_step(m.fem, m.materials, &pe);
   const Real floor = stable_step(m).dt;
-  auto on_plane = [&](Index j, int axis, Real at) {
-    for (int k = 0; k < 3; ++k)
-      if (std::abs(m.fem.x0[3 * static_cast<std::size_t>(js.a[4 * static_cast<std::size_t>(j) + k]) + axis] - at) >
-          1e-12)
-        return false;
-    return true;
-  };
+  auto on_plane = [&](Index j, int axis, Real at) { return joint_on_plane(m, j, axis, at); };
   struct State {
     const char* name;
     std::function<bool(Index)> open;
