@@ -99,24 +99,7 @@ void build_brazilian_disc(const Params& p) {
     field::add("Distance", 1);
     field::setNumbers(1, "CurvesList", {static_cast<double>(l_top[0]), static_cast<double>(l_bot[0])});
     field::setNumber(1, "NumPointsPerCurve", std::ceil(L / hl) * 4 + 1);
-    field::add("Threshold", 2);
-    field::setNumber(2, "InField", 1);
-    field::setNumber(2, "SizeMin", hl), field::setNumber(2, "SizeMax", h);
-    field::setNumber(2, "DistMin", 0), field::setNumber(2, "DistMax", D / 4);
-    field::add("Restrict", 3);  // the disc only: meshed plates keep plate_size
-    field::setNumber(3, "InField", 2);
-    // The disc's volumes, faces and curves (the lines themselves must be refined first).
-    gmsh::vectorpair vd, faces, curves;
-    for (int v : vols) vd.emplace_back(3, v);
-    gmsh::model::getBoundary(vd, faces, false, false, false);
-    gmsh::model::getBoundary(faces, curves, false, false, false);
-    std::vector<double> fl, cl;
-    for (auto [dim, t] : faces) fl.push_back(t);
-    for (auto [dim, t] : curves) cl.push_back(t);
-    field::setNumbers(3, "VolumesList", std::vector<double>(vols.begin(), vols.end()));
-    field::setNumbers(3, "SurfacesList", fl);
-    field::setNumbers(3, "CurvesList", cl);
-    field::setAsBackgroundMesh(3);
+    set_graded_size(1, hl, h, D / 4, vols);
   }
   if (plates) set_volume_size({top, bot}, ph);
   gmsh::model::mesh::generate(3);

@@ -235,4 +235,28 @@ void set_volume_size(const std::vector<int>& volumes, double size) {
   gmsh::model::mesh::setSize(points, size);
 }
 
+void set_graded_size(int distance, double size_min, double size_max, double dist_max, const std::vector<int>& volumes) {
+  namespace field = gmsh::model::mesh::field;
+  const int threshold = 100, restrict = 101;
+  field::add("Threshold", threshold);
+  field::setNumber(threshold, "InField", distance);
+  field::setNumber(threshold, "SizeMin", size_min), field::setNumber(threshold, "SizeMax", size_max);
+  field::setNumber(threshold, "DistMin", 0), field::setNumber(threshold, "DistMax", dist_max);
+  // Restricted to the volumes, their faces and curves (a refined line or point on the
+  // boundary must be refined there first): meshed plates beside them keep their own size.
+  field::add("Restrict", restrict);
+  field::setNumber(restrict, "InField", threshold);
+  gmsh::vectorpair vd, faces, curves;
+  for (int v : volumes) vd.emplace_back(3, v);
+  gmsh::model::getBoundary(vd, faces, false, false, false);
+  gmsh::model::getBoundary(faces, curves, false, false, false);
+  std::vector<double> fl, cl;
+  for (auto [dim, t] : faces) fl.push_back(t);
+  for (auto [dim, t] : curves) cl.push_back(t);
+  field::setNumbers(restrict, "VolumesList", std::vector<double>(volumes.begin(), volumes.end()));
+  field::setNumbers(restrict, "SurfacesList", fl);
+  field::setNumbers(restrict, "CurvesList", cl);
+  field::setAsBackgroundMesh(restrict);
+}
+
 }  // namespace dspdem::meshing

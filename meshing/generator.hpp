@@ -63,5 +63,9 @@ std::vector<int> entities_in_box(int dim, double x0, double y0, double z0, doubl
                                  double eps = 1e-6);
 /// Sets the target mesh size on every point of the given volumes.
 void set_volume_size(const std::vector<int>& volumes, double size);
+/// Grades the size inside the given volumes (their faces and curves included) from size_min
+/// where gmsh field `distance` (already added, any tag below 100) reads 0 up to size_max where
+/// it reads dist_max and beyond; other volumes keep their own sizes. The background mesh.
+void set_graded_size(int distance, double size_min, double size_max, double dist_max, const std::vector<int>& volumes);
 
 }  // namespace dspdem::meshing

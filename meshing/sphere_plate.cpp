@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "core/log.hpp"
 #include "meshing/generator.hpp"
 
 namespace dspdem::meshing {
@@ -29,32 +30,26 @@ Eigen::AngleAxisd orientation(int k) {
 
 // Element size hc at the sphere's lowest point (0, -D/2, 0), where it meets the plate, growing
 // linearly to the sphere's size at contact_distance from it. A turned sphere (orientation > 0)
-// is refined at the same place: the turn is about the centre. Why: the Hertz contact at the
-// paper's speeds is a few mm wide (6.5 mm at 2.5 m/s), under half the case's element, so the
+// is refined at the same place: the turn is about the centre. Why: the Hertz contact's radius
+// is 6.5 mm at 2.5 m/s and 10 mm at 7.5 m/s, under one of the case's 16.8 mm elements, so the
 // crushing under it is the mesh's as much as the rock's.
-void refine_at_contact(const Params& p, int sphere, double hc) {
-  const double D = p["diameter"], h = p["size"], reach = p["contact_distance"];
-  if (hc > h) param_error(p, "contact_size", "larger than size: it refines the mesh at the contact");
+void refine_at_contact(const Params& p, int sphere, double hc, double h) {
+  const double D = p["diameter"], reach = p["contact_distance"];
   if (reach <= 0) param_error(p, "contact_distance", "must be > 0 when contact_size is set");
-  namespace field = gmsh::model::mesh::field;
-  field::add("MathEval", 1);
-  field::setString(1, "F", fmt::format("Sqrt(x^2 + (y + {:.17g})^2 + z^2)", D / 2));
-  field::add("Threshold", 2);
-  field::setNumber(2, "InField", 1);
-  field::setNumber(2, "SizeMin", hc), field::setNumber(2, "SizeMax", h);
-  field::setNumber(2, "DistMin", 0), field::setNumber(2, "DistMax", reach);
-  field::add("Restrict", 3);  // the sphere only: a meshed plate keeps plate_size
-  field::setNumber(3, "InField", 2);
-  gmsh::vectorpair faces, curves;
-  gmsh::model::getBoundary({{3, sphere}}, faces, false, false, false);
-  gmsh::model::getBoundary(faces, curves, false, false, false);
-  std::vector<double> fl, cl;
-  for (auto [dim, t] : faces) fl.push_back(t);
-  for (auto [dim, t] : curves) cl.push_back(t);
-  field::setNumbers(3, "VolumesList", {static_cast<double>(sphere)});
-  field::setNumbers(3, "SurfacesList", fl);
-  field::setNumbers(3, "CurvesList", cl);
-  field::setAsBackgroundMesh(3);
+  if (hc >= h) {
+    // With target_elements the size is rescaled, and may come out finer than contact_size.
+    if (p["target_elements"] > 0) {
+      log::warn(
+          "mesh.sphere_plate: contact_size {:.4g} m is not finer than the size {:.4g} m that target_elements "
+          "gives: no refinement at the contact",
+          hc, h);
+      return;
+    }
+    param_error(p, "contact_size", "not smaller than size: it refines the mesh at the contact");
+  }
+  gmsh::model::mesh::field::add("MathEval", 1);
+  gmsh::model::mesh::field::setString(1, "F", fmt::format("Sqrt(x^2 + (y + {:.12f})^2 + z^2)", D / 2));
+  set_graded_size(1, hc, h, reach, {sphere});
 }
 }  // namespace
 
@@ -79,7 +74,7 @@ void build_sphere_plate(const Params& p) {
   const int plate = meshed_plate ? occ::addBox(-pw / 2, ytop - pt, -pw / 2, pw, pt, pw) : -1;
   occ::synchronize();
   set_volume_size({sphere}, h);
-  if (const double hc = p["contact_size"]; hc > 0) refine_at_contact(p, sphere, hc);
+  if (const double hc = p["contact_size"]; hc > 0) refine_at_contact(p, sphere, hc, h);
   if (meshed_plate) set_volume_size({plate}, ph);
   gmsh::model::mesh::generate(3);
   add_group(3, {sphere}, "sphere");
@@ -100,7 +95,7 @@ const std::vector<schema::Key>& sphere_plate_keys() {
     {"mesh.sphere_plate", "target_elements", T::Int, "0", 0, 1e8, false, false, "", nullptr, "Element count wanted in the sphere: when > 0 the size is rescaled (a few gmsh runs) until the count is within 3 %."},
     {"mesh.sphere_plate", "size", T::Real, "0.0168", 0, inf, true, false, "m", nullptr, "Element size in the sphere; the default gives about the paper's 4539 tetrahedra."},
     {"mesh.sphere_plate", "orientation", T::Int, "0", 0, 1e6, false, false, "", nullptr, "0: the sphere as gmsh builds it; k > 0: the sphere turned before meshing by the k-th of a fixed sequence of rotations, uniform over all rotations: another realisation of the mesh at the same size (gmsh meshes it differently; element counts within a few %), for a pattern's spread (`dspdem report --realisations`)."},
-    {"mesh.sphere_plate", "contact_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: element size at the sphere's lowest point, where it meets the plate, growing linearly to size at contact_distance from it (the Hertz contact is a few mm wide); 0: size everywhere."},
+    {"mesh.sphere_plate", "contact_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: element size at the sphere's lowest point, where it meets the plate, growing linearly to size at contact_distance from it (the Hertz contact's radius is 6.5 mm at 2.5 m/s and 10 mm at 7.5 m/s on the paper's sphere); 0: size everywhere."},
     {"mesh.sphere_plate", "contact_distance", T::Real, "0.05", 0, inf, false, false, "m", nullptr, "Distance from the lowest point over which contact_size grows to size."},
     {"mesh.sphere_plate", "gap", T::Real, "0.0", 0, inf, false, false, "m", nullptr, "Gap between the sphere and the plate."},
     {"mesh.sphere_plate", "plate", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the steel plate under the sphere (groups plate, plate_top, plate_bottom); 0: the sphere alone (strike a rigid [[walls]] plane, as the paper's plate)."},

@@ -231,10 +231,11 @@ TEST(Generators, SphereOrientationIsAnotherMeshOfTheSameSphere) {
 TEST(Generators, SphereRefinedAtTheContact) {
   // contact_size: the elements within r = 8 mm of the lowest point are smaller than the
   // uniform mesh's there, and near what the size field asks: contact_size growing linearly
-  // to size over contact_distance, at the mean distance of a half-ball's points, 3 r / 4. The
-  // 1.6 is the bound used for the disc's load_size above (gmsh's elements come out larger
-  // than the field in a steep gradient; an edge estimated from the volume of a flat tet
-  // comes out smaller). The centre keeps size, and the sphere is the same sphere.
+  // to size over contact_distance, taken at the mean distance of a half-ball's points, 3 r / 4.
+  // The 1.6 is the bound used for the disc's load_size above: elements reaching into the ball
+  // from outside it are counted, and gmsh's elements in a steep gradient come out larger than
+  // the field. A mesh that ignored the field would read the uniform mesh's 18 mm, 3x the
+  // bound. The centre keeps size, and the sphere is the same sphere.
   const double hc = 0.004, reach = 0.04, h = 0.0168, r = 0.008;
   const auto near_pole = [&](const Vec3& g) { return (g - Vec3(0, -0.1, 0)).norm() < r; };
   const Mesh uniform = meshing::generate(params("sphere_plate", {"plate=0"}));
@@ -251,6 +252,12 @@ TEST(Generators, SphereRefinedAtTheContact) {
       params("sphere_plate", {"plate=0", "contact_size=0.004", "contact_distance=0.04", "orientation=2"}));
   // Measured: uniform 18.2 mm, refined 8.1, turned 6.2; asked 5.9.
   EXPECT_LT(mean_edge(turned, near_pole), 1.6 * asked);
+  // A meshed plate keeps its own size under the contact (the field is restricted to the
+  // sphere): its elements within 15 mm of the point below the contact are about plate_size.
+  const Mesh plate = meshing::generate(params("sphere_plate", {"contact_size=0.004", "contact_distance=0.04"}));
+  const double ph = 0.03;
+  EXPECT_GT(mean_edge(plate, [](const Vec3& g) { return g(1) < -0.1 && (g - Vec3(0, -0.11, 0)).norm() < 0.015; }),
+            0.7 * ph);
 }
 
 TEST(Generators, ElementCountTarget) {

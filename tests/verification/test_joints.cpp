@@ -502,20 +502,19 @@ TEST(Joints, TheStepAtAStateCountsOpenJointsAtTheirPointsMasses) {
   };
   js.closed.assign(js.size(), 1);
   EXPECT_DOUBLE_EQ(step_now().dt, elements.dt);
-  auto on_plane = [&](Index j, int axis, Real at) { return joint_on_plane(m, j, axis, at); };
   Index first = -1;
   for (Index j = 0; j < js.size() && first < 0; ++j)
-    if (on_plane(j, 0, 0.05)) first = j;
+    if (joint_on_plane(m, j, 0, 0.05)) first = j;
   ASSERT_GE(first, 0);
   js.closed[first] = 0;
   EXPECT_DOUBLE_EQ(step_now().dt, elements.dt);
   for (Index j = 0; j < js.size(); ++j)
-    if (on_plane(j, 0, 0.05)) js.closed[j] = 0;
+    if (joint_on_plane(m, j, 0, 0.05)) js.closed[j] = 0;
   const StableStep one_plane = step_now();
   EXPECT_LT(one_plane.dt, elements.dt);
   EXPECT_EQ(one_plane.limiter, "joint");
   for (Index j = 0; j < js.size(); ++j)
-    if (on_plane(j, 1, 0.05)) js.closed[j] = 0;
+    if (joint_on_plane(m, j, 1, 0.05)) js.closed[j] = 0;
   const StableStep two_planes = step_now();
   EXPECT_LE(two_planes.dt, one_plane.dt);
   EXPECT_GT(two_planes.dt, all_open);
@@ -585,15 +584,15 @@ TEST(Joints, TheStepAtAStateNeverExceedsTheAssembledSystemsStep) {
   std::vector<Real> pe;
   element_stable_step(m.fem, m.materials, &pe);
   const Real floor = stable_step(m).dt;
-  auto on_plane = [&](Index j, int axis, Real at) { return joint_on_plane(m, j, axis, at); };
   struct State {
     const char* name;
     std::function<bool(Index)> open;
   };
   const std::vector<State> states = {
       {"all closed", [](Index) { return false; }},
-      {"the plane x = 0.05 open", [&](Index j) { return on_plane(j, 0, 0.05); }},
-      {"the planes x = 0.05 and y = 0.05 open", [&](Index j) { return on_plane(j, 0, 0.05) || on_plane(j, 1, 0.05); }},
+      {"the plane x = 0.05 open", [&](Index j) { return joint_on_plane(m, j, 0, 0.05); }},
+      {"the planes x = 0.05 and y = 0.05 open",
+       [&](Index j) { return joint_on_plane(m, j, 0, 0.05) || joint_on_plane(m, j, 1, 0.05); }},
       {"all open", [](Index) { return true; }},
   };
   js.closed.assign(js.size(), 1);
