@@ -428,6 +428,19 @@ bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, cons
   vrel += (vn_rel - vrel).dot(t.n) * t.n;
   o.hist = {static_cast<int>(t.kind), t.fa, t.fb, history_.find(p, static_cast<int>(t.kind), t.fa, t.fb)};
   LawResult r = contact_law(pair_params(ea, wall ? -1 : eb, wall), overlap, t.n, vrel, dt, o.hist.xi);
+  // A faded touch's stored energy is weight x E: the weight's gradient is a force too (a
+  // couple on the two edges whose angle sets it), or the energy would change with no work.
+  o.n_fades = t.n_fades;
+  o.fade_torque.setZero();
+  for (int m = 0; m < t.n_fades; ++m) {
+    const Touch::Fade& fd = t.fades[m];
+    Vec3 ds_du, ds_dv;
+    sin2_angle(fd.u, fd.v, &ds_du, &ds_dv);
+    const Real g = -r.elastic * fd.dw_ds;
+    o.fade_a[m][0] = fd.a0, o.fade_a[m][1] = fd.a1, o.fade_b[m][0] = fd.b0, o.fade_b[m][1] = fd.b1;
+    o.fade_fa[m] = g * ds_du, o.fade_fb[m] = g * ds_dv;
+    if (wall) o.fade_torque += fd.v.cross(o.fade_fb[m]);
+  }
   r.force *= t.weight, r.elastic *= t.weight, r.slip_work *= t.weight;
   r.damping_n *= t.weight, r.damping_t *= t.weight;
   o.elastic = r.elastic;
@@ -467,6 +480,20 @@ void ContactSystem::gather(const TouchOut& o, Real* f) {
   // Distributed: the lent elements' nodes are others' (what they get here is dropped).
   const Index nloc = n_local_nodes_;
   const Elem& a = elems_[o.ea];
+  // A fade's couple on skeleton vertices s1 (force F) and s0 (-F) of element e.
+  auto add_couple = [&](Index e, int s0, int s1, const Vec3& F) {
+    const Elem& el = elems_[e];
+    const Real* W = &skel_w_[skel_off_[e]];
+    for (int j = 0; j < el.npe; ++j) {
+      if (el.conn[j] >= nloc) continue;
+      const Real wj = W[s1 * el.npe + j] - W[s0 * el.npe + j];
+      for (int d = 0; d < 3; ++d) f[3 * static_cast<std::size_t>(el.conn[j]) + d] += wj * F(d);
+    }
+  };
+  for (int m = 0; m < o.n_fades; ++m) {
+    add_couple(o.ea, o.fade_a[m][0], o.fade_a[m][1], o.fade_fa[m]);
+    if (o.eb >= 0) add_couple(o.eb, o.fade_b[m][0], o.fade_b[m][1], o.fade_fb[m]);
+  }
   for (int i = 0; i < a.npe; ++i) {
     if (a.conn[i] >= nloc) continue;
     for (int d = 0; d < 3; ++d) {
@@ -477,7 +504,7 @@ void ContactSystem::gather(const TouchOut& o, Real* f) {
   }
   if (o.eb < 0) {
     Wall& w = walls_[-1 - o.eb];
-    const Vec3 torque = (o.c - w.centre).cross(o.force);
+    const Vec3 torque = (o.c - w.centre).cross(o.force) - o.fade_torque;
     if (!ex_) {
       w.force -= o.force;
       w.torque -= torque;

@@ -149,6 +149,11 @@ class ContactSystem {
     Vec3 c;              ///< contact point (wall torque)
     Real elastic, slip_work, overlap_ratio;
     HistoryEntry hist;
+    /// The couple of a faded touch (Touch::fade): per fade, the force on skeleton vertex a1
+    /// of A (a0 gets its opposite) and on b1 of B; a wall gets its torque instead.
+    int n_fades;
+    int fade_a[2][2], fade_b[2][2];
+    Vec3 fade_fa[2], fade_fb[2], fade_torque;
   };
   struct Elem {
     CellType type;

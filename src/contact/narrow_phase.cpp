@@ -90,24 +90,51 @@ Vec3 separation(const Vec3& pa, const Vec3& pb, const Vec3& ca, const Vec3& cb, 
   return n.normalized();
 }
 
-// Edges closer to parallel than this (sin^2 of the angle) meet along a line: their contact
-// is carried by the end points of the overlap (vertex-edge pairs from both sides), not by
-// an edge-edge pair whose closest points run off to infinity as the angle vanishes.
+// Edges closer to parallel than kParallel2 (sin^2 of the angle) meet along a line: their
+// contact is carried by the end points of the overlap (vertex-edge pairs from both sides),
+// not by an edge-edge pair whose closest points run off to infinity as the angle vanishes.
+// Edges farther from parallel than kCrossed2 meet at a point: the edge-edge pair carries
+// it, and a vertex whose edge points towards the contact defers to that pair. Between the
+// two, both are blended by the angle (edge_blend). A switch at one angle let an edge-edge
+// pair appear with its full overlap, up to 2 J in one step in the sphere impact: crossed
+// near their middles, the edges are closer than their end points by up to 27 um.
 constexpr Real kParallel2 = 2.5e-3;  // 0.05 rad
+constexpr Real kCrossed2 = 1e-2;     // 0.1 rad
 
-bool nearly_parallel(const Vec3& u, const Vec3& v) {
-  return u.cross(v).squaredNorm() <= kParallel2 * u.squaredNorm() * v.squaredNorm();
+// Vertex i of P against a point q of Q's edge along `dir`, when i is outside Q's face
+// prisms: the vertex-edge pair's share, 1 when no edge of i points towards q (up to `band`)
+// and 0 when one does that is not nearly parallel to `dir`. Edges of i in the blend band
+// scale it by 1 - w and add their fade to t (indices on P as a0, a1; Q's edge as b0, b1).
+Real vertex_edge_share(const Poly& P, int i, const Vec3& q, Real band, const Vec3& dir, int q0, int q1, Touch& t) {
+  Real share = 1;
+  Real w[2], dw[2];
+  int n = 0;
+  for (int k : P.topo->neighbours[i]) {
+    if (along(q, P.v[i], P.v[k]) <= band) continue;
+    const Vec3 u = P.v[k] - P.v[i];
+    const Real s2 = sin2_angle(u, dir);
+    if (s2 >= kCrossed2) return 0;
+    if (s2 <= kParallel2) continue;
+    const Blend b = edge_blend(s2);
+    share *= 1 - b.w;
+    // A vertex of a convex skeleton has at most two edges within 0.1 rad of one line (one
+    // each way, and only on a sliver); a third would only lose its couple.
+    if (n < 2) {
+      t.fades[n] = {i, k, q0, q1, u, dir, 0};
+      w[n] = b.w, dw[n] = b.dw_ds, ++n;
+    }
+  }
+  // d share / d s_k = -w'_k times the other factors.
+  for (int m = 0; m < n; ++m) t.fades[m].dw_ds = -dw[m] * (n == 2 ? 1 - w[1 - m] : 1.0);
+  t.n_fades = n;
+  t.fade = share;
+  return share;
 }
 
 // Is q in the vertex region of vertex i of P: no edge of i points towards q (up to `band`)?
-// Edges nearly parallel to `along_dir` (the other side's edge, for vertex-edge pairs) do
-// not count.
-bool in_vertex_cone(const Poly& P, int i, const Vec3& q, Real band, const Vec3& along_dir = Vec3::Zero()) {
-  for (int k : P.topo->neighbours[i]) {
-    if (along(q, P.v[i], P.v[k]) <= band) continue;
-    if (along_dir.squaredNorm() > 0 && nearly_parallel(P.v[k] - P.v[i], along_dir)) continue;
-    return false;
-  }
+bool in_vertex_cone(const Poly& P, int i, const Vec3& q, Real band) {
+  for (int k : P.topo->neighbours[i])
+    if (along(q, P.v[i], P.v[k]) > band) return false;
   return true;
 }
 
@@ -135,13 +162,18 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
   const Vec3 cp = P.centre(), cq = Q.centre();
   // Vertex ip of P against a point of Q combining Q's vertices iq with weights wq.
   auto emit = [&](Feature k_pa, Feature k_pb, int fp, int fq, const Vec3& pp, const Vec3& pq, const Vec3& n_qp, Real d,
-                  int ip, std::array<int, 3> iq, std::array<Real, 3> wq) {
+                  int ip, std::array<int, 3> iq, std::array<Real, 3> wq, const Touch* faded = nullptr) {
     // n_qp points from Q to P.
     Touch t{flip ? k_pb : k_pa, fp, fq, pp, pq, n_qp, d};
     t.ia = {ip, 0, 0}, t.wa = {1, 0, 0}, t.ib = iq, t.wb = wq;
+    if (faded) t.fade = faded->fade, t.n_fades = faded->n_fades, t.fades = faded->fades;
     if (flip) {
       std::swap(t.fa, t.fb), std::swap(t.pa, t.pb), std::swap(t.ia, t.ib), std::swap(t.wa, t.wb);
       t.n = -t.n;
+      for (int m = 0; m < t.n_fades; ++m) {
+        Touch::Fade& f = t.fades[m];
+        std::swap(f.a0, f.b0), std::swap(f.a1, f.b1), std::swap(f.u, f.v);
+      }
     }
     out.push_back(t);
   };
@@ -195,11 +227,12 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
       // Unless an edge of the vertex points towards the contact: that is an edge-edge pair.
       const Vec3 &a = Q.v[tq.edges[feat][0]], &b = Q.v[tq.edges[feat][1]];
       const Vec3 q = a + edge_t * (b - a);
-      if (best < R && in_vertex_cone(P, i, q, kBand, b - a)) {
+      Touch share;
+      if (best < R && vertex_edge_share(P, i, q, kBand, b - a, tq.edges[feat][0], tq.edges[feat][1], share) > 0) {
         Real d;
         const Vec3 n = separation(p, q, cp, cq, d);
         emit(Feature::VE, Feature::EV, i, feat, p, q, n, d, i, {tq.edges[feat][0], tq.edges[feat][1], 0},
-             {1 - edge_t, edge_t, 0});
+             {1 - edge_t, edge_t, 0}, &share);
       }
     } else if (kind == Vertex && !flip) {
       // Vertex-vertex (once: from A's side), each in the other's vertex region.
@@ -216,12 +249,14 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
 }
 
 // Closest points of segments (a0, a1) and (b0, b1) when both lie strictly inside.
+// s2_out: sin^2 of their angle.
 bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, Vec3& pa, Vec3& pb, Real& s_out,
-               Real& t_out) {
+               Real& t_out, Real& s2_out) {
   const Vec3 u = a1 - a0, v = b1 - b0, w = a0 - b0;
   const Real a = u.dot(u), b = u.dot(v), c = v.dot(v), d = u.dot(w), e = v.dot(w);
   const Real den = a * c - b * b;
-  if (den <= kParallel2 * a * c) return false;  // (nearly) parallel: the end points carry it (VE, EV)
+  s2_out = sin2_angle(u, v);
+  if (s2_out <= kParallel2) return false;  // (nearly) parallel: the end points carry it (VE, EV)
   const Real s = (b * e - c * d) / den, t = (a * e - b * d) / den;
   if (!(s > -kBand && s < 1 + kBand && t > -kBand && t < 1 + kBand)) return false;  // interior, up to the band
   // Accepted within the band, the closest points are those of the segments themselves
@@ -245,6 +280,10 @@ bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, V
 // corner is two contacts a hair apart): each contact gets w_i = 1 / sum_j phi(|x_i - x_j|/l)
 // with phi(0) = 1, phi(>= 1) = 0, so a cluster of coincident contacts counts once and
 // contacts farther apart than l count fully, with a smooth blend in between.
+//
+// A faded touch (Touch::fade) counts in its neighbours' sums by its fade and keeps its own
+// fade: w_i = f_i / (1 + sum_{j != i} f_j phi_ij). Were it f_i / sum_j f_j phi_ij, a touch
+// fading alone would get weight 1 at any fade and the blend would be undone.
 void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
   auto phi = [](Real s2) { return s2 < 1 ? (1 - s2) * (1 - s2) : 0.0; };
   const Real inv_l2 = 1.0 / (l * l);
@@ -252,11 +291,32 @@ void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
     Real sum = 0;
     const Vec3 xi = out[i].pa + out[i].pb;
     for (std::size_t j = first; j < out.size(); ++j)
-      sum += phi(0.25 * (out[j].pa + out[j].pb - xi).squaredNorm() * inv_l2);
-    out[i].weight = 1.0 / sum;
+      sum += (j == i ? 1.0 : out[j].fade) * phi(0.25 * (out[j].pa + out[j].pb - xi).squaredNorm() * inv_l2);
+    out[i].weight = out[i].fade / sum;
+    for (int m = 0; m < out[i].n_fades; ++m) out[i].fades[m].dw_ds /= sum;
   }
 }
 }  // namespace
+
+Blend edge_blend(Real s) {
+  if (s <= kParallel2) return {0, 0};
+  if (s >= kCrossed2) return {1, 0};
+  const Real h = kCrossed2 - kParallel2, x = (s - kParallel2) / h;
+  return {x * x * (3 - 2 * x), 6 * x * (1 - x) / h};
+}
+
+Real sin2_angle(const Vec3& u, const Vec3& v, Vec3* ds_du, Vec3* ds_dv) {
+  const Real uu = u.squaredNorm(), vv = v.squaredNorm(), c = u.dot(v);
+  if (!(uu > 0 && vv > 0)) {
+    if (ds_du) ds_du->setZero();
+    if (ds_dv) ds_dv->setZero();
+    return 0;
+  }
+  const Real g = -2 * c / (uu * vv);
+  if (ds_du) *ds_du = g * (v - (c / uu) * u);
+  if (ds_dv) *ds_dv = g * (u - (c / vv) * v);
+  return 1 - c * c / (uu * vv);
+}
 
 void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out) {
   const Real R = rA + rB;
@@ -279,8 +339,9 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
       const Vec3 &b0 = B.v[tb.edges[j][0]], &b1 = B.v[tb.edges[j][1]];
       if ((b0.cwiseMax(b1).array() < elo.array()).any() || (b0.cwiseMin(b1).array() > ehi.array()).any()) continue;
       Vec3 pa, pb;
-      Real s, t;
-      if (!edge_edge(A.v[ta.edges[i][0]], A.v[ta.edges[i][1]], B.v[tb.edges[j][0]], B.v[tb.edges[j][1]], pa, pb, s, t))
+      Real s, t, s2;
+      if (!edge_edge(A.v[ta.edges[i][0]], A.v[ta.edges[i][1]], B.v[tb.edges[j][0]], B.v[tb.edges[j][1]], pa, pb, s, t,
+                     s2))
         continue;
       if ((pa - pb).squaredNorm() >= R * R) continue;
       Real d;
@@ -293,6 +354,11 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
       Touch tc{Feature::EE, static_cast<int>(i), static_cast<int>(j), pa, pb, n, d};
       tc.ia = {ta.edges[i][0], ta.edges[i][1], 0}, tc.wa = {1 - s, s, 0};
       tc.ib = {tb.edges[j][0], tb.edges[j][1], 0}, tc.wb = {1 - t, t, 0};
+      if (s2 < kCrossed2) {  // blended with the end points' vertex-edge pairs
+        const Blend bl = edge_blend(s2);
+        tc.fade = bl.w, tc.n_fades = 1;
+        tc.fades[0] = {ta.edges[i][0], ta.edges[i][1], tb.edges[j][0], tb.edges[j][1], a1 - a0, b1 - b0, bl.dw_ds};
+      }
       out.push_back(tc);
     }
   }

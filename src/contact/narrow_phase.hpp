@@ -11,6 +11,13 @@
 //   edge-edge (EE): the closest points are inside both edges.
 //   vertex-vertex (VV): each vertex lies in the other's vertex cone.
 //
+// Nearly parallel edges meet along a line, which the vertex-edge pairs of the overlap's end
+// points carry; crossed edges meet at a point, which the edge-edge pair carries. Between
+// 0.05 and 0.1 rad the two are blended (Touch::fade): each fades with the angle, and the
+// fade's gradient is part of the force (a couple on the two edges), so the blend keeps the
+// energy a potential. A switch at one angle made the contact energy jump by up to 2 J in
+// one step in the sphere impact (src/scenes/sphere_impact/REFERENCE.md).
+//
 // The conditions are complementary at every hand-over (VF->VE at the prism side, VE->VV at
 // the edge end, VE->EE when the vertex's edge turns towards the contact), so the force is
 // continuous as a vertex slides across a face onto an edge and off it.
@@ -37,7 +44,28 @@ struct Touch {
   /// energy (the rotation of a face or edge included, by the envelope theorem).
   std::array<int, 3> ia{0, 0, 0}, ib{0, 0, 0};
   std::array<Real, 3> wa{1, 0, 0}, wb{0, 0, 0};
+  /// The touch's share by the angle of an edge of A (skeleton vertices a0 -> a1, vector u)
+  /// and one of B (b0 -> b1, v) in the blend band; `fade` multiplies `weight`. dw_ds is the
+  /// derivative of `weight` with respect to s = sin^2 of their angle: the force gets
+  /// -E dw_ds ds/dx on the four vertices, E the touch's unweighted stored energy.
+  struct Fade {
+    int a0, a1, b0, b1;
+    Vec3 u, v;
+    Real dw_ds;
+  };
+  Real fade = 1;
+  int n_fades = 0;
+  std::array<Fade, 2> fades{};
 };
+
+/// The blend of the line and point contacts of two edges at s = sin^2 of their angle: 0 up
+/// to 2.5e-3 (0.05 rad), 1 from 1e-2 (0.1 rad), a smoothstep between; and its derivative.
+struct Blend {
+  Real w, dw_ds;
+};
+Blend edge_blend(Real s);
+/// s = sin^2 of the angle of u and v, and its gradients with respect to u and to v.
+Real sin2_angle(const Vec3& u, const Vec3& v, Vec3* ds_du = nullptr, Vec3* ds_dv = nullptr);
 
 /// Appends the contacts between A (radius rA) and B (radius rB) to `out`. Contacts closer
 /// than rA + rB to each other are blended (Touch::weight) so that one geometric contact

@@ -254,6 +254,73 @@ TEST(Contact, VertexSlidingOverAFaceOntoAnEdgeAndOffIsSmoothAndConservative) {
   EXPECT_NEAR((work + U - U0) / U0, 0.0, 1e-3);
 }
 
+TEST(Contact, NearlyParallelEdgesTurnedThroughTheBlendAreSmoothAndConservative) {
+  // Two cubes turned 45 deg about x meet ridge on ridge: a 0.1 m cube's top edge under a
+  // 0.05 m cube's bottom edge, crossed at their middles with the skeletons 0.5 R apart. The
+  // small cube is turned about the vertical through the crossing from 0.03 to 0.12 rad:
+  // nearly parallel, its edge's two end points carry the contact (vertex-edge pairs); past
+  // 0.1 rad the crossing does (one edge-edge pair, which stores 45 % less than the two end
+  // points' pairs at 0.05 rad and 28 % less at 0.1 rad); between 0.05 and 0.1 rad the two
+  // are blended (narrow_phase.hpp). Conservative: the work of the forces along the turn plus
+  // the change of contact energy is zero to 1e-3 of the initial energy (measured 2e-7, the
+  // trapezoidal rule's error); without the blend's couple it was -0.31, and with the pairs
+  // switched at 0.05 rad (no blend) -0.43. Smooth: no step of the vertical force above 1 %
+  // of its start (measured 0.12 %, the turn's own change; the switch made one of 43 %).
+  Mesh mesh;
+  const Mat3 ridge = Mat3(Eigen::AngleAxis<Real>(M_PI / 4, Vec3::UnitX()));
+  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "under", Vec3(0.05, 0.05, 0.05), Vec3::Zero(), ridge);
+  add_part(mesh, cube(CellType::Hex8, 1, 0.05), "over", Vec3(0.025, 0.025, 0.025), Vec3(0, 0, 0.2), ridge);
+  Model m = build_model(contact_case(), mesh);
+  const Index e_under = 0, e_over = 1;
+  const Real R = m.contact.radius(e_under) + m.contact.radius(e_over);
+  const contact::Poly su = m.contact.skeleton_poly(e_under, m.fem.x0.data());
+  const contact::Poly so = m.contact.skeleton_poly(e_over, m.fem.x0.data());
+  Real top = -INFINITY, bottom = INFINITY;
+  for (int k = 0; k < 8; ++k) top = std::max(top, su.v[k](2)), bottom = std::min(bottom, so.v[k](2));
+  const Group* g = m.mesh.find_group("over");
+  std::vector<Real> x0 = m.fem.x0;
+  for (Index n : g->nodes) x0[3 * n + 2] -= bottom - (top + 0.5 * R);
+  std::vector<Real> x = x0, v(x.size(), 0.0), f;
+  auto turn = [&](Real a) {
+    const Mat3 Q = Mat3(Eigen::AngleAxis<Real>(a, Vec3::UnitZ()));
+    for (Index n : g->nodes) {
+      const Vec3 p = Q * node_pos(x0, n);
+      for (int d = 0; d < 3; ++d) x[3 * n + d] = p(d);
+    }
+  };
+  auto forces = [&](Real& U) {
+    f.assign(x.size(), 0.0);
+    m.contact.add_forces(m.mesh, m.joints, x.data(), v.data(), 0.0, f.data());
+    U = m.contact.totals().elastic;
+  };
+  const Real a0 = 0.03, a1 = 0.12, da = 1e-4;
+  Real U0, U, work = 0, max_jump = 0;
+  turn(a0);
+  forces(U0);
+  std::vector<Real> f_prev = f, x_prev = x;
+  auto vertical = [&](const std::vector<Real>& fv) {
+    Real z = 0;
+    for (Index n : g->nodes) z += fv[3 * n + 2];
+    return z;
+  };
+  const Real fz0 = vertical(f);
+  const int steps = static_cast<int>(std::lround((a1 - a0) / da));
+  for (int i = 1; i <= steps; ++i) {
+    turn(a0 + i * da);
+    forces(U);
+    for (Index n : g->nodes)
+      for (int d = 0; d < 3; ++d) work += 0.5 * (f[3 * n + d] + f_prev[3 * n + d]) * (x[3 * n + d] - x_prev[3 * n + d]);
+    max_jump = std::max(max_jump, std::abs(vertical(f) - vertical(f_prev)));
+    f_prev = f, x_prev = x;
+  }
+  RecordProperty("energy_error", sci((work + U - U0) / U0));
+  RecordProperty("max_jump_over_start_force", sci(max_jump / fz0));
+  RecordProperty("energy_end_over_start", sci(U / U0));
+  ASSERT_GT(fz0, 0) << "the cubes must touch";
+  EXPECT_NEAR((work + U - U0) / U0, 0.0, 1e-3);
+  EXPECT_LT(max_jump, 0.01 * fz0);
+}
+
 namespace {
 // A cube (hex8, 2x2x2, side 0.1 m) resting on the rigid plane z = 0 under gravity tilted
 // by theta about y (the same as a plane inclined by theta). Returns the down-slope
