@@ -152,8 +152,8 @@ class ContactSystem {
     /// The couple of a faded touch (Touch::fade): per fade, the force on skeleton vertex a1
     /// of A (a0 gets its opposite) and on b1 of B; a wall gets its torque instead.
     int n_fades;
-    int fade_a[2][2], fade_b[2][2];
-    Vec3 fade_fa[2], fade_fb[2], fade_torque;
+    int fade_a[3][2], fade_b[3][2];
+    Vec3 fade_fa[3], fade_fb[3], fade_torque;
   };
   struct Elem {
     CellType type;

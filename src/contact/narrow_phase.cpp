@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
+
 namespace dspdem::contact {
 
 namespace {
@@ -102,30 +104,37 @@ constexpr Real kParallel2 = 2.5e-3;  // 0.05 rad
 constexpr Real kCrossed2 = 1e-2;     // 0.1 rad
 
 // Vertex i of P against a point q of Q's edge along `dir`, when i is outside Q's face
-// prisms: the vertex-edge pair's share, 1 when no edge of i points towards q (up to `band`)
-// and 0 when one does that is not nearly parallel to `dir`. Edges of i in the blend band
-// scale it by 1 - w and add their fade to t (indices on P as a0, a1; Q's edge as b0, b1).
+// prisms: the vertex-edge pair's share. An edge of i that runs towards the two edges'
+// crossing hands the contact to the edge-edge pair there: the share is 0 if that edge is
+// crossed (its angle to `dir` past the blend), 1 - w in the blend band (with its fade added
+// to t: indices on P as a0, a1, Q's edge as b0, b1) and 1 if it is nearly parallel. "Runs
+// towards the crossing" is along(q) > band x sin^2: for two lines along(q) = s0 sin^2, s0 the
+// crossing's place on the edge, so this is s0 > band, where the edge-edge pair (accepted from
+// s0 > -band) still sits on the vertex and the two are one contact (weigh). The bare test
+// along(q) > band handed over at s0 = band / sin^2, up to 0.4 of the edge in the blend band,
+// where the two contacts are apart: a step of the force.
 Real vertex_edge_share(const Poly& P, int i, const Vec3& q, Real band, const Vec3& dir, int q0, int q1, Touch& t) {
   Real share = 1;
-  Real w[2], dw[2];
+  Real w[3], dw[3];
   int n = 0;
-  for (int k : P.topo->neighbours[i]) {
-    if (along(q, P.v[i], P.v[k]) <= band) continue;
+  for (int k : P.topo->neighbours[i]) {  // three on tetrahedra and hexahedra: fades has room
     const Vec3 u = P.v[k] - P.v[i];
     const Real s2 = sin2_angle(u, dir);
+    if (s2 <= kParallel2 || along(q, P.v[i], P.v[k]) <= band * s2) continue;
     if (s2 >= kCrossed2) return 0;
-    if (s2 <= kParallel2) continue;
     const Blend b = edge_blend(s2);
     share *= 1 - b.w;
-    // A vertex of a convex skeleton has at most two edges within 0.1 rad of one line (one
-    // each way, and only on a sliver); a third would only lose its couple.
-    if (n < 2) {
-      t.fades[n] = {i, k, q0, q1, u, dir, 0};
-      w[n] = b.w, dw[n] = b.dw_ds, ++n;
-    }
+    DSPDEM_ASSERT(n < static_cast<int>(t.fades.size()));
+    t.fades[n] = {i, k, q0, q1, u, dir, 0};
+    w[n] = b.w, dw[n] = b.dw_ds, ++n;
   }
-  // d share / d s_k = -w'_k times the other factors.
-  for (int m = 0; m < n; ++m) t.fades[m].dw_ds = -dw[m] * (n == 2 ? 1 - w[1 - m] : 1.0);
+  // d share / d s_m = -w'_m times the other factors.
+  for (int m = 0; m < n; ++m) {
+    Real others = 1;
+    for (int l = 0; l < n; ++l)
+      if (l != m) others *= 1 - w[l];
+    t.fades[m].dw_ds = -dw[m] * others;
+  }
   t.n_fades = n;
   t.fade = share;
   return share;
@@ -166,7 +175,7 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
     // n_qp points from Q to P.
     Touch t{flip ? k_pb : k_pa, fp, fq, pp, pq, n_qp, d};
     t.ia = {ip, 0, 0}, t.wa = {1, 0, 0}, t.ib = iq, t.wb = wq;
-    if (faded) t.fade = faded->fade, t.n_fades = faded->n_fades, t.fades = faded->fades;
+    if (faded && faded->n_fades > 0) t.fade = faded->fade, t.n_fades = faded->n_fades, t.fades = faded->fades;
     if (flip) {
       std::swap(t.fa, t.fb), std::swap(t.pa, t.pb), std::swap(t.ia, t.ib), std::swap(t.wa, t.wb);
       t.n = -t.n;
@@ -255,8 +264,8 @@ bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, V
   const Vec3 u = a1 - a0, v = b1 - b0, w = a0 - b0;
   const Real a = u.dot(u), b = u.dot(v), c = v.dot(v), d = u.dot(w), e = v.dot(w);
   const Real den = a * c - b * b;
-  s2_out = sin2_angle(u, v);
-  if (s2_out <= kParallel2) return false;  // (nearly) parallel: the end points carry it (VE, EV)
+  if (den <= kParallel2 * a * c) return false;  // (nearly) parallel: the end points carry it (VE, EV)
+  s2_out = den / (a * c);
   const Real s = (b * e - c * d) / den, t = (a * e - b * d) / den;
   if (!(s > -kBand && s < 1 + kBand && t > -kBand && t < 1 + kBand)) return false;  // interior, up to the band
   // Accepted within the band, the closest points are those of the segments themselves
@@ -281,9 +290,13 @@ bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, V
 // with phi(0) = 1, phi(>= 1) = 0, so a cluster of coincident contacts counts once and
 // contacts farther apart than l count fully, with a smooth blend in between.
 //
-// A faded touch (Touch::fade) counts in its neighbours' sums by its fade and keeps its own
-// fade: w_i = f_i / (1 + sum_{j != i} f_j phi_ij). Were it f_i / sum_j f_j phi_ij, a touch
-// fading alone would get weight 1 at any fade and the blend would be undone.
+// Faded touches (Touch::fade f) count by their fades, S_i = sum_j f_j phi_ij, and a cluster
+// counts at most once: w_i = f_i / max(1, S_i). So a touch fading alone keeps its fade, a
+// faded edge-edge pair on the vertex-edge pair it replaces shares one contact with it
+// (weights w and 1 - w, or 1 / (1 + w) and w / (1 + w) before the vertex pair fades), and
+// touches without fades get 1 / sum phi as before. Where S_i <= 1 the weight is the fade
+// and its gradient (the couple) is exact; where S_i > 1 the couple misses the neighbours'
+// fades in S_i, as the cluster weights' own gradients are not in the force either.
 void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
   auto phi = [](Real s2) { return s2 < 1 ? (1 - s2) * (1 - s2) : 0.0; };
   const Real inv_l2 = 1.0 / (l * l);
@@ -291,9 +304,10 @@ void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
     Real sum = 0;
     const Vec3 xi = out[i].pa + out[i].pb;
     for (std::size_t j = first; j < out.size(); ++j)
-      sum += (j == i ? 1.0 : out[j].fade) * phi(0.25 * (out[j].pa + out[j].pb - xi).squaredNorm() * inv_l2);
-    out[i].weight = out[i].fade / sum;
-    for (int m = 0; m < out[i].n_fades; ++m) out[i].fades[m].dw_ds /= sum;
+      sum += out[j].fade * phi(0.25 * (out[j].pa + out[j].pb - xi).squaredNorm() * inv_l2);
+    const Real norm = std::max<Real>(1, sum);
+    out[i].weight = out[i].fade / norm;
+    for (int m = 0; m < out[i].n_fades; ++m) out[i].fades[m].dw_ds /= norm;
   }
 }
 }  // namespace

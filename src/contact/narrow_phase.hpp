@@ -55,7 +55,7 @@ struct Touch {
   };
   Real fade = 1;
   int n_fades = 0;
-  std::array<Fade, 2> fades{};
+  std::array<Fade, 3> fades{};  ///< one per edge of a vertex (three on tetrahedra and hexahedra)
 };
 
 /// The blend of the line and point contacts of two edges at s = sin^2 of their angle: 0 up
