@@ -14,13 +14,17 @@
 // Nearly parallel edges meet along a line, which the vertex-edge pairs of the overlap's end
 // points carry; crossed edges meet at a point, which the edge-edge pair carries. Between
 // 0.05 and 0.1 rad the two are blended (Touch::fade): each fades with the angle, and the
-// fade's gradient is part of the force (a couple on the two edges), so the blend keeps the
-// energy a potential. A switch at one angle made the contact energy jump by up to 2 J in
-// one step in the sphere impact (src/scenes/sphere_impact/REFERENCE.md).
+// fade's gradient is part of the force (a couple on the two edges), so the energy the blend
+// moves between pairs is work done (exactly where the faded touches are not clustered with
+// others: weigh in narrow_phase.cpp). A switch at one angle made the contact energy jump by
+// up to 2 J in one step in the sphere impact (src/scenes/sphere_impact/REFERENCE.md).
 //
 // The conditions are complementary at every hand-over (VF->VE at the prism side, VE->VV at
 // the edge end, VE->EE when the vertex's edge turns towards the contact), so the force is
-// continuous as a vertex slides across a face onto an edge and off it.
+// continuous as a vertex slides across a face onto an edge and off it. One exception: the
+// VE test hands over where the crossing is band past the vertex (along > band sin^2), the
+// VV test where along > band, so for crossed edges at small angles a vertex that VE
+// dropped can come back as VV at the edge's end (not yet fixed).
 #pragma once
 #include <array>
 #include <vector>
@@ -46,7 +50,8 @@ struct Touch {
   std::array<Real, 3> wa{1, 0, 0}, wb{0, 0, 0};
   /// The touch's share by the angle of an edge of A (skeleton vertices a0 -> a1, vector u)
   /// and one of B (b0 -> b1, v) in the blend band; `fade` multiplies `weight`. dw_ds is the
-  /// derivative of `weight` with respect to s = sin^2 of their angle: the force gets
+  /// derivative of `weight` with respect to s = sin^2 of their angle (through this touch's
+  /// own fade; the cluster's other fades are held fixed, see weigh): the force gets
   /// -E dw_ds ds/dx on the four vertices, E the touch's unweighted stored energy.
   struct Fade {
     int a0, a1, b0, b1;
