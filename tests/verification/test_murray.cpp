@@ -1,7 +1,8 @@
 // The impact beam end to end (issue 17): `dspdem report cases/murray_beam.toml` on a
 // CI-sized mesh (half the paper's element count in each direction: 34 x 3 x 5 = 510
 // hexahedra, their quadrilateral joints everywhere, mode I), the shipped free impactor
-// cylinders at 5 m/s and the fixed support cylinders, 4 ms. No test records were found
+// cylinders at 5 m/s and the fixed support cylinders, 4 ms: the run of the figures site (the
+// scene's quick_args), which the first test reads (support/quick_report.hpp). No test records were found
 // (src/scenes/murray_beam/REFERENCE.md), so this checks what the paper describes and what
 // must hold whatever the mesh:
 // - the first broken joints are on the planes under the impactors (within one element), in
@@ -23,6 +24,7 @@
 #include "scenes/murray_beam/analysis.hpp"
 #include "support/cli.hpp"
 #include "support/golden.hpp"
+#include "support/quick_report.hpp"
 
 namespace fs = std::filesystem;
 using namespace dspdem;
@@ -31,21 +33,26 @@ namespace {
 const std::string kCiMesh =
     " --set mesh.murray_beam.nx=34 --set mesh.murray_beam.ny=3 --set mesh.murray_beam.nz=5 --set time.end=4e-3";
 
+MurrayResult analyse(const fs::path& out) {
+  EXPECT_TRUE(fs::exists(out / "report.md"));
+  const CaseConfig c = read_case((out / "run/case.resolved.toml").string());
+  EXPECT_EQ(c.mesh_num.at("nx"), 34) << "the run is not the CI-sized beam this test is for";
+  return analyse_murray_run(c, (out / "run").string(), false);
+}
+
 MurrayResult report(const fs::path& out, const std::string& sets) {
   fs::remove_all(out);
   const fs::path toml = fs::path(DSPDEM_SOURCE_DIR) / "cases/murray_beam.toml";
   const auto r = testsupport::shell(std::string(DSPDEM_BIN) + " -q report " + toml.string() + " --out " + out.string() +
                                     kCiMesh + sets);
   EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_TRUE(fs::exists(out / "report.md"));
-  const CaseConfig c = read_case((out / "run/case.resolved.toml").string());
-  return analyse_murray_run(c, (out / "run").string(), false);
+  return analyse(out);
 }
 }  // namespace
 
 TEST(MurrayBeam, CracksUnderTheImpactorsFirstAndBreaksSymmetrically) {
-  const fs::path out = fs::temp_directory_path() / "dspdem_murray_report";
-  const MurrayResult m = report(out, "");
+  const fs::path out = testsupport::quick_report("murray_beam");
+  const MurrayResult m = analyse(out);
   ASSERT_FALSE(m.cracks.empty()) << "no joint broke";
   const double hx = m.L / 34;
   for (const auto& k : m.cracks) {

@@ -1,5 +1,6 @@
 // The packing end to end (issue 19): `dspdem report cases/packing.toml` on 200 particles
-// (one layer over the floor) to 3 s, and the same case on 1 and 2 threads.
+// (one layer over the floor) to 3 s (the run of the figures site, the scene's quick_args, read
+// here: support/quick_report.hpp), and the same case on 1 and 2 threads.
 // - The particles come to rest (kinetic energy below 1e-4 of the potential energy
 //   released, from some time to the end), none leaves the box, and the energy ledger closes
 //   within 1 % of its largest term.
@@ -20,6 +21,7 @@
 #include "report/run_data.hpp"
 #include "scenes/packing/analysis.hpp"
 #include "support/cli.hpp"
+#include "support/quick_report.hpp"
 
 namespace fs = std::filesystem;
 using namespace dspdem;
@@ -37,13 +39,10 @@ std::string slurp(const fs::path& p) {
 }  // namespace
 
 TEST(Packing, ParticlesComeToRestInTheBoxWithTheLedgerClosed) {
-  const fs::path out = fs::temp_directory_path() / "dspdem_packing_report";
-  fs::remove_all(out);
-  const auto run = testsupport::shell(std::string(DSPDEM_BIN) + " -q -t 1 report " + kCase + " --no-render --out " +
-                                      out.string() + kSmall + " --set time.end=3.0");
-  ASSERT_EQ(run.code, 0) << run.out;
+  const fs::path out = testsupport::quick_report("packing");
   ASSERT_TRUE(fs::exists(out / "report.md"));
   const CaseConfig c = read_case((out / "run" / "case.resolved.toml").string());
+  ASSERT_EQ(c.t_end, 3.0) << "the run is not the one this test is for";
   const PackingResult r = analyse_packing_run(c, (out / "run").string(), false);
   RecordProperty("t_rest", std::to_string(r.t_rest));
   RecordProperty("balance", std::to_string(r.balance_max));
