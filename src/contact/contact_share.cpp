@@ -103,7 +103,7 @@ void ContactSystem::borrow(const Boxes& own_boxes) {
       o.insert(o.end(), &own_boxes.lo[3 * i], &own_boxes.lo[3 * i] + 3);
       o.insert(o.end(), &own_boxes.hi[3 * i], &own_boxes.hi[3 * i] + 3);
       for (int k = 0; k < el.npe; ++k) o.push_back(static_cast<Real>(node_global_[el.conn[k]]));
-      const Real* w = &skel_w_[skel_off_[e]];
+      const Real* w = skeleton_row(e, 0);  // all npe rows
       o.insert(o.end(), w, w + el.npe * el.npe);
     }
   }

@@ -107,10 +107,10 @@ Poly ContactSystem::skeleton_poly(Index e, const Real* x) const {
   const Elem& el = elems_[e];
   Poly p;
   p.topo = &topology(el.type == CellType::Tet4 ? Shape::Tet : Shape::Hex);
-  const Real* w = &skel_w_[skel_off_[e]];
   for (int k = 0; k < el.npe; ++k) {
+    const Real* w = skeleton_row(e, k);
     Vec3 s = Vec3::Zero();
-    for (int j = 0; j < el.npe; ++j) s += w[k * el.npe + j] * pos(x, xl_, el.conn[j]);
+    for (int j = 0; j < el.npe; ++j) s += w[j] * pos(x, xl_, el.conn[j]);
     p.v[k] = s;
   }
   return p;
@@ -395,11 +395,12 @@ bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, cons
   o.c = c;
   auto skeleton_weights = [&](Index e, const std::array<int, 3>& iv, const std::array<Real, 3>& wv, Real* Ws) {
     const Elem& el = elems_[e];
-    const Real* W = &skel_w_[skel_off_[e]];
     for (int j = 0; j < el.npe; ++j) Ws[j] = 0;
     for (int m = 0; m < 3; ++m)
-      if (wv[m] != 0)
-        for (int j = 0; j < el.npe; ++j) Ws[j] += wv[m] * W[iv[m] * el.npe + j];
+      if (wv[m] != 0) {
+        const Real* W = skeleton_row(e, iv[m]);
+        for (int j = 0; j < el.npe; ++j) Ws[j] += wv[m] * W[j];
+      }
   };
   skeleton_weights(ea, t.ia, t.wa, o.Wa);
   if (!wall) skeleton_weights(eb, t.ib, t.wb, o.Wb);
@@ -483,10 +484,10 @@ void ContactSystem::gather(const TouchOut& o, Real* f) {
   // A fade's couple on skeleton vertices s1 (force F) and s0 (-F) of element e.
   auto add_couple = [&](Index e, int s0, int s1, const Vec3& F) {
     const Elem& el = elems_[e];
-    const Real* W = &skel_w_[skel_off_[e]];
+    const Real *W1 = skeleton_row(e, s1), *W0 = skeleton_row(e, s0);
     for (int j = 0; j < el.npe; ++j) {
       if (el.conn[j] >= nloc) continue;
-      const Real wj = W[s1 * el.npe + j] - W[s0 * el.npe + j];
+      const Real wj = W1[j] - W0[j];
       for (int d = 0; d < 3; ++d) f[3 * static_cast<std::size_t>(el.conn[j]) + d] += wj * F(d);
     }
   };

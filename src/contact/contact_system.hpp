@@ -201,6 +201,8 @@ class ContactSystem {
   /// The counted wall forces, contacts and deepest overlap of all processes, added in the
   /// one-process order on every process.
   void reduce_step();
+  /// Skeleton vertex k of element e as weights of the element's nodes (npe of them).
+  const Real* skeleton_row(Index e, int k) const { return &skel_w_[skel_off_[e] + k * elems_[e].npe]; }
 
   bool enabled_ = false;
   ContactSettings settings_;

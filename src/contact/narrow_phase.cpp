@@ -113,7 +113,12 @@ constexpr Real kCrossed2 = 1e-2;     // 0.1 rad
 // s0 > -band) still sits on the vertex and the two are one contact (weigh). The bare test
 // along(q) > band handed over at s0 = band / sin^2, up to 0.4 of the edge in the blend band,
 // where the two contacts are apart: a step of the force.
-Real vertex_edge_share(const Poly& P, int i, const Vec3& q, Real band, const Vec3& dir, int q0, int q1, Touch& t) {
+struct EdgeFades {  // what vertex_edge_share gives a vertex-edge touch: its fade and their gradients
+  Real fade = 1;
+  int n = 0;
+  std::array<Touch::Fade, 3> f;
+};
+Real vertex_edge_share(const Poly& P, int i, const Vec3& q, Real band, const Vec3& dir, int q0, int q1, EdgeFades& t) {
   Real share = 1;
   Real w[3], dw[3];
   int n = 0;
@@ -124,8 +129,8 @@ Real vertex_edge_share(const Poly& P, int i, const Vec3& q, Real band, const Vec
     if (s2 >= kCrossed2) return 0;
     const Blend b = edge_blend(s2);
     share *= 1 - b.w;
-    DSPDEM_ASSERT(n < static_cast<int>(t.fades.size()));
-    t.fades[n] = {i, k, q0, q1, u, dir, 0};
+    DSPDEM_ASSERT(n < static_cast<int>(t.f.size()));
+    t.f[n] = {i, k, q0, q1, u, dir, 0};
     w[n] = b.w, dw[n] = b.dw_ds, ++n;
   }
   // d share / d s_m = -w'_m times the other factors.
@@ -133,9 +138,9 @@ Real vertex_edge_share(const Poly& P, int i, const Vec3& q, Real band, const Vec
     Real others = 1;
     for (int l = 0; l < n; ++l)
       if (l != m) others *= 1 - w[l];
-    t.fades[m].dw_ds = -dw[m] * others;
+    t.f[m].dw_ds = -dw[m] * others;
   }
-  t.n_fades = n;
+  t.n = n;
   t.fade = share;
   return share;
 }
@@ -171,11 +176,14 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
   const Vec3 cp = P.centre(), cq = Q.centre();
   // Vertex ip of P against a point of Q combining Q's vertices iq with weights wq.
   auto emit = [&](Feature k_pa, Feature k_pb, int fp, int fq, const Vec3& pp, const Vec3& pq, const Vec3& n_qp, Real d,
-                  int ip, std::array<int, 3> iq, std::array<Real, 3> wq, const Touch* faded = nullptr) {
+                  int ip, std::array<int, 3> iq, std::array<Real, 3> wq, const EdgeFades* faded = nullptr) {
     // n_qp points from Q to P.
     Touch t{flip ? k_pb : k_pa, fp, fq, pp, pq, n_qp, d};
     t.ia = {ip, 0, 0}, t.wa = {1, 0, 0}, t.ib = iq, t.wb = wq;
-    if (faded && faded->n_fades > 0) t.fade = faded->fade, t.n_fades = faded->n_fades, t.fades = faded->fades;
+    if (faded && faded->n > 0) {
+      t.fade = faded->fade, t.n_fades = faded->n;
+      std::copy_n(faded->f.begin(), faded->n, t.fades.begin());
+    }
     if (flip) {
       std::swap(t.fa, t.fb), std::swap(t.pa, t.pb), std::swap(t.ia, t.ib), std::swap(t.wa, t.wb);
       t.n = -t.n;
@@ -236,7 +244,7 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
       // Unless an edge of the vertex points towards the contact: that is an edge-edge pair.
       const Vec3 &a = Q.v[tq.edges[feat][0]], &b = Q.v[tq.edges[feat][1]];
       const Vec3 q = a + edge_t * (b - a);
-      Touch share;
+      EdgeFades share;
       if (best < R && vertex_edge_share(P, i, q, kBand, b - a, tq.edges[feat][0], tq.edges[feat][1], share) > 0) {
         Real d;
         const Vec3 n = separation(p, q, cp, cq, d);
