@@ -11,7 +11,8 @@ namespace dspdem::scenes {
 
 const std::vector<Scene>& all() {
   // quick_args: the CI-sized run of `dspdem figures --quick` (each about a minute on 2 cores
-  // or less), the sizes the scene's own tests use.
+  // or less). The scene's tests read that very run (tests/support/quick_report.hpp): a change
+  // here changes what they check.
   static const std::vector<Scene> s = {
       {"packing",
        "packing",

@@ -11,12 +11,19 @@
 
 namespace dspdem::testsupport {
 
-/// BUILD/figures/<scene>; fails the calling test when the fixture left no report there.
+/// BUILD/figures/<scene>; fails the calling test when the fixture left no report there or
+/// the report is older than the dspdem it should come from (the test executable run by hand
+/// after a rebuild, without ctest: `ctest -R <test>` runs the fixture first).
 inline std::filesystem::path quick_report(const std::string& scene) {
-  const std::filesystem::path dir = std::filesystem::path(DSPDEM_BUILD_DIR) / "figures" / scene;
-  EXPECT_TRUE(std::filesystem::exists(dir / "report.md"))
-      << "no report in " << dir << ": the ctest fixture figures_quick makes it (its log: "
-      << (std::filesystem::path(DSPDEM_BUILD_DIR) / "figures/logs" / (scene + ".log")) << ")";
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(DSPDEM_BUILD_DIR) / "figures" / scene;
+  const fs::path log = fs::path(DSPDEM_BUILD_DIR) / "figures/logs" / (scene + ".log");
+  if (!fs::exists(dir / "report.md")) {
+    ADD_FAILURE() << "no report in " << dir << ": the ctest fixture figures_quick makes it (its log: " << log << ")";
+  } else if (fs::last_write_time(dir / "report.md") < fs::last_write_time(DSPDEM_BIN)) {
+    ADD_FAILURE() << "the report in " << dir << " is older than " << DSPDEM_BIN
+                  << ": run the test through ctest (-R), which makes it again first";
+  }
   return dir;
 }
 
