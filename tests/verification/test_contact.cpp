@@ -316,6 +316,17 @@ PathCheck ridge_over_ridge(const std::function<std::pair<Real, Real>(Real)>& pla
   if (!(fz0 > 0)) return {INFINITY, INFINITY, 0};  // they must touch
   return {(work + U - U0) / U0, max_jump / fz0, U / U0};
 }
+
+// Conservative: the forces' work plus the change of energy within 1e-3 of the initial energy
+// (the trapezoidal rule's error is orders below). Smooth: no step of the vertical force above
+// 1 % of its start.
+void expect_smooth_and_conservative(const PathCheck& r) {
+  ::testing::Test::RecordProperty("energy_error", sci(r.energy_error));
+  ::testing::Test::RecordProperty("max_jump_over_start_force", sci(r.max_jump));
+  ::testing::Test::RecordProperty("energy_end_over_start", sci(r.energy_ratio));
+  EXPECT_NEAR(r.energy_error, 0.0, 1e-3);
+  EXPECT_LT(r.max_jump, 0.01);
+}
 }  // namespace
 
 TEST(Contact, NearlyParallelEdgesTurnedThroughTheBlendAreSmoothAndConservative) {
@@ -329,11 +340,7 @@ TEST(Contact, NearlyParallelEdgesTurnedThroughTheBlendAreSmoothAndConservative) 
   // switched at 0.05 rad (no blend) -0.43. Smooth: no step of the vertical force above 1 %
   // of its start (measured 0.12 %, the turn's own change; the switch made one of 43 %).
   const PathCheck r = ridge_over_ridge([](Real u) { return std::pair<Real, Real>(0.03 + 0.09 * u, 0); }, 900);
-  RecordProperty("energy_error", sci(r.energy_error));
-  RecordProperty("max_jump_over_start_force", sci(r.max_jump));
-  RecordProperty("energy_end_over_start", sci(r.energy_ratio));
-  EXPECT_NEAR(r.energy_error, 0.0, 1e-3);
-  EXPECT_LT(r.max_jump, 0.01);
+  expect_smooth_and_conservative(r);
 }
 
 TEST(Contact, CrossingInTheBlendSlidingOffAnEdgesEndIsSmoothAndConservative) {
@@ -348,11 +355,7 @@ TEST(Contact, CrossingInTheBlendSlidingOffAnEdgesEndIsSmoothAndConservative) {
   // was faded to 0.76 (a step of 6.7 %; above 0.1 rad, where the vertex's pair is dropped,
   // the step is the whole pair's, as before the blend).
   const PathCheck r = ridge_over_ridge([](Real u) { return std::pair<Real, Real>(0.07, -0.002 * u); }, 2000);
-  RecordProperty("energy_error", sci(r.energy_error));
-  RecordProperty("max_jump_over_start_force", sci(r.max_jump));
-  RecordProperty("energy_end_over_start", sci(r.energy_ratio));
-  EXPECT_NEAR(r.energy_error, 0.0, 1e-3);
-  EXPECT_LT(r.max_jump, 0.01);
+  expect_smooth_and_conservative(r);
 }
 
 namespace {
