@@ -22,6 +22,9 @@ struct ContactSettings {
   /// the skeletons themselves cross: the narrow phase then loses the deep features and the
   /// pieces can pass through each other, so 1 is where the contact stops being a model.
   Real overlap_limit = 1.0;
+  /// The contact springs bound the step at this fraction of their stability limit
+  /// 2 sqrt(m / (4 kn)) (ContactSystem::stable_dt says why the default is half of it).
+  Real step_fraction = 0.5;
 };
 
 }  // namespace dspdem::contact

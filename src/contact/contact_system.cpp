@@ -669,7 +669,7 @@ Real ContactSystem::stable_dt(Index* element) const {
   Real dt = INFINITY;
   for (std::size_t e = 0; e < kn_.size(); ++e) {
     if (skel_off_[e] < 0 || kn_[e] <= 0) continue;
-    const Real d = std::sqrt(elem_node_mass_[e] / (4 * kn_[e]));  // half the stability limit 2 sqrt(m / 4 kn)
+    const Real d = settings_.step_fraction * 2 * std::sqrt(elem_node_mass_[e] / (4 * kn_[e]));
     if (d < dt) {
       dt = d;
       if (element) *element = static_cast<Index>(e);

@@ -568,6 +568,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     Section s(ctx, sub_table(ctx, root, "contact"), "contact", "[contact]");
     c.contact.enabled = s.boolean("enabled");
     if (s.has("skin")) c.contact.settings.skin = s.real("skin");
+    c.contact.settings.step_fraction = s.real("step_fraction");
     s.finish();
   }
   if (toml::array* a = array_of_tables(ctx, root, "walls")) {

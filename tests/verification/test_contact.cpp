@@ -457,6 +457,59 @@ TEST(Contact, StackOfFiveCubesStaysAtRestOnTheFloor) {
   EXPECT_NEAR(-floor_force(2) / weight, 1.0, 0.01) << "the floor carries the stack's weight";
 }
 
+TEST(Contact, AtTheFullContactStepACubeBouncingOnTheFloorStaysStable) {
+  // contact.step_fraction = 1: the contact springs' stability limit itself bounds the step
+  // (the default is half of it, for impacts). A 0.1 m hex8 cube released touching the floor
+  // under gravity, undamped, bounces on its contact springs for 20 000 steps at 0.9 of the
+  // step. The step is the contact's (its springs are 80 times stiffer than the cube's own)
+  // and twice the default's. Stable: the bounce does not grow (the deepest point of the
+  // last 5000 steps within 1 % of the first 5000's) and never sinks past the contact
+  // radius. (At 3 x the default's step it does grow, by 54 %: the limit assumes four
+  // contacts per node, and this cube's nodes have one each.) Recorded, not bounded: the energy ledger of this undamped
+  // bounce reads 8.1 % at the full limit and 2.4 % at half (velocity Verlet's energy error grows as (w dt)^2), which is
+  // why impacts keep the default.
+  Mesh mesh;
+  const Real a = 0.1;
+  add_part(mesh, cube(CellType::Hex8, 1, a), "cube", Vec3(0.05, 0.05, 0.05), Vec3(0, 0, 0.5 * a));
+  CaseConfig c = contact_case(0.5);
+  WallConfig w;
+  w.wall.name = "floor";
+  w.wall.type = contact::Wall::Type::Plane;
+  c.walls.push_back(w);
+  c.gravity = Vec3(0, 0, -9.81);
+  auto bounce = [&](Real fraction, Real& early, Real& late, Real& balance) {
+    c.contact.settings.step_fraction = fraction;
+    Model m = build_model(c, mesh);
+    Integrator it(m, 0.9 * critical_dt(m));
+    early = late = INFINITY, balance = 0;
+    for (long s = 1; s <= 20000; ++s) {
+      it.step();
+      balance = std::max(balance, it.energy().balance_error());
+      Real low = INFINITY;
+      for (Index n = 0; n < m.fem.n_nodes; ++n) low = std::min(low, it.x()[3 * n + 2]);
+      if (s <= 5000) early = std::min(early, low);
+      if (s > 15000) late = std::min(late, low);
+    }
+    return m.contact.radius(0);
+  };
+  c.contact.settings.step_fraction = 1.0;
+  const Model full = build_model(c, mesh);
+  c.contact.settings.step_fraction = 0.5;
+  const Model half = build_model(c, mesh);
+  EXPECT_EQ(stable_step(full).limiter, "contact");
+  EXPECT_NEAR(full.contact.stable_dt() / half.contact.stable_dt(), 2.0, 1e-12);
+  Real early, late, balance, early_h, late_h, balance_h;
+  const Real r = bounce(1.0, early, late, balance);
+  bounce(0.5, early_h, late_h, balance_h);
+  RecordProperty("dt_over_default", sci(critical_dt(full) / critical_dt(half)));
+  RecordProperty("deepest_late_over_early", sci(late / early));
+  RecordProperty("balance_error_full", sci(balance));
+  RecordProperty("balance_error_half", sci(balance_h));
+  ASSERT_LT(early, 0) << "the cube must press into the floor";
+  EXPECT_LT(late / early, 1.01);
+  EXPECT_GT(late, -r);
+}
+
 TEST(Contact, BrokenPiecesCollideAndComeToRest) {
   // A column of four 0.1 m hex8 cubes tied by weak cohesive joints spins about x (its long
   // axis is z) and falls on a rigid floor: the spin tears the joints at once, and the

@@ -42,6 +42,7 @@ TEST(DiscField, StressCheckCaseChangesOnlyMeshJointsRateAndLoading) {
   EXPECT_NEAR(c.frame_interval, s.frame_interval / 4, 1e-15);
   EXPECT_EQ(c.materials.size(), s.materials.size());
   EXPECT_EQ(c.contact.enabled, s.contact.enabled);
+  EXPECT_EQ(c.contact.settings.step_fraction, 1.0);  // the plates load slowly: the contact's full step
   EXPECT_NE(c.resolved_toml.find("fracture = 'none'"), std::string::npos);
 }
 
@@ -49,7 +50,8 @@ TEST(DiscField, SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh) {
   // The acceptance: sigma_xx along the loaded diameter within 5 % L2 of the
   // analytic solution before cracking (over the central 80 %, 16 bins, each element against
   // the field's mean over it), read as the report reads it: at the scene's profile load.
-  // Measured 3.6 % (sigma_yy 1.8 %) in the report's run; the scene's 7.6 mm mesh gives
+  // Measured 3.1 % (sigma_yy 2.5 %; the same to 0.03 points with the contact's default
+  // half step, which takes 1.6 times the steps); the scene's 7.6 mm mesh gives
   // about 24 %. Over meshes of this kind it was 2.7-4.6 %: the tolerance is the issue's
   // 5 %, not a fit to this run.
   const CaseConfig c = stress_check_case(scene(), kSceneProfileTime);

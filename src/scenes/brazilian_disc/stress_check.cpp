@@ -19,6 +19,11 @@ CaseConfig stress_check_case(const CaseConfig& scene, Real t_target) {
                                 override_of("time.end", 1.25 * t_target / rate),
                                 override_of("output.frame_interval", scene.frame_interval / rate),
                                 override_of("output.series_interval", scene.series_interval / rate)};
+  // The plates press slowly and stay in contact, so no impact needs the default's half of
+  // the contact springs' limit. At half, those of the fine elements at the loads set the step
+  // (2.5e-8 s, against the elements' own 5.4e-8 s); at the whole limit the run takes 1.6
+  // times fewer steps.
+  sets.push_back(override_of("contact.step_fraction", 1.0));
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     sets.push_back(override_of(fmt::format("bodies.{}.fracture", i), std::string("none")));
     sets.push_back(override_of(fmt::format("bodies.{}.fracture_insertion", i), std::string("intrinsic")));
