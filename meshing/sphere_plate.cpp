@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "core/log.hpp"
 #include "meshing/generator.hpp"
@@ -33,7 +34,7 @@ Eigen::AngleAxisd orientation(int k) {
 // is refined at the same place: the turn is about the centre. Why: the Hertz contact's radius
 // is 6.5 mm at 2.5 m/s and 10 mm at 7.5 m/s, under one of the case's 16.8 mm elements, so the
 // crushing under it is the mesh's as much as the rock's.
-void refine_at_contact(const Params& p, int sphere, double hc, double h) {
+void refine_at_contact(const Params& p, const std::vector<int>& sphere, double hc, double h) {
   const double D = p["diameter"], reach = p["contact_distance"];
   if (reach <= 0) param_error(p, "contact_distance", "must be > 0 when contact_size is set");
   if (hc >= h) {
@@ -49,7 +50,33 @@ void refine_at_contact(const Params& p, int sphere, double hc, double h) {
   }
   gmsh::model::mesh::field::add("MathEval", 1);
   gmsh::model::mesh::field::setString(1, "F", fmt::format("Sqrt(x^2 + (y + {:.12f})^2 + z^2)", D / 2));
-  set_graded_size(1, hc, h, reach, {sphere});
+  set_graded_size(1, hc, h, reach, sphere);
+}
+
+// The sphere cut by the plane cap_height above its lowest point into two volumes meshed as
+// one (their common face conforming): {cap, above}. Why: a case can then leave the cap
+// without joints (fracture_groups = ["sphere_above"]), a contact that cannot crush, to see
+// what the crushing under it does to the rest of the sphere (REFERENCE.md of the scene).
+std::vector<int> cut_cap(const Params& p, int sphere) {
+  namespace occ = gmsh::model::occ;
+  const double D = p["diameter"], hcap = p["cap_height"];
+  if (hcap >= D) param_error(p, "cap_height", "not below the sphere's diameter");
+  const int box = occ::addBox(-D, -D, -D, 2 * D, D / 2 + hcap, 2 * D);  // y < -D/2 + cap_height
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> from;
+  occ::fragment({{3, sphere}}, {{3, box}}, out, from);
+  // from[0]: the sphere's pieces; from[1]: the box's. The cap is in both; what is only the
+  // box's lies outside the sphere and goes.
+  int cap = -1, above = -1;
+  for (auto [dim, t] : from[0]) {
+    bool in_box = false;
+    for (auto [d2, t2] : from[1]) in_box = in_box || t2 == t;
+    (in_box ? cap : above) = t;
+  }
+  for (auto [dim, t] : from[1])
+    if (t != cap) occ::remove({{3, t}}, true);
+  if (from[0].size() != 2 || cap < 0 || above < 0) param_error(p, "cap_height", "did not cut the sphere in two (gmsh)");
+  return {cap, above};
 }
 }  // namespace
 
@@ -71,13 +98,19 @@ void build_sphere_plate(const Params& p) {
     const Eigen::AngleAxisd r = orientation(k);
     occ::rotate({{3, sphere}}, 0, 0, 0, r.axis().x(), r.axis().y(), r.axis().z(), r.angle());
   }
+  // The cap is cut after the turn, so it is always at the lowest point, where the plate is.
+  const std::vector<int> pieces = p["cap_height"] > 0 ? cut_cap(p, sphere) : std::vector<int>{sphere};
   const int plate = meshed_plate ? occ::addBox(-pw / 2, ytop - pt, -pw / 2, pw, pt, pw) : -1;
   occ::synchronize();
-  set_volume_size({sphere}, h);
-  if (const double hc = p["contact_size"]; hc > 0) refine_at_contact(p, sphere, hc, h);
+  set_volume_size(pieces, h);
+  if (const double hc = p["contact_size"]; hc > 0) refine_at_contact(p, pieces, hc, h);
   if (meshed_plate) set_volume_size({plate}, ph);
   gmsh::model::mesh::generate(3);
-  add_group(3, {sphere}, "sphere");
+  add_group(3, pieces, "sphere");
+  if (pieces.size() == 2) {
+    add_group(3, {pieces[0]}, "sphere_cap");
+    add_group(3, {pieces[1]}, "sphere_above");
+  }
   if (!meshed_plate) return;
   add_group(3, {plate}, "plate");
   add_group(2, entities_in_box(2, -pw / 2, ytop, -pw / 2, pw / 2, ytop, pw / 2), "plate_top");
@@ -97,6 +130,7 @@ const std::vector<schema::Key>& sphere_plate_keys() {
     {"mesh.sphere_plate", "orientation", T::Int, "0", 0, 1e6, false, false, "", nullptr, "0: the sphere as gmsh builds it; k > 0: the sphere turned before meshing by the k-th of a fixed sequence of rotations, uniform over all rotations: another realisation of the mesh at the same size (gmsh meshes it differently; element counts within a few %), for a pattern's spread (`dspdem report --realisations`)."},
     {"mesh.sphere_plate", "contact_size", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: element size at the sphere's lowest point, where it meets the plate, growing linearly to size at contact_distance from it (the Hertz contact's radius is 6.5 mm at 2.5 m/s and 10 mm at 7.5 m/s on the paper's sphere); 0: size everywhere."},
     {"mesh.sphere_plate", "contact_distance", T::Real, "0.05", 0, inf, false, false, "m", nullptr, "Distance from the lowest point over which contact_size grows to size."},
+    {"mesh.sphere_plate", "cap_height", T::Real, "0", 0, inf, false, false, "m", nullptr, "> 0: the sphere is cut by a plane this far above its lowest point into the volume groups sphere_cap (below) and sphere_above, both also in sphere, meshed as one (conforming). For a study of the contact: fracture = \"groups\" with fracture_groups = [\"sphere_above\"] leaves the cap without joints, so it cannot crush. 0: no cut (the mesh is not the same with a cut)."},
     {"mesh.sphere_plate", "gap", T::Real, "0.0", 0, inf, false, false, "m", nullptr, "Gap between the sphere and the plate."},
     {"mesh.sphere_plate", "plate", T::Int, "1", 0, 1, false, false, "", nullptr, "1: mesh the steel plate under the sphere (groups plate, plate_top, plate_bottom); 0: the sphere alone (strike a rigid [[walls]] plane, as the paper's plate)."},
     {"mesh.sphere_plate", "plate_width", T::Real, "0.3", 0, inf, true, false, "m", nullptr, "Plate side (square, in x and z)."},
