@@ -1,5 +1,7 @@
 #include "contact/pair_history.hpp"
 
+#include "core/error.hpp"
+
 namespace dspdem::contact {
 
 namespace {
@@ -19,9 +21,14 @@ void merge_keys(const std::vector<PairKey>& a, const std::vector<PairKey>& b, F 
 }  // namespace
 
 PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& old_keys,
-                          const std::vector<PairKey>& new_keys) {
+                          const std::vector<PairKey>& new_keys, Real* released) {
   std::vector<Index> from(new_keys.size(), -1);
-  merge_keys(old_keys, new_keys, [&](std::size_t i, std::size_t j) { from[j] = static_cast<Index>(i); });
+  std::vector<char> kept(old_keys.size(), 0);
+  merge_keys(old_keys, new_keys, [&](std::size_t i, std::size_t j) { from[j] = static_cast<Index>(i), kept[i] = 1; });
+  if (released)
+    for (std::size_t i = 0; i + 1 < old.offset.size() && i < old_keys.size(); ++i)
+      if (!kept[i])
+        for (Index k = old.offset[i]; k < old.offset[i + 1]; ++k) *released += old.entry[k].spring_energy;
   PairHistory h;
   h.offset.assign(new_keys.size() + 1, 0);
   for (std::size_t j = 0; j < new_keys.size(); ++j) {
@@ -31,6 +38,24 @@ PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& ol
     h.offset[j + 1] = static_cast<Index>(h.entry.size());
   }
   return h;
+}
+
+Real released_spring_energy(const PairHistory& before, const PairHistory& after) {
+  if (before.entry.empty()) return 0;
+  DSPDEM_CHECK(before.pairs() == after.pairs(), "contact history: {} pairs before a step and {} after", before.pairs(),
+               after.pairs());
+  Real sum = 0;
+  for (Index p = 0; p < before.pairs(); ++p)
+    for (Index k = before.offset[p]; k < before.offset[p + 1]; ++k) {
+      const HistoryEntry& h = before.entry[k];
+      bool goes_on = false;
+      for (Index j = after.offset[p]; j < after.offset[p + 1] && !goes_on; ++j) {
+        const HistoryEntry& g = after.entry[j];
+        goes_on = g.kind == h.kind && g.fa == h.fa && g.fb == h.fb;
+      }
+      if (!goes_on) sum += h.spring_energy;
+    }
+  return sum;
 }
 
 std::vector<Real> remap_values(const std::vector<Real>& old, const std::vector<PairKey>& old_keys,

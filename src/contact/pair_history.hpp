@@ -15,9 +15,13 @@ namespace dspdem::contact {
 struct HistoryEntry {
   int kind = 0, fa = 0, fb = 0;
   Vec3 xi = Vec3::Zero();
+  /// The energy in the touch's tangential spring as the ledger holds it (weight x kt |xi|^2 / 2;
+  /// 0 where this process does not count the touch): booked as dissipated when the touch
+  /// ends while its spring is loaded (released_spring_energy).
+  Real spring_energy = 0;
   template <class Ar>
   void persist(Ar& ar) {
-    ar(kind, fa, fb, xi);
+    ar(kind, fa, fb, xi, spring_energy);
   }
 };
 
@@ -45,9 +49,18 @@ struct PairHistory {
 };
 
 /// The history of the pairs `old_keys` (with `old`) re-indexed to `new_keys`; both key lists
-/// sorted ascending. Pairs only in `new_keys` start empty; pairs only in `old_keys` are gone.
+/// sorted ascending. Pairs only in `new_keys` start empty; pairs only in `old_keys` are gone,
+/// and the spring energy of their entries is added to *released when given.
 PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& old_keys,
-                          const std::vector<PairKey>& new_keys);
+                          const std::vector<PairKey>& new_keys, Real* released = nullptr);
+/// The spring energy of the touches in `before` that are not in `after` (the same pair's entry
+/// of the same feature pair), over the pairs of both (the same list, or `before` empty).
+/// A touch ends loaded when its pair hands over to another feature pair (the contact goes
+/// on through a new touch whose spring starts at zero), so that energy leaves the contact's
+/// stored energy without work: the ledger books it as dissipated, as if the spring had
+/// slipped back. (The contact's force drops by kt |xi| there; carrying xi over to the
+/// successor touch would keep it, and is not done.)
+Real released_spring_energy(const PairHistory& before, const PairHistory& after);
 
 /// Values per pair carried over the same way (`absent` for new pairs).
 std::vector<Real> remap_values(const std::vector<Real>& old, const std::vector<PairKey>& old_keys,

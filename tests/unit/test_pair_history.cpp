@@ -1,9 +1,11 @@
 // The flat contact history (contact/pair_history): a rebuild of the candidate list keeps the
 // tangential springs of the pairs that stay candidates, under their new index, and only
-// theirs; lookups find a feature pair's elongation or zero.
+// theirs; lookups find a feature pair's elongation or zero; the spring energy of touches
+// that end (or whose pair is dropped) is counted once, and only theirs.
 #include <gtest/gtest.h>
 
 #include "contact/pair_history.hpp"
+#include "core/error.hpp"
 
 using namespace dspdem;
 using namespace dspdem::contact;
@@ -13,7 +15,7 @@ PairHistory two_pairs() {
   // Pair 0 touched through two feature pairs, pair 1 through none, pair 2 through one.
   PairHistory h;
   h.offset = {0, 2, 2, 3};
-  h.entry = {{4, 1, 2, Vec3(1, 0, 0)}, {3, 0, 5, Vec3(0, 2, 0)}, {0, 3, 3, Vec3(0, 0, 3)}};
+  h.entry = {{4, 1, 2, Vec3(1, 0, 0), 0.5}, {3, 0, 5, Vec3(0, 2, 0), 2.0}, {0, 3, 3, Vec3(0, 0, 3), 4.5}};
   return h;
 }
 }  // namespace
@@ -31,7 +33,9 @@ TEST(PairHistory, FindsAFeaturePairsElongationOrZero) {
 TEST(PairHistory, ARebuildCarriesTheSurvivingPairsToTheirNewIndex) {
   const std::vector<PairKey> old_keys = {{1, 2}, {1, 7}, {10, 3}};  // (10, 3): element 3 against wall 0 of 10 elements
   const std::vector<PairKey> new_keys = {{0, 4}, {1, 2}, {2, 9}, {10, 3}, {11, 3}};
-  const PairHistory h = remap_history(two_pairs(), old_keys, new_keys);
+  Real released = 0.25;  // added to, not set
+  const PairHistory h = remap_history(two_pairs(), old_keys, new_keys, &released);
+  EXPECT_EQ(released, 0.25);  // the dropped pair (1, 7) held no touch
   ASSERT_EQ(h.pairs(), 5);
   EXPECT_EQ(h.offset, (std::vector<Index>{0, 0, 2, 2, 3, 3}));
   EXPECT_EQ(h.find(1, 3, 0, 5), Vec3(0, 2, 0));  // (1, 2) moved from index 0 to 1
@@ -39,4 +43,25 @@ TEST(PairHistory, ARebuildCarriesTheSurvivingPairsToTheirNewIndex) {
   EXPECT_EQ(h.find(4, 0, 3, 3), Vec3::Zero());   // the same element against another wall: new
   const std::vector<Real> v = remap_values({0.5, 0.25, 0.125}, old_keys, new_keys, -1.0);
   EXPECT_EQ(v, (std::vector<Real>{-1.0, 0.5, -1.0, 0.125, -1.0}));
+}
+
+TEST(PairHistory, ASpringThatEndsLoadedIsReleasedOnce) {
+  // After a step, pair 0 goes on through feature pair (3, 0, 5) and hands (4, 1, 2) over to
+  // (2, 1, 2) (an edge-edge pair instead of a vertex-face one); pair 2's touch ends. The
+  // energy released is that of (4, 1, 2) and of pair 2's touch: 0.5 + 4.5. A touch that
+  // goes on keeps its energy in the ledger's stored energy, whatever its elongation now.
+  const PairHistory before = two_pairs();
+  PairHistory after;
+  after.offset = {0, 2, 2, 2};
+  after.entry = {{3, 0, 5, Vec3(0, 1, 0), 0.5}, {2, 1, 2, Vec3::Zero(), 0}};
+  EXPECT_EQ(released_spring_energy(before, after), 5.0);
+  EXPECT_EQ(released_spring_energy(before, before), 0.0);
+  EXPECT_EQ(released_spring_energy(PairHistory{}, after), 0.0);  // the first step: nothing before
+  // A rebuild drops pair 2 (its touch ended with the pair): counted by remap_history instead.
+  Real released = 0;
+  remap_history(before, {{1, 2}, {1, 7}, {10, 3}}, {{1, 2}, {1, 7}}, &released);
+  EXPECT_EQ(released, 4.5);
+  PairHistory short_list;
+  short_list.offset = {0, 0};
+  EXPECT_THROW(released_spring_energy(before, short_list), Error);  // not the same pairs
 }

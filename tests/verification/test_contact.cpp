@@ -255,6 +255,66 @@ TEST(Contact, VertexSlidingOverAFaceOntoAnEdgeAndOffIsSmoothAndConservative) {
   EXPECT_NEAR((work + U - U0) / U0, 0.0, 1e-3);
 }
 
+TEST(Contact, VertexSlidingWithFrictionOntoAnEdgeKeepsTheLedger) {
+  // The tip of the last test slides with friction (mu = 0.5) over the cube's face, onto its
+  // edge and off, moved at 1 m/s (dx = 1e-6 m per step of 1e-6 s), so its tangential spring
+  // is loaded to mu fn / kt. Over the face the tip-face pair holds the spring; past the edge
+  // the tip-edge pair takes over with a spring of its own that starts at zero, and the
+  // energy the old spring held (a fifth of the contact's) leaves the contact without work.
+  // The ledger must book it as dissipated: the work of the contact forces on the tip plus
+  // the change of stored energy plus the dissipation is zero to 1e-3 of the largest stored
+  // energy. The trapezoidal rule's error is half the force's jump at the hand-over (kt |xi|)
+  // times dx, 3.2e-4 of it here. Measured: -3.5e-4; without the booking -0.20.
+  Mesh mesh;
+  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "cube", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
+  add_part(mesh, tip_down_tet(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
+  Model m = build_model(contact_case(0.5), mesh);
+  const Index e_tip = 0, e_cube = m.mesh.blocks[0].size();
+  const Real R = m.contact.radius(e_tip) + m.contact.radius(e_cube);
+  const contact::Poly cube_sk = m.contact.skeleton_poly(e_cube, m.fem.x0.data());
+  const contact::Poly tip_sk = m.contact.skeleton_poly(e_tip, m.fem.x0.data());
+  Real top = -INFINITY, xmax = -INFINITY;
+  for (int k = 0; k < 8; ++k) top = std::max(top, cube_sk.v[k](2)), xmax = std::max(xmax, cube_sk.v[k](0));
+  const Vec3 tip0 = tip_sk.v[0];
+  const Group* g = m.mesh.find_group("tip");
+  const Real ds = 1e-6, dt = 1e-6;
+  std::vector<Real> x = m.fem.x0, v(x.size(), 0.0), f;
+  for (Index n : g->nodes) v[3 * n] = ds / dt;
+  auto place = [&](Real xs) {
+    x = m.fem.x0;
+    const Vec3 shift(xs - tip0(0), -tip0(1), top + 0.8 * R - tip0(2));
+    for (Index n : g->nodes)
+      for (int d = 0; d < 3; ++d) x[3 * n + d] += shift(d);
+  };
+  auto force_x = [&](Real& U) {
+    f.assign(x.size(), 0.0);
+    m.contact.add_forces(m.mesh, m.joints, x.data(), v.data(), dt, f.data());
+    U = m.contact.totals().elastic;
+    Real F = 0;
+    for (Index n : g->nodes) F += f[3 * n];
+    return F;
+  };
+  const Real x_end = xmax + 1.5 * R;
+  Real U0, U, U_max = 0;
+  place(xmax - 0.02);
+  Real F_prev = force_x(U0);
+  const Real D0 = m.contact.totals().friction;
+  Real work = 0;
+  for (Real xs = xmax - 0.02 + ds; xs <= x_end; xs += ds) {
+    place(xs);
+    const Real F = force_x(U);
+    work += 0.5 * (F + F_prev) * ds;
+    U_max = std::max(U_max, U);
+    F_prev = F;
+  }
+  const Real dissipated = m.contact.totals().friction - D0;
+  RecordProperty("dissipated_over_max_energy", sci(dissipated / U_max));
+  RecordProperty("ledger_error", sci((work + U - U0 + dissipated) / U_max));
+  EXPECT_EQ(U, 0) << "the tip must have left the cube";
+  EXPECT_GT(dissipated, U_max);  // it slid all the way: friction did work (measured 14 U_max)
+  EXPECT_NEAR((work + U - U0 + dissipated) / U_max, 0.0, 1e-3);
+}
+
 namespace {
 // Two cubes turned 45 deg about x meet ridge on ridge: a 0.1 m cube's top edge under a
 // 0.05 m cube's bottom edge, crossed at their middles with the skeletons 0.5 R apart. The
