@@ -73,9 +73,9 @@ std::vector<int> cut_cap(const Params& p, int sphere) {
     for (auto [d2, t2] : from[1]) in_box = in_box || t2 == t;
     (in_box ? cap : above) = t;
   }
+  if (from[0].size() != 2 || cap < 0 || above < 0) param_error(p, "cap_height", "did not cut the sphere in two (gmsh)");
   for (auto [dim, t] : from[1])
     if (t != cap) occ::remove({{3, t}}, true);
-  if (from[0].size() != 2 || cap < 0 || above < 0) param_error(p, "cap_height", "did not cut the sphere in two (gmsh)");
   return {cap, above};
 }
 }  // namespace

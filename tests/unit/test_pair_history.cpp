@@ -57,10 +57,17 @@ TEST(PairHistory, ASpringThatEndsLoadedIsReleasedOnce) {
   EXPECT_EQ(released_spring_energy(before, after), 5.0);
   EXPECT_EQ(released_spring_energy(before, before), 0.0);
   EXPECT_EQ(released_spring_energy(PairHistory{}, after), 0.0);  // the first step: nothing before
-  // A rebuild drops pair 2 (its touch ended with the pair): counted by remap_history instead.
+  // A rebuild drops pair 2 (its touch ended with the pair): remap_history counts it, and the
+  // step after the rebuild, over the remapped history, counts only what ends then (pair 0's
+  // handed-over touch): 4.5 + 0.5 in all, pair 2's spring once.
   Real released = 0;
-  remap_history(before, {{1, 2}, {1, 7}, {10, 3}}, {{1, 2}, {1, 7}}, &released);
+  const PairHistory remapped = remap_history(before, {{1, 2}, {1, 7}, {10, 3}}, {{1, 2}, {1, 7}}, &released);
   EXPECT_EQ(released, 4.5);
+  PairHistory next;
+  next.offset = {0, 2, 2};
+  next.entry = after.entry;
+  released += released_spring_energy(remapped, next);
+  EXPECT_EQ(released, 5.0);
   PairHistory short_list;
   short_list.offset = {0, 0};
   EXPECT_THROW(released_spring_energy(before, short_list), Error);  // not the same pairs
