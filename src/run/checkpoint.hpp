@@ -20,8 +20,9 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  int format =
-      5;  // 5: the contacts' spring energies (4: the integrator's step; 3: processes and rank; 2: the deepest contact)
+  // 5: the contacts' spring energies (4: the integrator's step; 3: processes and rank; 2: the
+  // deepest contact)
+  int format = 5;
   std::string build;              ///< dspdem version, commit, compiler and build type
   std::string case_path;          ///< absolute path of the case file
   std::vector<std::string> sets;  ///< the run's --set overrides
