@@ -193,6 +193,52 @@ Mesh tip_down_tet(Real s, Real h) {
 }
 }  // namespace
 
+namespace {
+// The tip of a tetrahedron over the top face of a 0.1 m hex cube, moved rigidly along x at a
+// fixed height: its skeleton vertex 0.2 R deeper than first touch over the face (R the two
+// contact radii). place(xs) puts the tip's vertex at x = xs; forces(dt) evaluates the
+// contacts once (their history advancing over dt) and returns the force on the tip.
+struct TipOverCube {
+  Mesh mesh;
+  Model m;
+  Real R = 0, top = -INFINITY, xmax = -INFINITY;
+  Vec3 tip0;
+  const Group* g = nullptr;
+  std::vector<Real> x, v, f;
+  Real U = 0;  ///< stored contact energy after the last forces()
+
+  explicit TipOverCube(Real mu) : mesh(two_parts()), m(build_model(contact_case(mu), mesh)) {
+    const Index e_tip = 0, e_cube = m.mesh.blocks[0].size();  // tets first, then hexes
+    R = m.contact.radius(e_tip) + m.contact.radius(e_cube);
+    const contact::Poly cube_sk = m.contact.skeleton_poly(e_cube, m.fem.x0.data());
+    for (int k = 0; k < 8; ++k) top = std::max(top, cube_sk.v[k](2)), xmax = std::max(xmax, cube_sk.v[k](0));
+    tip0 = m.contact.skeleton_poly(e_tip, m.fem.x0.data()).v[0];
+    g = m.mesh.find_group("tip");
+    x = m.fem.x0, v.assign(x.size(), 0.0);
+  }
+  static Mesh two_parts() {
+    Mesh mesh;
+    add_part(mesh, cube(CellType::Hex8, 1, 0.1), "cube", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
+    add_part(mesh, tip_down_tet(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
+    return mesh;
+  }
+  void place(Real xs) {
+    x = m.fem.x0;
+    const Vec3 shift(xs - tip0(0), -tip0(1), top + 0.8 * R - tip0(2));
+    for (Index n : g->nodes)
+      for (int d = 0; d < 3; ++d) x[3 * n + d] += shift(d);
+  }
+  Vec3 forces(Real dt) {
+    f.assign(x.size(), 0.0);
+    m.contact.add_forces(m.mesh, m.joints, x.data(), v.data(), dt, f.data());
+    U = m.contact.totals().elastic;
+    Vec3 F = Vec3::Zero();
+    for (Index n : g->nodes) F += node_pos(f, n);
+    return F;
+  }
+};
+}  // namespace
+
 TEST(Contact, VertexSlidingOverAFaceOntoAnEdgeAndOffIsSmoothAndConservative) {
   // The tip of a tetrahedron is moved rigidly at a fixed height across the top face of a
   // hex cube, over its edge and off. Over the face the tip-face pair (VF) carries the
@@ -202,51 +248,22 @@ TEST(Contact, VertexSlidingOverAFaceOntoAnEdgeAndOffIsSmoothAndConservative) {
   // turning of the edge normal past the edge (delta/d = 0.25 here): we allow 2 k ds. A
   // feature counted twice or missed at the hand-over would jump by k x overlap = 125 k ds. Conservative: the work done
   // along the path plus the change of contact energy is zero to 1e-3 of the initial contact energy.
-  Mesh mesh;
-  const Mesh cb = cube(CellType::Hex8, 1, 0.1);
-  add_part(mesh, cb, "cube", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
-  const Mesh tip = tip_down_tet(0.03, 0.05);
-  add_part(mesh, tip, "tip", Vec3::Zero(), Vec3::Zero());
-  CaseConfig c = contact_case();
-  Model m = build_model(c, mesh);
-  const Index e_tip = 0, e_cube = m.mesh.blocks[0].size();  // tets first, then hexes
-  const Real R = m.contact.radius(e_tip) + m.contact.radius(e_cube);
-  // Height: the tip's skeleton vertex sits 0.2 R deeper than first touch over the face.
-  const contact::Poly cube_sk = m.contact.skeleton_poly(e_cube, m.fem.x0.data());
-  const contact::Poly tip_sk = m.contact.skeleton_poly(e_tip, m.fem.x0.data());
-  Real top = -INFINITY, xmax = -INFINITY;
-  for (int k = 0; k < 8; ++k) top = std::max(top, cube_sk.v[k](2)), xmax = std::max(xmax, cube_sk.v[k](0));
-  const Vec3 tip0 = tip_sk.v[0];
-  const Group* g = m.mesh.find_group("tip");
-  const Real ds = 1e-5;
-  std::vector<Real> x = m.fem.x0, v(x.size(), 0.0), f;
-  auto place = [&](Real xs) {
-    x = m.fem.x0;
-    const Vec3 shift(xs - tip0(0), -tip0(1), top + 0.8 * R - tip0(2));
-    for (Index n : g->nodes)
-      for (int d = 0; d < 3; ++d) x[3 * n + d] += shift(d);
-  };
-  auto force = [&](Real& U) {
-    f.assign(x.size(), 0.0);
-    m.contact.add_forces(m.mesh, m.joints, x.data(), v.data(), 0.0, f.data());
-    U = m.contact.totals().elastic;
-    Vec3 F = Vec3::Zero();
-    for (Index n : g->nodes) F += node_pos(f, n);
-    return F;
-  };
-  const Real x_start = xmax - 0.02, x_end = xmax + 1.5 * R;
-  Real U0, U;
-  place(x_start);
-  Vec3 F_prev = force(U0);
+  TipOverCube s(0.0);
+  const Real ds = 1e-5, R = s.R;
+  const Real x_start = s.xmax - 0.02, x_end = s.xmax + 1.5 * R;
+  s.place(x_start);
+  Vec3 F_prev = s.forces(0.0);
+  const Real U0 = s.U;
   const Real kn = F_prev(2) / (0.2 * R);
   Real work = 0, max_jump = 0;
   for (Real xs = x_start + ds; xs <= x_end; xs += ds) {
-    place(xs);
-    const Vec3 F = force(U);
+    s.place(xs);
+    const Vec3 F = s.forces(0.0);
     work += 0.5 * (F + F_prev)(0) * ds;  // the path is along x
     max_jump = std::max(max_jump, (F - F_prev).norm());
     F_prev = F;
   }
+  const Real U = s.U;
   RecordProperty("max_jump_over_k_ds", sci(max_jump / (kn * ds)));
   RecordProperty("energy_error", sci((work + U - U0) / U0));
   EXPECT_GT(U0, 0);
@@ -265,49 +282,24 @@ TEST(Contact, VertexSlidingWithFrictionOntoAnEdgeKeepsTheLedger) {
   // the change of stored energy plus the dissipation is zero to 1e-3 of the largest stored
   // energy. The trapezoidal rule's error is half the force's jump at the hand-over (kt |xi|)
   // times dx, 3.2e-4 of it here. Measured: -3.5e-4; without the booking -0.20.
-  Mesh mesh;
-  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "cube", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
-  add_part(mesh, tip_down_tet(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
-  Model m = build_model(contact_case(0.5), mesh);
-  const Index e_tip = 0, e_cube = m.mesh.blocks[0].size();
-  const Real R = m.contact.radius(e_tip) + m.contact.radius(e_cube);
-  const contact::Poly cube_sk = m.contact.skeleton_poly(e_cube, m.fem.x0.data());
-  const contact::Poly tip_sk = m.contact.skeleton_poly(e_tip, m.fem.x0.data());
-  Real top = -INFINITY, xmax = -INFINITY;
-  for (int k = 0; k < 8; ++k) top = std::max(top, cube_sk.v[k](2)), xmax = std::max(xmax, cube_sk.v[k](0));
-  const Vec3 tip0 = tip_sk.v[0];
-  const Group* g = m.mesh.find_group("tip");
+  TipOverCube s(0.5);
   const Real ds = 1e-6, dt = 1e-6;
-  std::vector<Real> x = m.fem.x0, v(x.size(), 0.0), f;
-  for (Index n : g->nodes) v[3 * n] = ds / dt;
-  auto place = [&](Real xs) {
-    x = m.fem.x0;
-    const Vec3 shift(xs - tip0(0), -tip0(1), top + 0.8 * R - tip0(2));
-    for (Index n : g->nodes)
-      for (int d = 0; d < 3; ++d) x[3 * n + d] += shift(d);
-  };
-  auto force_x = [&](Real& U) {
-    f.assign(x.size(), 0.0);
-    m.contact.add_forces(m.mesh, m.joints, x.data(), v.data(), dt, f.data());
-    U = m.contact.totals().elastic;
-    Real F = 0;
-    for (Index n : g->nodes) F += f[3 * n];
-    return F;
-  };
-  const Real x_end = xmax + 1.5 * R;
-  Real U0, U, U_max = 0;
-  place(xmax - 0.02);
-  Real F_prev = force_x(U0);
-  const Real D0 = m.contact.totals().friction;
+  for (Index n : s.g->nodes) s.v[3 * n] = ds / dt;
+  const Real x_end = s.xmax + 1.5 * s.R;
+  Real U_max = 0;
+  s.place(s.xmax - 0.02);
+  Real F_prev = s.forces(dt)(0);
+  const Real U0 = s.U, D0 = s.m.contact.totals().friction;
   Real work = 0;
-  for (Real xs = xmax - 0.02 + ds; xs <= x_end; xs += ds) {
-    place(xs);
-    const Real F = force_x(U);
+  for (Real xs = s.xmax - 0.02 + ds; xs <= x_end; xs += ds) {
+    s.place(xs);
+    const Real F = s.forces(dt)(0);
     work += 0.5 * (F + F_prev) * ds;
-    U_max = std::max(U_max, U);
+    U_max = std::max(U_max, s.U);
     F_prev = F;
   }
-  const Real dissipated = m.contact.totals().friction - D0;
+  const Real U = s.U;
+  const Real dissipated = s.m.contact.totals().friction - D0;
   RecordProperty("dissipated_over_max_energy", sci(dissipated / U_max));
   RecordProperty("ledger_error", sci((work + U - U0 + dissipated) / U_max));
   EXPECT_EQ(U, 0) << "the tip must have left the cube";
