@@ -6,14 +6,19 @@
 //            w_ft <= dn < w_ft+w_GI: s_n = f_t (1 - (dn - w_ft) / w_GI)
 //   mode II: f_s = c - s_n tan(phi) for s_n < f_t, else c - f_t tan(phi)
 //            w_fs = f_s / k_s, w_GII = 2 G_fII / f_s, same shape in ds
-//   failure (mixed mode, eq. 6): (<dn_max - w_ft>/w_GI)^2 + (<ds_max - w_fs>/w_GII)^2 >= 1
+//   failure (mixed mode, eq. 6): (<dn_max - w_ft>/w_GI)^2 + b^2 >= 1, b the largest
+//            <ds - w_fs>/w_GII reached (see irreversibility below)
 //
 // Decisions where the paper is silent (tested in tests/unit/test_cohesive_law.cpp):
-//  - irreversibility: the largest opening (slip) reached is a history variable; below it the
+//  - irreversibility: the largest opening reached is a history variable; below it the
 //    joint unloads and reloads along the secant to the origin; it never heals. In shear the
-//    envelope moves with s_n (Mohr-Coulomb), so the secant stiffness is kept as a history
-//    variable that can only decrease: otherwise more compression at a damaged slip would
-//    raise s_s and a closed path could create energy (seen in a notched-bar run);
+//    envelope moves with s_n (Mohr-Coulomb), so the history is the damage b = <ds - w_fs> /
+//    w_GII at its largest, each time with the w_fs, w_GII of that moment's s_n (as the
+//    coupled law keeps its damage): the largest slip against the current strength would
+//    count a slip that was elastic under compression as damage once the compression is
+//    released. The secant stiffness is kept as a history variable that can only decrease:
+//    otherwise more compression at a damaged slip would raise s_s and a closed path could
+//    create energy (seen in a notched-bar run);
 //  - compression is a penalty and never damages the joint;
 //  - once broken, a joint carries no tension; in compression it keeps the normal penalty and
 //    a Coulomb residual friction |s_s| <= -s_n tan(phi) (elastic-plastic along the slip
@@ -51,11 +56,11 @@ enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
 
 /// History and last state of one integration point.
 struct CohesiveState {
-  Real dn_max = 0;              ///< largest opening reached [m]
-  Real ds_max = 0;              ///< largest slip reached [m]
-  Real ds_plastic = 0;          ///< plastic slip of the residual friction (broken joints) [m]
-  Real ks_secant = -1;          ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
-  Real damage = 0;              ///< coupled law: secant damage d in [0, 1], only ever increasing
+  Real dn_max = 0;      ///< largest opening reached [m]
+  Real ds_max = 0;      ///< largest slip reached [m]
+  Real ds_plastic = 0;  ///< plastic slip of the residual friction (broken joints) [m]
+  Real ks_secant = -1;  ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
+  Real damage = 0;      ///< coupled law: secant damage d in [0, 1]; the paper's: shear damage b; only ever increasing
   Real diss_II_at_break = 0;    ///< mode-II dissipation when the point failed [J/m^2]
   Real friction = 0;            ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
@@ -122,25 +127,29 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
     ss = residual_friction(p, sn, ds, s);
   } else {
     s.ds_max = std::max(s.ds_max, ds);
-    const Real m = s.ds_max;
     const bool mode_i = p.law == JointLaw::ModeI;
     const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
     const Real w_fs = fs / p.ks, w_GII = mode_i ? 1.0 : 2.0 * p.GfII / fs;
-    if (m > w_fs) {
-      const Real k = std::max<Real>(0.0, fs * (1.0 - (m - w_fs) / w_GII)) / m;
+    // The shear damage b is the largest fraction of the softening branch travelled, each
+    // time at the strength of that moment: a slip that was elastic under compression is no
+    // damage once the compression is released (the largest slip against today's strength
+    // would count it).
+    if (!mode_i && ds > w_fs) s.damage = std::max(s.damage, (ds - w_fs) / w_GII);
+    if (s.damage > 0) {
+      const Real D = std::min<Real>(s.damage, 1.0);
+      const Real k = std::max<Real>(0.0, fs * (1.0 - D)) / (w_fs + D * w_GII);
       s.ks_secant = s.ks_secant < 0 ? std::min(k, p.ks) : std::min(s.ks_secant, k);
     }
     ss = (s.ks_secant < 0 ? p.ks : s.ks_secant) * ds;
     // Mixed-mode failure (eq. 6); mode I only: b = 0.
-    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI,
-               b = mode_i ? 0.0 : std::max<Real>(0.0, m - w_fs) / w_GII;
+    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI, b = mode_i ? 0.0 : s.damage;
     if (a * a + b * b >= 1.0) {
       s.status = JointStatus::Broken;
       s.ds_plastic = ds;
       sn = dn < 0 ? p.kn * dn : 0.0;
       ss = 0.0;
       s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
-    } else if (s.dn_max > w_ft || m > w_fs) {
+    } else if (s.dn_max > w_ft || s.damage > 0) {
       s.status = JointStatus::Softening;
     }
   }

@@ -111,15 +111,13 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
 
 /// How far a point is along its way to failure, in [0, 1] (1: broken): the coupled law's
 /// damage; for the paper's law the eq. 6 index sqrt(a^2 + b^2) of its largest opening and
-/// slip; for mode I only, a. For output (the joints frame's damage field).
+/// its shear damage; for mode I only, a. For output (the joints frame's damage field).
 inline Real damage_index(const CohesiveParams& p, const CohesiveState& s) {
   if (s.status == JointStatus::Broken) return 1.0;
   if (p.law == JointLaw::Coupled) return s.damage;
   const Real a = std::max<Real>(0, s.dn_max - p.ft / p.kn) / (2 * p.GfI / p.ft);
   if (p.law == JointLaw::ModeI) return std::min<Real>(1.0, a);
-  const Real fs = shear_strength(p, s.sn);
-  const Real b = std::max<Real>(0, s.ds_max - fs / p.ks) / (2 * p.GfII / fs);
-  return std::min<Real>(1.0, std::sqrt(a * a + b * b));
+  return std::min<Real>(1.0, std::sqrt(a * a + s.damage * s.damage));
 }
 
 /// The law a point follows, by its material's choice.

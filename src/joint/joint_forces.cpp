@@ -256,7 +256,7 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
       ok = ok & lane::lt(dn_max[g] * kn, ft * V4::set1(1 - 1e-12));
       if (law != JointLaw::ModeI) {
         const V4 fs = lane::max(c - lane::min(sn[g], ft) * tan_phi, V4::set1(1e-12) * lane::max(c, V4::set1(1.0)));
-        ok = ok & lane::lt(ds_max[g] * ks, fs * V4::set1(1 - 1e-12));
+        ok = ok & lane::lt(ds[g] * ks, fs * V4::set1(1 - 1e-12));
       }
     }
   }

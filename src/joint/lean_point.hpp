@@ -39,15 +39,15 @@ inline bool lean_update(const CohesiveParams& p, Real dn, Real ds, LeanPoint& lp
     if (an * an + as * as > 0.98 * lim * lim) return false;
     dn_max = std::max(lp.dn_max, dn);
   } else {
-    // cohesive_update: elastic while the largest opening is below w_ft and the largest slip
-    // below w_fs at the current normal traction (mode I: no shear limit).
+    // cohesive_update: elastic while the largest opening is below w_ft and the slip below
+    // w_fs at the current normal traction (mode I: no shear limit).
     // Each limit is first tested by a product with a margin of 1e-12, far beyond rounding:
     // below it the division's test (the law's) cannot fail, and the division is skipped.
     dn_max = dn > 0 ? std::max(lp.dn_max, dn) : lp.dn_max;
     if (!(dn_max * p.kn < p.ft * (1 - 1e-12)) && dn_max > p.ft / p.kn) return false;
     if (p.law != JointLaw::ModeI) {
       const Real fs = shear_strength(p, sn);
-      if (!(ds_max * p.ks < fs * (1 - 1e-12)) && ds_max > fs / p.ks) return false;
+      if (!(ds * p.ks < fs * (1 - 1e-12)) && ds > fs / p.ks) return false;
     }
   }
   lp.dn = dn, lp.ds = ds, lp.dn_max = dn_max, lp.ds_max = ds_max;

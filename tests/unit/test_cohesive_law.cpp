@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "joint/cohesive_law.hpp"
+#include "joint/coupled_law.hpp"
 
 using namespace dspdem;
 using namespace dspdem::joint;
@@ -198,4 +199,28 @@ TEST(CohesiveLaw, ModeIOnlyKeepsTheShearElasticAndBreaksInOpening) {
   const Real dn = -1e6 / p.kn;
   for (int i = 1; i <= 1000; ++i) cohesive_update(p, dn, 1e-5 * i / 1000, s);
   EXPECT_NEAR(s.ss, 1e6, 1e-6 * 1e6);
+}
+
+TEST(CohesiveLaw, AnElasticSlipUnderCompressionIsNoDamageOnceReleased) {
+  // Pressed at 50 MPa (f_s = 70 MPa), the face slips to 0.9 of its elastic limit and back;
+  // then the pressure is released (f_s = 20 MPa, an elastic limit 0.29 of that slip). The face
+  // never passed its strength, so it is undamaged: intact, damage index 0, and slipping again
+  // to half its limit it carries k_s ds. (The largest slip against the current strength
+  // would count 0.85 % of G_fII's branch as damage here and cut the shear stiffness by 3x.)
+  const CohesiveParams p = disc_params();
+  const Real sigma = -50e6, dn = sigma / p.kn;
+  const Real ds_top = 0.9 * shear_strength(p, sigma) / p.ks;
+  CohesiveState s;
+  for (int i = 1; i <= 100; ++i) cohesive_update(p, dn * i / 100, 0.0, s);
+  for (int i = 1; i <= 100; ++i) cohesive_update(p, dn, ds_top * i / 100, s);
+  ASSERT_EQ(s.status, JointStatus::Intact);
+  for (int i = 99; i >= 0; --i) cohesive_update(p, dn, ds_top * i / 100, s);
+  for (int i = 99; i >= 0; --i) cohesive_update(p, dn * i / 100, 0.0, s);
+  const Real w_fs = shear_strength(p, 0.0) / p.ks;
+  ASSERT_GT(ds_top, 3 * w_fs);  // the released face's limit is well below the slip it had
+  for (int i = 1; i <= 100; ++i) cohesive_update(p, 0.0, 0.5 * w_fs * i / 100, s);
+  EXPECT_EQ(s.status, JointStatus::Intact);
+  EXPECT_EQ(damage_index(p, s), 0.0);
+  EXPECT_NEAR(s.ss, p.ks * 0.5 * w_fs, 1e-12 * p.ks * w_fs);
+  EXPECT_NEAR(s.dissipated_II(p), 0.0, 1e-9 * p.GfII);
 }
