@@ -60,7 +60,9 @@ struct CohesiveState {
   Real ds_max = 0;      ///< largest slip reached [m]
   Real ds_plastic = 0;  ///< plastic slip of the residual friction (broken joints) [m]
   Real ks_secant = -1;  ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
-  Real damage = 0;      ///< coupled law: secant damage d in [0, 1]; the paper's: shear damage b; only ever increasing
+  /// Only ever increasing. Coupled law: secant damage d in [0, 1]. The paper's law: the shear
+  /// damage b of eq. 6, the largest <ds - w_fs> / w_GII reached (past 1 at the break).
+  Real damage = 0;
   Real diss_II_at_break = 0;    ///< mode-II dissipation when the point failed [J/m^2]
   Real friction = 0;            ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
