@@ -132,10 +132,7 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
     const bool mode_i = p.law == JointLaw::ModeI;
     const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
     const Real w_fs = fs / p.ks, w_GII = mode_i ? 1.0 : 2.0 * p.GfII / fs;
-    // The shear damage b is the largest fraction of the softening branch travelled, each
-    // time at the strength of that moment: a slip that was elastic under compression is no
-    // damage once the compression is released (the largest slip against today's strength
-    // would count it).
+    // The shear damage b, at the strength of this moment (irreversibility, above).
     if (!mode_i && ds > w_fs) s.damage = std::max(s.damage, (ds - w_fs) / w_GII);
     if (s.damage > 0) {
       const Real D = std::min<Real>(s.damage, 1.0);
