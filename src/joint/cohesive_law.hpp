@@ -57,7 +57,6 @@ enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
 /// History and last state of one integration point.
 struct CohesiveState {
   Real dn_max = 0;      ///< largest opening reached [m]
-  Real ds_max = 0;      ///< largest slip reached [m]
   Real ds_plastic = 0;  ///< plastic slip of the residual friction (broken joints) [m]
   Real ks_secant = -1;  ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
   /// Only ever increasing. Coupled law: secant damage d in [0, 1]. The paper's law: the shear
@@ -128,7 +127,6 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
   if (s.status == JointStatus::Broken) {
     ss = residual_friction(p, sn, ds, s);
   } else {
-    s.ds_max = std::max(s.ds_max, ds);
     const bool mode_i = p.law == JointLaw::ModeI;
     const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
     const Real w_fs = fs / p.ks, w_GII = mode_i ? 1.0 : 2.0 * p.GfII / fs;

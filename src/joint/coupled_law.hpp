@@ -90,7 +90,6 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
       }
     }
     s.dn_max = std::max(s.dn_max, dn);
-    s.ds_max = std::max(s.ds_max, ds);
     if (s.damage >= 1.0) {
       s.status = JointStatus::Broken;
       s.ds_plastic = ds;

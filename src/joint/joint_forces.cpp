@@ -212,7 +212,7 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
   };
   // A lean point's fields, lane b from point 4 (j0 + b) + g.
   constexpr std::size_t stride = 4 * sizeof(LeanPoint) / sizeof(Real);
-  static_assert(sizeof(LeanPoint) == 4 * sizeof(Real));
+  static_assert(sizeof(LeanPoint) == 3 * sizeof(Real));
   auto lean = [&](int g, Real LeanPoint::*m) {
     const Real* q = &(js.lean[p0 + g].*m);
     return V4::gather(q, q + stride, q + 2 * stride, q + 3 * stride);
@@ -235,7 +235,7 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
            c = par(&CohesiveParams::c), tan_phi = par(&CohesiveParams::tan_phi);
   const V4 area0 = V4::load(&js.area0[j0]);
   V4 ok = lane::gt(nl, zero);  // all set
-  V4 dn[3], ds[3], sv[3][3], sn[3], ss[3], dn_max[3], ds_max[3];
+  V4 dn[3], ds[3], sv[3][3], sn[3], ss[3], dn_max[3];
   for (int g = 0; g < 3; ++g) {
     dn[g] = dx[g][0] * n[0] + dx[g][1] * n[1] + dx[g][2] * n[2];
     for (int d = 0; d < 3; ++d) sv[g][d] = dx[g][d] - dn[g] * n[d];
@@ -243,7 +243,6 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
     // lean_update, lane by lane.
     sn[g] = kn * dn[g];
     ss[g] = ks * ds[g];
-    ds_max[g] = lane::max(lean(g, &LeanPoint::ds_max), ds[g]);
     const V4 lp_dn_max = lean(g, &LeanPoint::dn_max);
     if (law == JointLaw::Coupled) {
       const V4 un = lane::max(zero, dn[g]);
@@ -271,7 +270,7 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
     for (int d = 0; d < 3; ++d) (zero - wa * t[d]).scatter(out + 3 * g + d, 12);
     LeanPoint& l = js.lean[p0 + g];
     dn[g].scatter(&l.dn, stride), ds[g].scatter(&l.ds, stride);
-    dn_max[g].scatter(&l.dn_max, stride), ds_max[g].scatter(&l.ds_max, stride);
+    dn_max[g].scatter(&l.dn_max, stride);
   }
   for (int b = 0; b < 4; ++b) js.status[j0 + b] = JointStatus::Intact;
   return true;

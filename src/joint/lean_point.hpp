@@ -1,9 +1,9 @@
 // The lean form of an elastic integration point. Almost every joint point of a run stays
-// elastic to the end, and while it does its whole CohesiveState (112 bytes) follows from
-// four numbers: tractions k_n dn and k_s ds, work equal to the stored energy, nothing
+// elastic to the end, and while it does its whole CohesiveState (104 bytes) follows from
+// three numbers: tractions k_n dn and k_s ds, work equal to the stored energy, nothing
 // dissipated, no damage. Streaming the full state of every point twice a step was the
 // joint kernel's largest cost (issue 19: the kernel is bound by memory traffic), so a point
-// is kept in this 32-byte form until its law first leaves the elastic branch; from then on
+// is kept in this 24-byte form until its law first leaves the elastic branch; from then on
 // it is kept in full for good (JointSet::full_point).
 //
 // lean_update decides exactly as the laws do (cohesive_update, coupled_update): where it
@@ -18,8 +18,8 @@
 namespace dspdem::joint {
 
 struct LeanPoint {
-  Real dn = 0, ds = 0;          ///< last opening and slip [m]
-  Real dn_max = 0, ds_max = 0;  ///< largest opening and slip reached, as the laws keep them [m]
+  Real dn = 0, ds = 0;  ///< last opening and slip [m]
+  Real dn_max = 0;      ///< largest opening reached, as the laws keep it [m]
 };
 
 /// Advances a lean point to opening dn and slip ds (>= 0) if its law keeps it elastic and
@@ -29,7 +29,6 @@ struct LeanPoint {
 inline bool lean_update(const CohesiveParams& p, Real dn, Real ds, LeanPoint& lp, Real& sn, Real& ss) {
   sn = p.kn * dn;
   ss = p.ks * ds;
-  const Real ds_max = std::max(lp.ds_max, ds);
   Real dn_max;
   if (p.law == JointLaw::Coupled) {
     // coupled_update's gate: well inside the onset ellipse no damage can grow.
@@ -50,7 +49,7 @@ inline bool lean_update(const CohesiveParams& p, Real dn, Real ds, LeanPoint& lp
       if (!(ds * p.ks < fs * (1 - 1e-12)) && ds > fs / p.ks) return false;
     }
   }
-  lp.dn = dn, lp.ds = ds, lp.dn_max = dn_max, lp.ds_max = ds_max;
+  lp.dn = dn, lp.ds = ds, lp.dn_max = dn_max;
   return true;
 }
 
@@ -58,7 +57,7 @@ inline bool lean_update(const CohesiveParams& p, Real dn, Real ds, LeanPoint& lp
 inline CohesiveState full_state(const CohesiveParams& p, const LeanPoint& lp) {
   CohesiveState s;
   s.dn = lp.dn, s.ds = lp.ds;
-  s.dn_max = lp.dn_max, s.ds_max = lp.ds_max;
+  s.dn_max = lp.dn_max;
   s.sn = p.kn * lp.dn, s.ss = p.ks * lp.ds;
   s.work_n = 0.5 * s.sn * s.dn, s.work_s = 0.5 * s.ss * s.ds;
   return s;

@@ -30,7 +30,6 @@ void open_face(joint::JointSet& js, Index j, Real tn, const Vec3& ts) {
   s.dn = tn / p.kn;
   s.ds = ts.norm() / p.ks;
   s.dn_max = std::max<Real>(0.0, s.dn);
-  s.ds_max = s.ds;
   s.sn = p.kn * s.dn, s.ss = p.ks * s.ds;
   for (int g = 0; g < js.npf[j]; ++g) {
     Real* o = &js.offset[4 * (j4 + g)];
