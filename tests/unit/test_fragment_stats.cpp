@@ -1,4 +1,5 @@
-// Fragment statistics read back from a frame (report/fragment_stats) and the montage tiling
+// Fragment statistics read back from a frame (report/fragment_stats), fragments over time
+// from a run's fragments.csv (report/fragment_history) and the montage tiling
 // (render/montage), on data whose answers are known by hand.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,9 +14,11 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.hpp"
 #include "render/montage.hpp"
+#include "report/fragment_history.hpp"
 #include "report/fragment_stats.hpp"
 
 namespace fs = std::filesystem;
@@ -98,6 +101,60 @@ TEST(FragmentStats, RefusesAFrameWithoutWhatItNeedsNamingTheFile) {
   const fs::path frame = write_frame();
   EXPECT_THROW(report::fragment_stats(frame.string(), {3000.0}), Error);
   fs::remove(frame);
+}
+
+// Fragments over time (report/fragment_history), as every run writes them: per frame the
+// count and the largest pieces by rank.
+namespace {
+fs::path write_fragments_csv(const std::string& body) {
+  const fs::path file = fs::temp_directory_path() / ("dspdem_fragcsv_" + std::to_string(::getpid()) + ".csv");
+  std::ofstream(file) << "frame,time,count,rank,id,mass,elements,x,y,z\n" << body;
+  return file;
+}
+}  // namespace
+
+TEST(FragmentHistory, ReadsEachFramesCountAndLargestPiecesInOrder) {
+  const fs::path f = write_fragments_csv(
+      "0,0,1,1,5,10,40,0,0,0\n"
+      "1,2.5e-05,3,1,5,7,28,0.1,0.2,0.3\n"
+      "1,2.5e-05,3,2,9,2.5,10,1,2,3\n"
+      "1,2.5e-05,3,3,4,0.5,2,0,0,0\n");
+  const auto h = report::fragment_history(f.string());
+  fs::remove(f);
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[0].frame, 0);
+  EXPECT_EQ(h[0].count, 1);
+  EXPECT_DOUBLE_EQ(h[0].mass(0), 10.0);
+  EXPECT_DOUBLE_EQ(h[0].mass(1), 0.0);  // not listed: none
+  EXPECT_DOUBLE_EQ(h[1].time, 2.5e-5);
+  EXPECT_EQ(h[1].count, 3);
+  ASSERT_EQ(h[1].largest.size(), 3u);
+  EXPECT_DOUBLE_EQ(h[1].mass(1), 2.5);
+  EXPECT_EQ(h[1].largest[1].elements, 10);
+  EXPECT_DOUBLE_EQ(h[1].largest[1].z, 3.0);
+  EXPECT_EQ(h[1].count_at_least(1.0), 2);  // 7 and 2.5 kg, not 0.5
+  EXPECT_EQ(h[1].count_at_least(2.5), 2);  // at least: the bound itself counts
+}
+
+TEST(FragmentHistory, RefusesFramesOrRanksOutOfOrderNamingFileAndRow) {
+  // A frame listing rank 2 before rank 1, and two runs' files joined (frame 0 again after
+  // frame 1): either way a piece would be read into the wrong frame.
+  const std::pair<const char*, const char*> bad[] = {
+      {"0,0,1,1,5,10,40,0,0,0\n1,2.5e-05,2,2,9,2.5,10,0,0,0\n", "data row 2"},
+      {"0,0,1,1,5,10,40,0,0,0\n1,2.5e-05,1,1,5,10,40,0,0,0\n0,0,1,1,5,10,40,0,0,0\n", "data row 3"}};
+  for (const auto& [body, row] : bad) {
+    const fs::path f = write_fragments_csv(body);
+    std::string what;
+    try {
+      report::fragment_history(f.string());
+    } catch (const Error& e) {
+      what = e.what();
+    }
+    fs::remove(f);
+    EXPECT_NE(what.find(f.string()), std::string::npos) << "not refused, or the file not named: " << what;
+    EXPECT_NE(what.find(row), std::string::npos) << what;
+  }
+  EXPECT_THROW(report::fragment_history((fs::temp_directory_path() / "dspdem_no_such_fragments.csv").string()), Error);
 }
 
 namespace {

@@ -10,6 +10,7 @@
 // - every speed reaches the compared time without a numerical failure, and the energy
 //   balance closes within 1 % of the largest term at every speed (the case's contact radius
 //   of 0.3 inradius keeps pieces' skeletons apart: at 0.1 the 20 m/s run created 2 %);
+// - the pieces over time (fragments.csv) agree with the compared frame's own fragments;
 // - regression: the montage of the three speeds (fragments cut and from outside) within
 //   0.2 % of the pixels of the stored image, so a change that alters the fracture pattern
 //   fails CI.
@@ -55,7 +56,24 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
   // The compared frame is 0.75 ms after the first contact, within half a frame interval.
   for (const auto& q : r)
     EXPECT_LE(std::abs(q.t_compare - q.t_contact - base.t_end), 0.5 * base.frame_interval + 1e-12);
-
+  // The pieces over time (the runs' fragments.csv, written as the solver goes) agree at the
+  // compared frame with the fragments read back from that frame (its cells' volumes times
+  // the density): two independent paths to the same masses (measured within about 1e-10;
+  // bound 1e-6). The history starts within a frame of the first contact and ends at the
+  // compared frame.
+  for (const auto& q : r) {
+    SCOPED_TRACE(fmt::format("{} m/s", q.speed));
+    ASSERT_FALSE(q.history.empty());
+    EXPECT_GE(q.history.front().after_contact, 0.0);
+    EXPECT_LT(q.history.front().after_contact, base.frame_interval);
+    const auto& at = q.history.back();
+    ASSERT_EQ(at.frame, q.frame);
+    EXPECT_NEAR(at.largest, q.fragments.largest_fraction(), 1e-6);
+    EXPECT_NEAR(at.second, q.second_fraction, 1e-6);
+    EXPECT_EQ(at.fragments, q.fragments.count());
+    EXPECT_EQ(at.large_pieces, q.pieces_10pct);
+    EXPECT_TRUE(fs::exists(fs::path(q.run_dir) / "pieces_time.csv"));
+  }
   const fs::path img = out / "images/montage_fragments.png";
   if (testsupport::regenerate_golden(img, "sphere_impact_montage.png")) GTEST_SKIP() << "baseline image regenerated";
   testsupport::expect_golden(img, "sphere_impact_montage.png", "sphere_impact");

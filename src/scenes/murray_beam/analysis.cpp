@@ -4,10 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <map>
 
 #include "core/error.hpp"
 #include "report/crack_sampling.hpp"
+#include "report/fragment_history.hpp"
 #include "report/run_data.hpp"
 
 namespace dspdem {
@@ -108,27 +108,19 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
   const RunSummary& sum = run.summary;
   r.total_mass = sum.total_mass;
   r.fragments = static_cast<int>(sum.fragments);
-  const report::Series fcsv((fs::path(run_dir) / "fragments.csv").string());
-  const auto &ff = fcsv["frame"], &ft = fcsv["time"], &fcount = fcsv["count"], &fm = fcsv["mass"];
-  const auto &fx = fcsv["x"], &fy = fcsv["y"];
-  std::map<int, std::pair<double, std::pair<int, int>>> per_frame;  // frame -> (time, (count, main))
-  const int last = ff.empty() ? -1 : static_cast<int>(ff.back());
-  for (std::size_t i = 0; i < ff.size(); ++i) {
-    auto& e = per_frame[static_cast<int>(ff[i])];
-    e.first = ft[i], e.second.first = static_cast<int>(fcount[i]);
-    if (fm[i] >= MurrayResult::main_piece_fraction * r.total_mass) {
-      ++e.second.second;
-      if (static_cast<int>(ff[i]) == last) r.pieces.push_back({fm[i], fm[i] / r.total_mass, fx[i], fy[i]});
-    }
-  }
-  for (const auto& [frame, e] : per_frame)
-    if (r.t_main5 < 0 && e.second.second >= 5) r.t_main5 = e.first;
+  const auto history = report::fragment_history((fs::path(run_dir) / "fragments.csv").string());
+  const double main_mass = MurrayResult::main_piece_fraction * r.total_mass;
+  for (const auto& f : history)
+    if (r.t_main5 < 0 && f.count_at_least(main_mass) >= 5) r.t_main5 = f.time;
+  if (!history.empty())
+    for (const auto& p : history.back().largest)
+      if (p.mass >= main_mass) r.pieces.push_back({p.mass, p.mass / r.total_mass, p.x, p.y});
   r.main_pieces = static_cast<int>(r.pieces.size());
   if (write_files) {
     std::ofstream f(fs::path(run_dir) / "fragments_time.csv");
     f << "time_ms,fragments,main_pieces\n";
-    for (const auto& [frame, e] : per_frame)
-      f << fmt::format("{:.6g},{},{}\n", 1e3 * e.first, e.second.first, e.second.second);
+    for (const auto& fh : history)
+      f << fmt::format("{:.6g},{},{}\n", 1e3 * fh.time, fh.count, fh.count_at_least(main_mass));
   }
 
   // Cracks: planes of broken joints across the beam, followed from frame to frame. A joint

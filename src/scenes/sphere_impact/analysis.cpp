@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "report/fragment_history.hpp"
 #include "report/run_data.hpp"
 
 namespace dspdem {
@@ -75,12 +76,31 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   for (const auto& m : c.materials) density.push_back(m.density);
   r.fragments = report::fragment_stats(run.frames[static_cast<std::size_t>(r.frame)].file, density);
   r.pieces_1pct = r.fragments.count_at_least(0.01);
-  r.pieces_10pct = r.fragments.count_at_least(0.10);
+  r.pieces_10pct = r.fragments.count_at_least(SphereImpactResult::large_piece_fraction);
   r.second_fraction = r.fragments.count() > 1 ? r.fragments.masses[1] / r.fragments.total_mass : 0.0;
   r.through_crack = r.second_fraction >= SphereImpactResult::through_piece_fraction ||
                     r.fragments.largest_fraction() < SphereImpactResult::intact_fraction;
 
+  // Up to the compared frame only: each run goes on past it by its own allowance for the gap
+  // (over its speed), so later frames would cover a different window at each speed.
+  if (const fs::path fcsv = fs::path(run_dir) / "fragments.csv"; fs::exists(fcsv)) {
+    const double large = SphereImpactResult::large_piece_fraction * r.mass;
+    for (const auto& f : report::fragment_history(fcsv.string())) {
+      if (f.time < r.t_contact || f.frame > r.frame) continue;
+      SphereImpactResult::PiecesAt h{
+          f.frame, f.time - r.t_contact, f.mass(0) / r.mass, f.mass(1) / r.mass, f.count_at_least(large), f.count};
+      if (r.t_two_large < 0 && h.large_pieces >= 2) r.t_two_large = h.after_contact;
+      r.history.push_back(h);
+    }
+  }
+
   if (write_files) {
+    std::ofstream ph(fs::path(run_dir) / "pieces_time.csv");
+    DSPDEM_CHECK(ph.good(), "cannot write '{}/pieces_time.csv'", run_dir);
+    ph << "frame,time_ms,after_contact_ms,fragments,largest,second,large_pieces\n";
+    for (const auto& h : r.history)
+      ph << fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{}\n", h.frame, 1e3 * (h.after_contact + r.t_contact),
+                        1e3 * h.after_contact, h.fragments, h.largest, h.second, h.large_pieces);
     std::ofstream f(fs::path(run_dir) / "sphere_series.csv");
     DSPDEM_CHECK(f.good(), "cannot write '{}/sphere_series.csv'", run_dir);
     f << "time_ms,broken_joints,crack_area_cm2,plate_force_kN,vy_centre,kinetic,elastic,fracture,friction,damping\n";

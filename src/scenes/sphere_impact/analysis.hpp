@@ -23,7 +23,10 @@ struct SphereImpactResult {
   /// (below it, what comes off is crushed material at the contact, not a split sphere), or
   /// when the largest piece holds less than `intact_fraction` (the sphere is crushed).
   static constexpr double through_piece_fraction = 0.01, intact_fraction = 0.9;
-  int pieces_1pct = 0, pieces_10pct = 0;  ///< fragments holding at least 1 % / 10 % of the mass
+  /// A "large piece" holds at least this fraction of the mass (the paper's "a few large
+  /// pieces" at 7.5 m/s: REFERENCE.md, "Not found, and what the case and the scene chose").
+  static constexpr double large_piece_fraction = 0.10;
+  int pieces_1pct = 0, pieces_10pct = 0;  ///< fragments holding at least 1 % / large_piece_fraction of the mass
   bool through_crack = false;             ///< a second piece of at least through_piece_fraction
   double second_fraction = 0;             ///< second largest piece over the mass
   long broken_joints = 0, joints = 0;
@@ -39,6 +42,19 @@ struct SphereImpactResult {
   /// damping (mass/stiffness and contact damping).
   double kinetic_end = 0, elastic_end = 0, fracture = 0, friction = 0, damping = 0;
   double balance_max = 0;
+  /// The break-up frame by frame, from the first frame after the first contact to the
+  /// compared one (the run's fragments.csv; empty for a run older than that file).
+  struct PiecesAt {
+    Index frame = -1;
+    double after_contact = 0;        ///< [s]
+    double largest = 0, second = 0;  ///< over the mass
+    int large_pieces = 0;            ///< of at least large_piece_fraction
+    long fragments = 0;
+  };
+  std::vector<PiecesAt> history;
+  /// First frame of `history` with two large pieces or more, after the first contact [s]; -1:
+  /// none. They may have broken up further by the compared frame.
+  double t_two_large = -1;
   double wall_s = 0, dt = 0;
   long steps = 0, elements = 0;
 };
@@ -46,8 +62,9 @@ struct SphereImpactResult {
 /// Analyses the run in `run_dir` of case `c` at `after_contact` seconds after the sphere
 /// first touched the plate (the frame nearest that time; Error if the run ends before it or
 /// never touches); with `write_files`, writes sphere_series.csv (time in ms, broken joints,
-/// crack area in cm^2, plate force in kN, centre-of-mass vy, energies) and
-/// fragment_masses.csv (the cumulative mass distribution at that frame) there.
+/// crack area in cm^2, plate force in kN, centre-of-mass vy, energies), pieces_time.csv
+/// (`history`: frame, time and time after contact in ms, fragments, largest, second, large
+/// pieces) and fragment_masses.csv (the cumulative mass distribution at that frame) there.
 SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
                                       bool write_files);
 
