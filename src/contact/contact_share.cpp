@@ -11,7 +11,7 @@ namespace dspdem::contact {
 
 namespace {
 // What an owner lends: one element's contact data, its box and its nodes' global numbers.
-constexpr int kHead = 16;  // gid type npe tag material radius kn node_mass fragment fragment_prev lo[3] hi[3]
+constexpr int kHead = 15;  // gid type npe tag material radius kn node_mass fragment lo[3] hi[3]
 }  // namespace
 
 void ContactSystem::take_share(const ContactSystem& whole, const ShareMap& map) {
@@ -98,8 +98,7 @@ void ContactSystem::borrow(const Boxes& own_boxes) {
       std::vector<Real>& o = out[p];
       o.insert(o.end(), {static_cast<Real>(gid_[e]), static_cast<Real>(el.type == CellType::Tet4 ? 0 : 1),
                          static_cast<Real>(el.npe), static_cast<Real>(el.tag), static_cast<Real>(elem_material_[e]),
-                         radius_[e], kn_[e], elem_node_mass_[e], static_cast<Real>(fragment_[e]),
-                         fragment_prev_.empty() ? -1.0 : static_cast<Real>(fragment_prev_[e])});
+                         radius_[e], kn_[e], elem_node_mass_[e], static_cast<Real>(fragment_[e])});
       o.insert(o.end(), &own_boxes.lo[3 * i], &own_boxes.lo[3 * i] + 3);
       o.insert(o.end(), &own_boxes.hi[3 * i], &own_boxes.hi[3 * i] + 3);
       for (int k = 0; k < el.npe; ++k) o.push_back(static_cast<Real>(node_global_[el.conn[k]]));
@@ -155,13 +154,12 @@ void ContactSystem::borrow(const Boxes& own_boxes) {
     outer_faces_.push_back(0);
     surface_.push_back(1);
     fragment_.push_back(static_cast<Index>(r[8]));
-    if (!fragment_prev_.empty()) fragment_prev_.push_back(static_cast<Index>(r[9]));
     skel_off_.push_back(static_cast<Index>(skel_w_.size()));
     skel_w_.insert(skel_w_.end(), r + kHead + npe, r + kHead + npe + npe * npe);
     gid_.push_back(g);
     owner_.push_back(p);
-    lent_boxes_.lo.insert(lent_boxes_.lo.end(), r + 10, r + 13);
-    lent_boxes_.hi.insert(lent_boxes_.hi.end(), r + 13, r + 16);
+    lent_boxes_.lo.insert(lent_boxes_.lo.end(), r + 9, r + 12);
+    lent_boxes_.hi.insert(lent_boxes_.hi.end(), r + 12, r + 15);
   }
   most_lent_ = std::max<long>(most_lent_, static_cast<long>(elems_.size()) - share_elems_);
   // Each lent node comes from the owner of the first lent element using it, which holds it

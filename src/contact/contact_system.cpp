@@ -89,7 +89,6 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   history_.clear(0);
   pairs_.clear(), wall_pairs_.clear();
   born_offset_.clear();
-  fragment_prev_.clear();
   skel_slot_.assign(ne, -1);
   slots_from_map();
   totals_ = {};
@@ -160,8 +159,7 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   const std::vector<PairKey> old_elem_keys(old_keys.begin(), old_keys.begin() + pairs_.size());
   // The lent elements of the last build go; this build lends its own.
   for (auto* a : {&radius_, &kn_, &elem_node_mass_}) a->resize(ne);
-  for (auto* a : {&elem_material_, &skel_off_, &outer_faces_, &gid_, &fragment_prev_})
-    a->resize(std::min<std::size_t>(a->size(), ne));
+  for (auto* a : {&elem_material_, &skel_off_, &outer_faces_, &gid_}) a->resize(std::min<std::size_t>(a->size(), ne));
   elems_.resize(ne), owner_.resize(ne), skel_w_.resize(skel_w_share_);
   surface_.assign(ne, 0);
   for (Index e = 0; e < ne; ++e) surface_[e] = outer_faces_[e] > 0 && skel_off_[e] >= 0;
@@ -237,16 +235,22 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
     for (auto [a, b] : local)
       if (mine(all[a]) || mine(all[b])) pairs_.emplace_back(all[a], all[b]);
   }
-  // Offsets of pairs born overlapping at a split: old ones kept while the pair stays a
-  // candidate (-1 marks the new pairs), new ones measured now.
+  // Offsets of pairs born overlapping: old ones kept while the pair stays a candidate (-1
+  // marks the new pairs), new ones measured now. After the first build a pair comes into
+  // reach at no overlap (the skin), so a new pair that already overlaps was overlapped where
+  // no contact was computed: elements that met at an edge or a vertex of a crack and land in
+  // different pieces, or an element that had no free face until a joint of it failed and
+  // that a foreign piece had reached through its exposed edge or vertex (a contact born
+  // with 208 J of spring energy, 0.74 mm deep, in the sphere at 7.5 m/s 2.27 ms after
+  // contact). At the first build an overlap is the set-up's and pushes.
   const std::vector<PairKey> keys = pair_keys();
   born_offset_ =
       remap_values(born_offset_, old_elem_keys, std::vector<PairKey>(keys.begin(), keys.begin() + pairs_.size()), -1.0);
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     if (born_offset_[p] >= 0) continue;
     born_offset_[p] = 0;
+    if (!built_) continue;
     const auto [ea, eb] = pairs_[p];
-    if (fragment_prev_.empty() || fragment_prev_[ea] != fragment_prev_[eb]) continue;
     touches_.clear();
     find_touches(skeleton_poly(ea, x), radius_[ea], skeleton_poly(eb, x), radius_[eb], touches_);
     Real worst = 0;
@@ -254,7 +258,6 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
     born_offset_[p] = worst;
   }
   if (!built_) refuse_crossed_skeletons(x);
-  fragment_prev_ = fragment_;
   // Walls: linear in the number of surface elements per wall (distributed: those whose
   // pairs this process evaluates).
   wall_pairs_.clear();

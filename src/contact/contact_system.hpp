@@ -128,9 +128,9 @@ class ContactSystem {
   template <class Ar>
   void persist(Ar& ar) {
     ar.parts(walls_, "walls");
-    ar(surface_, surface_list_, fragment_, fragment_prev_, born_offset_, watch_, x_build_, wall_build_, wall_q_build_,
-       failed_seen_, built_, pairs_, wall_pairs_, history_.offset, history_.entry, skel_slot_, totals_, elastic_,
-       wall_power_, fdamp_, fdamp_prev_);
+    ar(surface_, surface_list_, fragment_, born_offset_, watch_, x_build_, wall_build_, wall_q_build_, failed_seen_,
+       built_, pairs_, wall_pairs_, history_.offset, history_.entry, skel_slot_, totals_, elastic_, wall_power_, fdamp_,
+       fdamp_prev_);
     // A distributed run's share also keeps the elements lent at the last build, as they were
     // numbered (the pairs name them), and who sends which of their nodes.
     if (ex_) {
@@ -216,11 +216,11 @@ class ContactSystem {
   std::vector<Real> skel_w_;
   std::vector<Index> outer_faces_;  ///< per element
   std::vector<char> surface_;       ///< per element: candidate
-  std::vector<Index> surface_list_, fragment_, fragment_prev_;
+  std::vector<Index> surface_list_, fragment_;
   /// Per element pair: the overlap its skeletons already had when it became a candidate
-  /// because its piece split (elements that met at an edge or a vertex of the crack; 0 for
-  /// the others). That overlap is not an impact and must not push (it would create
-  /// energy); it shrinks as the pair opens and is dropped when the pair leaves the list.
+  /// after the first build (a piece's split, a joint's failure: see rebuild; 0 for the
+  /// others). That overlap is not an impact and must not push (it would create energy); it
+  /// shrinks as the pair opens and is dropped when the pair leaves the list.
   std::vector<Real> born_offset_;
   std::vector<Wall> walls_;
   std::vector<Index> watch_;      ///< nodes of the candidate elements, ascending
