@@ -158,8 +158,8 @@ void ContactSystem::borrow(const Boxes& own_boxes) {
     skel_w_.insert(skel_w_.end(), r + kHead + npe, r + kHead + npe + npe * npe);
     gid_.push_back(g);
     owner_.push_back(p);
-    lent_boxes_.lo.insert(lent_boxes_.lo.end(), r + 9, r + 12);
-    lent_boxes_.hi.insert(lent_boxes_.hi.end(), r + 12, r + 15);
+    lent_boxes_.lo.insert(lent_boxes_.lo.end(), r + kHead - 6, r + kHead - 3);
+    lent_boxes_.hi.insert(lent_boxes_.hi.end(), r + kHead - 3, r + kHead);
   }
   most_lent_ = std::max<long>(most_lent_, static_cast<long>(elems_.size()) - share_elems_);
   // Each lent node comes from the owner of the first lent element using it, which holds it

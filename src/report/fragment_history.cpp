@@ -29,9 +29,11 @@ std::vector<FragmentFrame> fragment_history(const std::string& fragments_csv) {
       out.push_back(ff);
     }
     FragmentFrame& ff = out.back();
-    DSPDEM_CHECK(static_cast<std::size_t>(rank[i]) == ff.largest.size() + 1,
-                 "'{}', data row {}: frame {} lists rank {} after {} piece(s)", fragments_csv, i + 1, f, rank[i],
-                 ff.largest.size());
+    DSPDEM_CHECK(static_cast<std::size_t>(rank[i]) == ff.largest.size() + 1 && time[i] == ff.time &&
+                     static_cast<long>(count[i]) == ff.count,
+                 "'{}', data row {}: frame {} lists rank {} (t = {:g} s, {} fragments) after {} piece(s) (t = {:g} s, "
+                 "{} fragments)",
+                 fragments_csv, i + 1, f, rank[i], time[i], count[i], ff.largest.size(), ff.time, ff.count);
     ff.largest.push_back({mass[i], static_cast<int>(elements[i]), x[i], y[i], z[i]});
   }
   return out;

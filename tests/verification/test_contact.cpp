@@ -272,17 +272,20 @@ TEST(Contact, VertexSlidingOverAFaceOntoAnEdgeAndOffIsSmoothAndConservative) {
   EXPECT_NEAR((work + U - U0) / U0, 0.0, 1e-3);
 }
 
-// After the first build a pair comes into reach at no overlap: the candidates are rebuilt
-// before anything moves half the skin. So a pair first found already overlapping was
-// overlapped where no contact was computed (an element that had no free face until a joint
-// of it failed, reached through its exposed edge by a foreign piece: a contact born with
-// 208 J, 0.74 mm deep, in the sphere at 7.5 m/s 2.27 ms after contact, the ledger off by
-// 1.4). Such a pair must start from the overlap it has: no energy, no push; it pushes
-// only by what it closes beyond the least overlap it has had since. Here the tip is first
-// far above the cube (no pair), then set down 0.8 R above the cube's skeleton (0.2 R of
-// overlap) in one move; lifted to 0.9 R and set down to 0.8 R again, it must push as a
-// tip pressed 0.1 R in, half the force and a quarter of the energy of a tip that starts
-// 0.8 R above at the first build (an overlap of the set-up, which pushes).
+// After the first build a pair comes into reach with at most one step's approach of
+// overlap: the candidates are rebuilt once anything has moved half the skin. So a pair
+// first found overlapping more was overlapped where no contact was computed (an element
+// that had no free face until a joint of it failed, reached through its exposed edge by a
+// foreign piece: a contact born with 208 J, 0.74 mm deep, in the sphere at 7.5 m/s 2.27 ms
+// after contact, the ledger off by 1.4). Such a pair must start from the overlap it has: no
+// energy, no push; it pushes only by what it closes beyond the least overlap it has had
+// since. The joint's failure is not staged here: the tip is first far above the cube (no
+// pair), then set down 0.8 R above the cube's skeleton (0.2 R of overlap) in one move, a
+// move no run makes, which finds the pair overlapping as that failure does. Slid along the
+// face past half the skin (a rebuild) it keeps its offset; lifted to 0.9 R and set down to
+// 0.8 R again, it must push as a tip pressed 0.1 R in: half the force and a quarter of the
+// energy of a tip that starts 0.8 R above at the first build (an overlap of the set-up,
+// which pushes).
 TEST(Contact, APairFirstFoundOverlappingAfterTheFirstBuildStartsFromItsOverlap) {
   TipOverCube ref(0.0);
   const Real xs = ref.xmax - 0.05;  // over the middle of the top face: a vertex-face pair
@@ -295,6 +298,12 @@ TEST(Contact, APairFirstFoundOverlappingAfterTheFirstBuildStartsFromItsOverlap) 
   s.place(xs, 0.8);
   EXPECT_EQ(s.forces(0.0).norm(), 0) << "a pair first found overlapping pushed";
   EXPECT_EQ(s.U, 0);
+  // Moved along the face by more than half the skin: the candidates are rebuilt, and the
+  // pair keeps its offset through the rebuild.
+  const Index builds = s.m.contact.totals().rebuilds;
+  s.place(xs + 0.02, 0.8);
+  EXPECT_EQ(s.forces(0.0).norm(), 0) << "the offset was lost at a rebuild";
+  EXPECT_GT(s.m.contact.totals().rebuilds, builds);
   s.place(xs, 0.9);
   EXPECT_EQ(s.forces(0.0).norm(), 0);
   s.place(xs, 0.8);

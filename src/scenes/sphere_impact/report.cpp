@@ -133,10 +133,12 @@ std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(c
 // When the sphere came apart, not only whether it had by the compared time: near the
 // splitting speed one mesh's large pieces come free just before the compared time and
 // another's just after it (src/scenes/sphere_impact/REFERENCE.md).
-std::string split_times(const std::vector<SphereImpactResult>& sweep) {
-  std::vector<std::string> split, whole;
+std::string split_times(const std::vector<SphereImpactResult>& sweep, double frame_interval) {
+  std::vector<std::string> split, whole, unknown;
   for (const auto& r : sweep)
-    if (r.t_two_large >= 0)
+    if (r.history.empty())
+      unknown.push_back(fmt::format("{:g}", r.speed));
+    else if (r.t_two_large >= 0)
       split.push_back(fmt::format("{:.3f} ms at {:g} m/s", 1e3 * r.t_two_large, r.speed));
     else
       whole.push_back(fmt::format("{:g}", r.speed));
@@ -145,16 +147,23 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep) {
     for (std::size_t i = 0; i < v.size(); ++i) out += (i == 0 ? "" : i + 1 == v.size() ? " and " : ", ") + v[i];
     return out;
   };
-  std::string s =
-      "The largest piece frame by frame up to the compared time (frames every output interval; per speed: "
-      "`speeds/<v>/pieces_time.csv`). ";
-  if (split.empty()) return s + "No speed has two pieces of at least 10 % of the mass each by the compared time.";
+  std::string s = fmt::format(
+      "The largest piece frame by frame up to the compared time (frames every {:.3g} ms, so a time below is that of "
+      "the first frame to show it; per speed: `speeds/<v>/pieces_time.csv`). ",
+      1e3 * frame_interval);
+  // A run older than fragments.csv has no history: that is not "no split".
+  const std::string none =
+      unknown.empty() ? "" : fmt::format(" No history at {} m/s (a run without fragments.csv).", list(unknown));
+  if (split.empty())
+    return s +
+           (whole.empty() ? "" : "No speed has two pieces of at least 10 % of the mass each by the compared time.") +
+           none;
   s += fmt::format(
       "The first frame with two pieces of at least 10 % of the mass each comes {} after the first contact (they may "
       "have broken up further by the compared time: the table above has the count then)",
       list(split));
   if (!whole.empty()) s += fmt::format("; at {} m/s there is none by the compared time", list(whole));
-  return s + ".";
+  return s + "." + none;
 }
 
 }  // namespace
@@ -392,7 +401,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<std::string> failed;
     std::ofstream csv(fs::path(dir) / "orientations.csv");
     csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
-           "paper_pattern,two_large_after_contact_ms\n";  // -1: not by the compared time
+           "paper_pattern,two_large_after_contact_ms\n";  // -1: not by the compared time; nan: no history
     std::vector<std::vector<std::string>> rows_o;
     for (std::size_t si = 0; si < speeds.size(); ++si) {
       std::vector<std::size_t> runs = {si};
@@ -411,12 +420,16 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         largest += fmt::format("{}{}: {:.2f}", n ? ", " : "", o, r.fragments.largest_fraction());
         pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
         split += fmt::format("{}{}: {}", n ? ", " : "", o,
-                             r.t_two_large >= 0 ? fmt::format("{:.3f}", 1e3 * r.t_two_large) : std::string("-"));
+                             r.history.empty()    ? std::string("?")
+                             : r.t_two_large >= 0 ? fmt::format("{:.3f}", 1e3 * r.t_two_large)
+                                                  : std::string("-"));
         ++n;
         csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{:.3f}\n", r.speed, o, r.elements,
                            r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
                            r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
-                           r.t_two_large >= 0 ? 1e3 * r.t_two_large : -1.0);
+                           r.history.empty()    ? NAN
+                           : r.t_two_large >= 0 ? 1e3 * r.t_two_large
+                                                : -1.0);
       }
       rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
                         fmt::format("{} of {}", through, n), pieces.empty() ? "-" : pieces,
@@ -438,7 +451,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
     doc.table(
         {"speed [m/s]", "paper", "runs", "through crack", "pieces >= 10 %, by orientation", "largest, by orientation",
-         "two pieces >= 10 % first [ms after contact; -: not by the compared time], by orientation",
+         "two pieces >= 10 % first [ms after contact; -: not by the compared time; ?: no history], by orientation",
          "matches the paper"},
         rows_o);
   }
@@ -454,7 +467,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   doc.figure("cumulative fragment mass distribution", "images/fragment_masses.png");
   doc.section("Cracks, pieces and contact force over time");
   doc.figures({{"crack area", "images/crack_area.png"}, {"plate force", "images/plate_force.png"}});
-  doc.para(split_times(sweep));
+  doc.para(split_times(sweep, c.frame_interval));
   doc.figure("largest piece against time", "images/largest_piece.png");
   doc.section("Where the impact energy went");
   std::vector<std::vector<std::string>> en;
