@@ -159,8 +159,8 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
            (whole.empty() ? "" : "No speed has two pieces of at least 10 % of the mass each by the compared time.") +
            none;
   s += fmt::format(
-      "The first frame with two pieces of at least 10 % of the mass each comes {} after the first contact (they may "
-      "have broken up further by the compared time: the table above has the count then)",
+      "First frame with two pieces of at least 10 % of the mass each, after the first contact: {} (they may have "
+      "broken up further by the compared time: the table above has the count then)",
       list(split));
   if (!whole.empty()) s += fmt::format("; at {} m/s there is none by the compared time", list(whole));
   return s + "." + none;
