@@ -89,7 +89,6 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
       if (f.time < r.t_contact || f.frame > r.frame) continue;
       SphereImpactResult::PiecesAt h{
           f.frame, f.time - r.t_contact, f.mass(0) / r.mass, f.mass(1) / r.mass, f.count_at_least(large), f.count};
-      if (r.t_two_large < 0 && h.large_pieces >= 2) r.t_two_large = h.after_contact;
       r.history.push_back(h);
     }
   }

@@ -54,7 +54,11 @@ struct SphereImpactResult {
   std::vector<PiecesAt> history;
   /// First frame of `history` with two large pieces or more, after the first contact [s]; -1:
   /// none. They may have broken up further by the compared frame.
-  double t_two_large = -1;
+  double t_two_large() const {
+    for (const auto& h : history)
+      if (h.large_pieces >= 2) return h.after_contact;
+    return -1;
+  }
   double wall_s = 0, dt = 0;
   long steps = 0, elements = 0;
 };

@@ -130,6 +130,14 @@ std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(c
   return breaks;
 }
 
+// The first frame with two large pieces, in ms after the first contact: "-" when none by
+// the compared time, `unknown` for a run without history (older than fragments.csv).
+std::string two_large_ms(const SphereImpactResult& r, const char* unknown) {
+  if (r.history.empty()) return unknown;
+  const double t = r.t_two_large();
+  return t >= 0 ? fmt::format("{:.3f}", 1e3 * t) : std::string("-");
+}
+
 // When the sphere came apart, not only whether it had by the compared time: near the
 // splitting speed one mesh's large pieces come free just before the compared time and
 // another's just after it (src/scenes/sphere_impact/REFERENCE.md).
@@ -138,8 +146,8 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
   for (const auto& r : sweep)
     if (r.history.empty())
       unknown.push_back(fmt::format("{:g}", r.speed));
-    else if (r.t_two_large >= 0)
-      split.push_back(fmt::format("{:.3f} ms at {:g} m/s", 1e3 * r.t_two_large, r.speed));
+    else if (r.t_two_large() >= 0)
+      split.push_back(fmt::format("{} ms at {:g} m/s", two_large_ms(r, ""), r.speed));
     else
       whole.push_back(fmt::format("{:g}", r.speed));
   auto list = [](const std::vector<std::string>& v) {
@@ -419,17 +427,14 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         through += r.through_crack, met += pattern_met(r);
         largest += fmt::format("{}{}: {:.2f}", n ? ", " : "", o, r.fragments.largest_fraction());
         pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
-        split += fmt::format("{}{}: {}", n ? ", " : "", o,
-                             r.history.empty()    ? std::string("?")
-                             : r.t_two_large >= 0 ? fmt::format("{:.3f}", 1e3 * r.t_two_large)
-                                                  : std::string("-"));
+        split += fmt::format("{}{}: {}", n ? ", " : "", o, two_large_ms(r, "?"));
         ++n;
-        csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{:.3f}\n", r.speed, o, r.elements,
-                           r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
-                           r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
-                           r.history.empty()    ? NAN
-                           : r.t_two_large >= 0 ? 1e3 * r.t_two_large
-                                                : -1.0);
+        // -1: none by the compared time; nan: no history.
+        const std::string t2 = two_large_ms(r, "nan");
+        csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{}\n", r.speed, o, r.elements, r.fragments.count(),
+                           r.fragments.single_element(), r.pieces_10pct, r.fragments.largest_fraction(),
+                           r.second_fraction, int(r.through_crack), int(pattern_met(r)),
+                           t2 == "-" ? std::string("-1.000") : t2);
       }
       rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
                         fmt::format("{} of {}", through, n), pieces.empty() ? "-" : pieces,
