@@ -24,7 +24,8 @@ void ContactSystem::take_share(const ContactSystem& whole, const ShareMap& map) 
   materials_ = whole.materials_;
   any_damping_ = whole.any_damping_;
   walls_ = whole.walls_;
-  skin_ = whole.skin_;  // the whole model's: the same skin, so the same rebuilds
+  skin_ = whole.skin_;      // the whole model's: the same skin, so the same rebuilds
+  joined_ = whole.joined_;  // in global numbers, as the pairs are looked up
   setup_error_ = whole.setup_error_;
   // Global -> local node (the share's nodes are numbered own first, then ghosts).
   std::map<Index, Index> g2l;
@@ -226,10 +227,14 @@ ContactSystem::ShareLoad ContactSystem::share_load() const {
 void ContactSystem::reduce_step() {
   std::vector<Real> mine{static_cast<Real>(totals_.contacts), totals_.max_overlap, static_cast<Real>(totals_.deepest_a),
                          static_cast<Real>(totals_.deepest_b), static_cast<Real>(totals_.deepest_wall)};
+  for (const BornOverlaps* b : {&born_own_.split, &born_own_.unseen, &born_own_.wall})
+    mine.insert(mine.end(), {b->energy, b->max_ratio, static_cast<Real>(b->pairs)});
+  constexpr std::size_t kTotals = 14;  // the numbers above; the wall records follow
   mine.insert(mine.end(), wall_rec_.begin(), wall_rec_.end());
   const std::vector<std::vector<Real>> all = ex_->all_gather(mine);
   totals_.contacts = 0;
   totals_.max_overlap = 0;
+  totals_.born = {};
   std::vector<const Real*> rec;
   for (const std::vector<Real>& a : all) {
     totals_.contacts += static_cast<Index>(a[0]);
@@ -239,7 +244,14 @@ void ContactSystem::reduce_step() {
       totals_.deepest_b = static_cast<std::size_t>(a[3]);
       totals_.deepest_wall = static_cast<std::int64_t>(a[4]);
     }
-    for (std::size_t k = 5; k + 8 <= a.size(); k += 8) rec.push_back(&a[k]);
+    // Added in rank order: the same sum on every process (it differs from the one-process
+    // run's in the last bits at most; the counts and maxima are the same).
+    for (auto [b, k] : {std::pair{&totals_.born.split, std::size_t{5}}, std::pair{&totals_.born.unseen, std::size_t{8}},
+                        std::pair{&totals_.born.wall, std::size_t{11}}}) {
+      b->energy += a[k], b->max_ratio = std::max(b->max_ratio, a[k + 1]);
+      b->pairs += static_cast<std::int64_t>(a[k + 2]);
+    }
+    for (std::size_t k = kTotals; k + 8 <= a.size(); k += 8) rec.push_back(&a[k]);
   }
   std::stable_sort(rec.begin(), rec.end(),
                    [](const Real* a, const Real* b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); });

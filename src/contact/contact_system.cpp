@@ -92,6 +92,10 @@ void ContactSystem::setup(const Mesh& mesh, const joint::JointSet& js, const std
   skel_slot_.assign(ne, -1);
   slots_from_map();
   totals_ = {};
+  born_own_ = {};
+  joined_.clear();
+  for (Index j = 0; j < js.size(); ++j) joined_.push_back(PairKey(std::minmax(js.ea[j], js.eb[j])));
+  std::sort(joined_.begin(), joined_.end());
   ex_ = nullptr;
   n_local_nodes_ = own_nodes_ = mesh.n_nodes();
   share_elems_ = global_elems_ = ne;
@@ -259,9 +263,18 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
     const auto [ea, eb] = pairs_[p];
     touches_.clear();
     find_touches(skeleton_poly(ea, x), radius_[ea], skeleton_poly(eb, x), radius_[eb], touches_);
-    Real worst = 0;
-    for (const Touch& t : touches_) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
+    const Real R = radius_[ea] + radius_[eb], kn = pair_params(ea, eb, nullptr).kn;
+    Real worst = 0, energy = 0;
+    for (const Touch& t : touches_) {
+      const Real o = R - t.d;
+      worst = std::max(worst, o);
+      if (o > 0) energy += t.weight * 0.5 * kn * o * o;
+    }
     born_offset_[p] = worst;
+    if (worst > 0 && counts(ea)) {
+      const bool joined = std::binary_search(joined_.begin(), joined_.end(), PairKey(std::minmax(gid_[ea], gid_[eb])));
+      (joined ? born_own_.split : born_own_.unseen).add(energy, worst / R);
+    }
   }
   if (!built_) refuse_crossed_skeletons(x);
   // Walls: linear in the number of surface elements per wall (distributed: those whose
@@ -303,6 +316,29 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
         hit = (lo.array() <= whi.array()).all() && (wlo.array() <= hi.array()).all();
       }
       if (hit) wall_pairs_.emplace_back(static_cast<Index>(w), surface_list_[i]);
+    }
+  }
+  if (built_) {
+    // New wall pairs that overlap already push with it (no offset), and are counted.
+    const std::vector<PairKey> new_keys = pair_keys();
+    const std::vector<PairKey> old_wall(old_keys.begin() + static_cast<long>(old_elem_keys.size()), old_keys.end());
+    const std::vector<Real> seen =
+        remap_values(std::vector<Real>(old_wall.size(), 1.0), old_wall,
+                     std::vector<PairKey>(new_keys.begin() + pairs_.size(), new_keys.end()), -1.0);
+    for (std::size_t q = 0; q < wall_pairs_.size(); ++q) {
+      const auto [w, e] = wall_pairs_[q];
+      if (seen[q] > 0 || !counts(e)) continue;
+      const Wall& wl = walls_[w];
+      wall_touches(wl, skeleton_poly(e, x), radius_[e], touches_);
+      const Real R = radius_[e] + (wl.type == Wall::Type::Cylinder ? wl.radius : 0.0);
+      const Real kn = pair_params(e, -1, &wl).kn;
+      Real worst = 0, energy = 0;
+      for (const Touch& t : touches_) {
+        const Real o = R - t.d;
+        worst = std::max(worst, o);
+        if (o > 0) energy += t.weight * 0.5 * kn * o * o;
+      }
+      if (worst > 0) born_own_.wall.add(energy, worst / R);
     }
   }
   watch_.clear();
@@ -574,17 +610,21 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   }
   const auto [w, e] = wall_pairs_[p - npair];
   const Wall& wl = walls_[w];
-  const Poly& A = cached(e);
-  if (wl.type == Wall::Type::Plane)
-    find_plane_touches(A, radius_[e], wl.centre, wl.plane_normal(), touches);
-  else if (wl.type == Wall::Type::Jaw)
-    find_jaw_touches(A, radius_[e], wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle, touches);
-  else if (wl.type == Wall::Type::Cylinder)
-    find_touches(A, radius_[e], wl.axis_poly(), wl.radius, touches);
-  else
-    find_touches(A, radius_[e], wl.box_poly(), 0.0, touches);
+  wall_touches(wl, cached(e), radius_[e], touches);
   for (const Touch& t : touches)
     if (evaluate(p, e, -1 - w, &wl, t, x, v, dt, 0.0, o)) out.push_back(o);
+}
+
+void ContactSystem::wall_touches(const Wall& wl, const Poly& A, Real r, std::vector<Touch>& out) {
+  out.clear();
+  if (wl.type == Wall::Type::Plane)
+    find_plane_touches(A, r, wl.centre, wl.plane_normal(), out);
+  else if (wl.type == Wall::Type::Jaw)
+    find_jaw_touches(A, r, wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle, out);
+  else if (wl.type == Wall::Type::Cylinder)
+    find_touches(A, r, wl.axis_poly(), wl.radius, out);
+  else
+    find_touches(A, r, wl.box_poly(), 0.0, out);
 }
 
 void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f) {
@@ -696,6 +736,7 @@ Real ContactSystem::stable_dt(Index* element) const {
 
 ContactTotals ContactSystem::totals() const {
   ContactTotals t = totals_;
+  if (!ex_) t.born = born_own_;  // else reduce_step's
   t.elastic = elastic_;
   t.pairs = static_cast<Index>(pairs_.size() + wall_pairs_.size());
   for (const Wall& w : walls_) t.wall_kinetic += w.kinetic_energy();

@@ -22,6 +22,7 @@
 // energy and wall force is counted by the owner of its first element; the wall forces are
 // gathered and added in the one-process order on every process, so walls move alike.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +39,25 @@
 
 namespace dspdem::contact {
 
+/// Pairs first found overlapping at a rebuild after the first (ContactSystem::rebuild): how
+/// many so far, the normal spring energy their overlaps held when found, and the largest
+/// overlap / (r_a + r_b).
+struct BornOverlaps {
+  Real energy = 0, max_ratio = 0;
+  std::int64_t pairs = 0;  // 64 bits: no padding in checkpoints
+  void add(Real e, Real ratio) { energy += e, max_ratio = std::max(max_ratio, ratio), ++pairs; }
+};
+/// Element pairs start from such an overlap (forgiven: no push, no energy); wall pairs push
+/// with it. `split`: the two elements had a joint between them, whose failure split them;
+/// the overlap is that joint's compression (its energy is booked with the joint). `unseen`:
+/// no joint between them, so no contact computed that overlap (an element reached through
+/// an edge or vertex before a joint of it failed, or two parts of one piece): a run whose
+/// unseen or wall energy is a sizeable part of its ledger hides an error the balance
+/// cannot show.
+struct BornTotals {
+  BornOverlaps split, unseen, wall;
+};
+
 struct ContactTotals {
   Real elastic = 0;       ///< stored in the springs now [J]
   Real friction = 0;      ///< dissipated by sliding so far [J]
@@ -48,6 +68,7 @@ struct ContactTotals {
   Real max_overlap = 0;  ///< largest overlap / (r_a + r_b) in the last evaluation (> 1: skeletons cross)
   std::size_t deepest_a = 0, deepest_b = 0;  ///< element tags of that contact (deepest_b 0: a wall)
   std::int64_t deepest_wall = -1;            ///< the wall's index when it is one (64 bits: no padding in checkpoints)
+  BornTotals born;                           ///< pairs first found overlapping (a distributed run: all processes')
 };
 
 class ContactSystem {
@@ -130,7 +151,7 @@ class ContactSystem {
     ar.parts(walls_, "walls");
     ar(surface_, surface_list_, fragment_, born_offset_, watch_, x_build_, wall_build_, wall_q_build_, failed_seen_,
        built_, pairs_, wall_pairs_, history_.offset, history_.entry, skel_slot_, totals_, elastic_, wall_power_, fdamp_,
-       fdamp_prev_);
+       fdamp_prev_, born_own_);
     // A distributed run's share also keeps the elements lent at the last build, as they were
     // numbered (the pairs name them), and who sends which of their nodes.
     if (ex_) {
@@ -247,6 +268,14 @@ class ContactSystem {
   std::vector<Index> rec_off_, rec_n_;        ///< per pair: where, how many
   std::vector<Touch> touches_;                ///< scratch of the serial paths (rebuild)
   ContactTotals totals_;
+  /// The pairs first found overlapping that this process counts (counts()); totals() gives
+  /// all processes' (reduce_step).
+  BornTotals born_own_;
+  /// The element pairs with a joint between them (global numbers, first < second, sorted):
+  /// what tells a split's overlap from an unseen one.
+  std::vector<PairKey> joined_;
+  /// The touches of element e's skeleton A with wall wl.
+  static void wall_touches(const Wall& wl, const Poly& A, Real r, std::vector<Touch>& out);
   Real elastic_ = 0, wall_power_ = 0;
   /// Viscous contact forces on the nodes, this and the last evaluation: the dissipation is
   /// booked as their trapezoidal work over the drift, as the integrator books external work.

@@ -74,6 +74,13 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   j["largest_fragment_masses"] = masses;
   j["element_steps_per_s"] = num(s.element_steps_per_s);
   j["energy"] = e;
+  if (s.born_split.pairs >= 0) {
+    auto born = [](const BornOverlapSummary& b) {
+      return nlohmann::ordered_json{{"pairs", b.pairs}, {"energy", num(b.energy)}, {"max_ratio", num(b.max_ratio)}};
+    };
+    j["contacts_born_overlapping"] = {
+        {"split", born(s.born_split)}, {"unseen", born(s.born_unseen)}, {"walls", born(s.born_wall)}};
+  }
   write_file_atomic(path, j.dump(2) + "\n");
 }
 
@@ -131,6 +138,17 @@ RunSummary read_run_summary(const std::string& path) {
   get(*ej, "friction", e.friction, path);
   get(*ej, "contact_damping", e.contact_damping, path);
   get(*ej, "balance_error", e.balance_error, path);
+  // Not in runs without contact, nor in run folders written before it was recorded.
+  if (const auto bj = j.find("contacts_born_overlapping"); bj != j.end()) {
+    for (auto [key, b] :
+         {std::pair{"split", &s.born_split}, std::pair{"unseen", &s.born_unseen}, std::pair{"walls", &s.born_wall}}) {
+      const auto o = bj->find(key);
+      if (o == bj->end() || !o->is_object()) fail("'{}': no object 'contacts_born_overlapping.{}'", path, key);
+      get(*o, "pairs", b->pairs, path);
+      get(*o, "energy", b->energy, path);
+      get(*o, "max_ratio", b->max_ratio, path);
+    }
+  }
   return s;
 }
 

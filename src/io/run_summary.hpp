@@ -3,6 +3,7 @@
 // another. Unknown keys in a file are ignored (newer writers), missing ones are an error
 // naming the file and key.
 #pragma once
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,15 @@ struct EnergySummary {
   double joint_elastic = 0, fracture_I = 0, fracture_II = 0;
   double contact_elastic = 0, friction = 0, contact_damping = 0;
   double balance_error = 0;
+};
+
+/// Contact pairs first found overlapping at a rebuild after the first
+/// (contact/contact_system.hpp, BornOverlaps): how many, the spring energy of their overlaps
+/// when found [J], the largest overlap / (r_a + r_b). Unknown (pairs -1, the rest NaN) in
+/// runs without contact and in run folders written before they were recorded.
+struct BornOverlapSummary {
+  long pairs = -1;
+  double energy = std::nan(""), max_ratio = std::nan("");
 };
 
 struct RunSummary {
@@ -37,6 +47,9 @@ struct RunSummary {
   std::vector<double> largest_fragment_masses;  ///< the ten largest, descending [kg]
   double element_steps_per_s = 0;
   EnergySummary energy;
+  /// Element pairs that had a joint between them, element pairs that had none (both start
+  /// from that overlap), wall pairs (they push with it).
+  BornOverlapSummary born_split, born_unseen, born_wall;
 };
 
 /// Writes `s` as JSON to `path` (atomically: a temporary file, then rename).

@@ -20,10 +20,10 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  // 7: no previous fragment ids in the contacts' state (6: no largest slip in the joints'
-  // states; 5: the contacts' spring energies; 4: the integrator's step; 3: processes and
-  // rank; 2: the deepest contact)
-  int format = 7;
+  // 8: the contacts' pairs first found overlapping (7: no previous fragment ids in the
+  // contacts' state; 6: no largest slip in the joints' states; 5: the contacts' spring
+  // energies; 4: the integrator's step; 3: processes and rank; 2: the deepest contact)
+  int format = 8;
   std::string build;              ///< dspdem version, commit, compiler and build type
   std::string case_path;          ///< absolute path of the case file
   std::vector<std::string> sets;  ///< the run's --set overrides

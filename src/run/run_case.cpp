@@ -118,7 +118,10 @@ class Series {
     if (append) return;
     f_ << "time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,"
           "crack_area";
-    if (m.contact.enabled()) f_ << ",contact_elastic,friction,contact_damping,contacts";
+    // born_*_energy: the spring energy of pairs first found overlapping after the first build,
+    // so far (contact/contact_system.hpp, BornTotals).
+    if (m.contact.enabled())
+      f_ << ",contact_elastic,friction,contact_damping,contacts,born_split_energy,born_unseen_energy,born_wall_energy";
     f_ << ",balance_error";  // monitors follow this column (dspdem render plots each)
     for (const auto& w : m.contact.walls()) {
       f_ << ',' << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
@@ -133,9 +136,12 @@ class Series {
     f_ << fmt::format("{:.10g},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{:.10g}", it.time(),
                       it.steps(), e.kinetic, e.internal, e.external_work, e.damping, e.joint_elastic, e.fracture_I,
                       e.fracture_II, e.broken_joints, e.crack_area);
-    if (m.contact.enabled())
-      f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{}", e.contact_elastic, e.friction, e.contact_damping,
-                        m.contact.totals().contacts);
+    if (m.contact.enabled()) {
+      const contact::ContactTotals ct = m.contact.totals();
+      f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{},{:.6g},{:.6g},{:.6g}", e.contact_elastic, e.friction,
+                        e.contact_damping, ct.contacts, ct.born.split.energy, ct.born.unseen.energy,
+                        ct.born.wall.energy);
+    }
     f_ << fmt::format(",{:.4g}", e.balance_error());
     for (const auto& w : m.contact.walls()) {
       f_ << fmt::format(",{:.10g},{:.10g},{:.10g}", w.force(0), w.force(1), w.force(2));
@@ -500,6 +506,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     s.element_steps_per_s = s.wall_s > 0 ? static_cast<double>(it.steps()) * whole_elements / s.wall_s : 0.0;
     s.energy = {e.kinetic,    e.internal,    e.external_work,   e.damping,  e.initial,         e.joint_elastic,
                 e.fracture_I, e.fracture_II, e.contact_elastic, e.friction, e.contact_damping, e.balance_error()};
+    if (model.contact.enabled()) {
+      const contact::ContactTotals ct = model.contact.totals();
+      auto born = [](const contact::BornOverlaps& b) {
+        return BornOverlapSummary{static_cast<long>(b.pairs), b.energy, b.max_ratio};
+      };
+      s.born_split = born(ct.born.split), s.born_unseen = born(ct.born.unseen), s.born_wall = born(ct.born.wall);
+    }
     write_run_summary((fs::path(dir) / "summary.json").string(), s);
   };
 

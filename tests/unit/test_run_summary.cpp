@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "core/error.hpp"
 #include "io/run_summary.hpp"
@@ -21,6 +23,7 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   s.largest_fragment_masses = {1.4, 1.3, 0.15};
   s.element_steps_per_s = 4.5e6;
   s.energy.kinetic = 1.5, s.energy.fracture_I = 0.25, s.energy.balance_error = NAN;
+  s.born_split = {7, 0.125, 0.4}, s.born_unseen = {1, 2.5, 0.3}, s.born_wall = {0, 0.0, 0.0};
   const fs::path p = fs::temp_directory_path() / "dspdem_summary_roundtrip.json";
   write_run_summary(p.string(), s);
   const RunSummary r = read_run_summary(p.string());
@@ -35,6 +38,38 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   EXPECT_EQ(r.largest_fragment_masses, s.largest_fragment_masses);
   EXPECT_EQ(r.energy.fracture_I, 0.25);
   EXPECT_TRUE(std::isnan(r.energy.balance_error));  // written as null, never as "nan"
+  EXPECT_EQ(r.born_split.pairs, 7);
+  EXPECT_EQ(r.born_split.energy, 0.125);
+  EXPECT_EQ(r.born_split.max_ratio, 0.4);
+  EXPECT_EQ(r.born_unseen.pairs, 1);
+  EXPECT_EQ(r.born_unseen.energy, 2.5);
+  EXPECT_EQ(r.born_wall.pairs, 0);
+}
+
+// A run without contact, or a run folder written before the pairs first found overlapping
+// were recorded, has no such object: they read as unknown. A half-written one is named.
+TEST(RunSummary, PairsFoundOverlappingAreUnknownWhenNotWrittenAndNamedWhenBroken) {
+  RunSummary s;
+  s.case_name = "c", s.status = "completed";
+  const fs::path p = fs::temp_directory_path() / "dspdem_summary_born.json";
+  write_run_summary(p.string(), s);
+  RunSummary r = read_run_summary(p.string());
+  EXPECT_EQ(r.born_split.pairs, -1);
+  EXPECT_TRUE(std::isnan(r.born_unseen.energy));
+  EXPECT_EQ(r.born_wall.pairs, -1);
+  std::ifstream in(p);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  ASSERT_EQ(text.find("contacts_born_overlapping"), std::string::npos);
+  const std::size_t end = text.rfind('}');
+  text.insert(end, ", \"contacts_born_overlapping\": {\"split\": {\"pairs\": 1, \"energy\": 2.0, \"max_ratio\": 0.1}}");
+  std::ofstream(p) << text;
+  try {
+    read_run_summary(p.string());
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("contacts_born_overlapping.unseen"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RunSummary, AMissingKeyOrBrokenFileIsNamed) {

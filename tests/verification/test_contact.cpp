@@ -298,6 +298,13 @@ TEST(Contact, APairFirstFoundOverlappingAfterTheFirstBuildStartsFromItsOverlap) 
   s.place(xs, 0.8);
   EXPECT_EQ(s.forces(0.0).norm(), 0) << "a pair first found overlapping pushed";
   EXPECT_EQ(s.U, 0);
+  // Recorded: one pair, its overlap 0.2 of the radii, the energy the tip pressed in so at
+  // the first build stores (the same touch and law).
+  const contact::ContactTotals t = s.m.contact.totals();
+  EXPECT_EQ(t.born.unseen.pairs, 1);  // no joint between the tip and the cube
+  EXPECT_NEAR(t.born.unseen.max_ratio, 0.2, 1e-9);
+  EXPECT_NEAR(t.born.unseen.energy, U_ref, 1e-9 * U_ref);
+  EXPECT_EQ(t.born.split.pairs, 0);
   // Moved along the face by more than half the skin: the candidates are rebuilt, and the
   // pair keeps its offset through the rebuild.
   const Index builds = s.m.contact.totals().rebuilds;

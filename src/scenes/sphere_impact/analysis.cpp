@@ -71,6 +71,8 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   r.fracture = at_k("fracture_I") + at_k("fracture_II");
   r.friction = at_k("friction");
   r.damping = at_k("damping") + at_k("contact_damping");
+  if (s.has("born_unseen_energy")) r.born_unseen_energy = s["born_unseen_energy"][k];
+  if (s.has("born_wall_energy")) r.born_wall_energy = s["born_wall_energy"][k];
 
   std::vector<double> density;
   for (const auto& m : c.materials) density.push_back(m.density);

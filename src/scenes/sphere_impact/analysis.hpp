@@ -3,6 +3,7 @@
 // the plate and where the impact energy went. Used by `dspdem report` for this scene, once
 // per speed of the sweep and per row of the study.
 #pragma once
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct SphereImpactResult {
   /// damping (mass/stiffness and contact damping).
   double kinetic_end = 0, elastic_end = 0, fracture = 0, friction = 0, damping = 0;
   double balance_max = 0;
+  /// Spring energy of the contact pairs first found overlapping after the first build, up to
+  /// the compared time [J] (series.csv; NaN for a run older than those columns): element
+  /// pairs without a joint between them (an overlap no contact computed, forgiven) and wall
+  /// pairs (they push with it). contact/contact_system.hpp, BornTotals.
+  double born_unseen_energy = std::nan(""), born_wall_energy = std::nan("");
   /// The break-up frame by frame, from the first frame after the first contact to the
   /// compared one (the run's fragments.csv; empty for a run older than that file).
   struct PiecesAt {

@@ -1,0 +1,217 @@
+// Contact pairs first found overlapping after the first build, staged as a run makes them: an
+// element with no free face, reached through an edge it has on the surface, becomes a
+// contact candidate when one of its joints fails. Its pair with an element of another piece
+// must start from the overlap it has (no push, no energy), and the run must record it
+// (ContactTotals::born, as unseen: no joint between the two); a wall pair found so pushes, and
+// is recorded too.
+//
+// The body is a cube cut into five tetrahedra: four corner ones, and a central one whose
+// faces are all inside the cube but whose six edges are the diagonals of the cube's faces.
+// Before the failure the corner tetrahedra that own the surface faces meet whatever presses
+// on such a diagonal (they share the edge): the contact there is not missed, only the
+// central element's pair is. That is why forgiving the central element's overlap is right.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "joint/cohesive_law.hpp"
+#include "support/run_helpers.hpp"
+#include "support/scene.hpp"
+
+using namespace dspdem;
+using namespace dspdem::testsupport;
+
+namespace {
+constexpr Real kE = 1e7, kNu = 0.25, kRho = 1000, kSide = 0.1;
+
+/// The cube [0, a]^3 as five tetrahedra: the central one first (element 0), then the corner
+/// ones at (a,0,0), (0,a,0), (0,0,a), (a,a,a). Node i + 2 j + 4 k sits at (i, j, k) a.
+Mesh five_tet_cube(Real a) {
+  Mesh m;
+  m.source = "five_tet_cube";
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+        m.x.insert(m.x.end(), {i * a, j * a, k * a}), m.node_tag.push_back(m.node_tag.size() + 1);
+  const Index tets[5][4] = {{0, 3, 5, 6}, {1, 0, 3, 5}, {2, 0, 3, 6}, {4, 0, 5, 6}, {7, 3, 5, 6}};
+  ElementBlock b{CellType::Tet4, {}, {}};
+  for (const auto& t : tets) {
+    Index c[4] = {t[0], t[1], t[2], t[3]};
+    if (tet4_volume(node_pos(m.x, c[0]), node_pos(m.x, c[1]), node_pos(m.x, c[2]), node_pos(m.x, c[3])) < 0)
+      std::swap(c[2], c[3]);
+    b.conn.insert(b.conn.end(), c, c + 4);
+    b.tag.push_back(b.tag.size() + 1);
+  }
+  m.blocks = {b, ElementBlock{CellType::Hex8, {}, {}}};
+  return m;
+}
+
+/// A tetrahedron with its tip (node 0) pointing down.
+Mesh tip_down(Real s, Real h) {
+  Mesh m;
+  m.source = "tip_down";
+  const Vec3 p[4] = {Vec3(0, 0, 0), Vec3(-s, -s, h), Vec3(s, -s, h), Vec3(0, s, h)};
+  for (const Vec3& q : p) m.x.insert(m.x.end(), {q(0), q(1), q(2)}), m.node_tag.push_back(m.node_tag.size() + 1);
+  ElementBlock t{CellType::Tet4, {0, 1, 2, 3}, {1}};
+  if (tet4_volume(p[0], p[1], p[2], p[3]) < 0) std::swap(t.conn[2], t.conn[3]);
+  m.blocks = {t, ElementBlock{CellType::Hex8, {}, {}}};
+  return m;
+}
+
+CaseConfig fracturable_contact_case() {
+  CaseConfig c = simple_case(kE, kNu, kRho);
+  make_fracturable(c, 1e5, 10, 1e5, 30, 10);
+  c.contact.enabled = true;
+  c.contact_materials = {contact::ContactMaterial{}};
+  return c;
+}
+
+/// The joint between elements a and b.
+Index joint_between(const joint::JointSet& js, Index a, Index b) {
+  for (Index j = 0; j < js.size(); ++j)
+    if ((js.ea[j] == a && js.eb[j] == b) || (js.ea[j] == b && js.eb[j] == a)) return j;
+  return -1;
+}
+
+/// Fails joint j as the joint update does (broken, listed as failed).
+void fail_joint(joint::JointSet& js, Index j) {
+  js.status[j] = joint::JointStatus::Broken;
+  js.failed.push_back(j);
+}
+
+/// Whether the candidate pairs hold (a, b) either way round.
+bool has_pair(const contact::ContactSystem& cs, Index a, Index b) {
+  for (auto [p, q] : cs.pairs())
+    if ((p == a && q == b) || (p == b && q == a)) return true;
+  return false;
+}
+
+/// The deepest overlap of elements a and b at x, over r_a + r_b (<= 0: apart).
+Real overlap_ratio(const contact::ContactSystem& cs, Index a, Index b, const Real* x) {
+  std::vector<contact::Touch> t;
+  cs.touches_of(a, b, x, t);
+  const Real R = cs.radius(a) + cs.radius(b);
+  Real worst = -INFINITY;
+  for (const contact::Touch& k : t) worst = std::max(worst, R - k.d);
+  return worst / R;
+}
+
+Vec3 force_on(const Group* g, const std::vector<Real>& f) {
+  Vec3 F = Vec3::Zero();
+  for (Index n : g->nodes) F += node_pos(f, n);
+  return F;
+}
+}  // namespace
+
+// The tip is lowered onto the middle of the top face's diagonal (an edge of the central
+// element) in steps of 1 um, far less than the skin, as a run brings pieces together: the
+// corner elements meet it at the first touch and resist it. Pressed until their contact
+// overlaps 0.2 of their radii, it has reached the central element too (asserted), which is
+// no candidate. Then a joint of the central element fails (the one with the corner element
+// at (a,0,0), far from the tip): the central element becomes a candidate with that overlap.
+// The force on the tip and the stored energy must not change (to 1e-12: the pairs are added
+// in another order after the rebuild), and the run must record one unseen pair (no joint
+// between the two) with the overlap it had. Under the rule before session 55 the central element pushed at once.
+TEST(ContactBorn, AnElementReachedThroughItsExposedEdgeJoinsWithoutAPushWhenItsJointFails) {
+  Mesh mesh;
+  add_part(mesh, five_tet_cube(kSide), "cube", Vec3::Zero(), Vec3::Zero());
+  add_part(mesh, tip_down(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
+  Model m = build_model(fracturable_contact_case(), mesh);
+  contact::ContactSystem& cs = m.contact;
+  const Index central = 0, tip = 5;
+  ASSERT_EQ(m.joints.size(), 4);  // the central element's four faces
+  const Group* g = m.mesh.find_group("tip");
+  std::vector<Real> x = m.fem.x0, v(x.size(), 0.0), f;
+  auto place = [&](Real z) {  // the tip's vertex over the middle of the diagonal, at height z
+    x = m.fem.x0;
+    const Vec3 shift(0.5 * kSide, 0.5 * kSide, z);
+    for (Index n : g->nodes)
+      for (int d = 0; d < 3; ++d) x[3 * n + d] += shift(d);
+  };
+  auto forces = [&]() {
+    f.assign(x.size(), 0.0);
+    cs.add_forces(m.mesh, m.joints, x.data(), v.data(), 0.0, f.data());
+    return force_on(g, f);
+  };
+  Real z = kSide + 0.01;
+  place(z);
+  forces();
+  ASSERT_EQ(cs.totals().contacts, 0);
+  while (cs.totals().max_overlap < 0.2 && z > kSide - 0.01) {
+    z -= 1e-6;
+    place(z);
+    forces();
+  }
+  ASSERT_GE(cs.totals().max_overlap, 0.2) << "the corner elements never met the tip";
+  EXPECT_FALSE(has_pair(cs, central, tip)) << "the central element has no free face";
+  const Real reached = overlap_ratio(cs, central, tip, x.data());
+  ASSERT_GT(reached, 0) << "the tip has not reached the central element: the staging is wrong";
+  EXPECT_EQ(cs.totals().born.unseen.pairs, 0) << "the corner elements came into reach as a run brings them";
+  const Vec3 F0 = forces();
+  const Real U0 = cs.totals().elastic;
+  ASSERT_GT(F0(2), 0);
+
+  const Index j = joint_between(m.joints, central, 1);
+  ASSERT_GE(j, 0);
+  fail_joint(m.joints, j);
+  const Vec3 F1 = forces();
+  EXPECT_TRUE(has_pair(cs, central, tip)) << "a failed joint's element is a candidate";
+  EXPECT_LT((F1 - F0).norm(), 1e-12 * F0.norm()) << "the element joined with a push";
+  EXPECT_NEAR(cs.totals().elastic, U0, 1e-12 * U0);
+  const contact::ContactTotals t = cs.totals();
+  EXPECT_EQ(t.born.unseen.pairs, 1);
+  EXPECT_NEAR(t.born.unseen.max_ratio, reached, 1e-12);
+  EXPECT_GT(t.born.unseen.energy, 0);
+  // The failure also cut off the corner element (its only joint): a split, its faces
+  // coincident with the central element's, so an overlap of round-off size.
+  EXPECT_EQ(t.born.split.pairs, 1);
+  EXPECT_LT(t.born.split.max_ratio, 1e-12);
+  EXPECT_EQ(t.born.wall.pairs, 0);
+}
+
+// A box wall turned so that a corner points down (a rigid tip) is lowered onto the same
+// spot in steps of 1 um until the corner elements overlap it by 0.2 of their radius; it has
+// reached the central element too. When the joint fails, the central element's wall pair is
+// new and overlapping: a wall pair gets no offset, so it pushes with that overlap at once,
+// and the run records it. The energy recorded must be what the contacts then store beyond
+// before (1e-9: the same formula, summed in another order). (A plane cannot stage this: the central element's rounded
+// edge lies 0.73 of its radius under the cube's face, deeper than the corner elements' radius.)
+TEST(ContactBorn, AWallPairFoundOverlappingIsRecordedWithTheEnergyItPushesWith) {
+  Mesh mesh;
+  add_part(mesh, five_tet_cube(kSide), "cube", Vec3::Zero(), Vec3::Zero());
+  CaseConfig c = fracturable_contact_case();
+  const Real h = 0.02;
+  WallConfig w;
+  w.wall.name = "tip";
+  w.wall.type = contact::Wall::Type::Box;
+  w.wall.half = Vec3(h, h, h);
+  w.wall.q = Eigen::Quaternion<Real>::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3::UnitZ());
+  w.wall.centre = Vec3(0.5 * kSide, 0.5 * kSide, kSide + 0.01 + std::sqrt(3.0) * h);
+  c.walls.push_back(w);
+  Model m = build_model(c, mesh);
+  contact::ContactSystem& cs = m.contact;
+  std::vector<Real> x = m.fem.x0, v(x.size(), 0.0), f(x.size(), 0.0);
+  auto forces = [&]() {
+    std::fill(f.begin(), f.end(), 0.0);
+    cs.add_forces(m.mesh, m.joints, x.data(), v.data(), 0.0, f.data());
+  };
+  forces();
+  ASSERT_EQ(cs.totals().contacts, 0);
+  const Real stop = kSide - 0.01 + std::sqrt(3.0) * h;
+  while (cs.totals().max_overlap < 0.2 && cs.walls()[0].centre(2) > stop) {
+    cs.walls()[0].centre(2) -= 1e-6;
+    forces();
+  }
+  ASSERT_GE(cs.totals().max_overlap, 0.2) << "the corner elements never met the wall";
+  EXPECT_EQ(cs.totals().born.wall.pairs, 0) << "the corner elements came into reach as a run brings them";
+  const Real U0 = cs.totals().elastic;
+  fail_joint(m.joints, joint_between(m.joints, 0, 1));
+  forces();
+  const contact::ContactTotals t = cs.totals();
+  EXPECT_EQ(t.born.wall.pairs, 1);
+  EXPECT_GT(t.born.wall.energy, 0);
+  EXPECT_NEAR(t.elastic - U0, t.born.wall.energy, 1e-9 * t.born.wall.energy);
+  EXPECT_EQ(t.born.split.pairs, 1) << "the corner element cut off (see the last test)";
+  EXPECT_EQ(t.born.unseen.pairs, 0);
+}
