@@ -393,19 +393,23 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     if (std::isnan(r.born_unseen_energy)) continue;
     known = true;
     const double e = r.born_unseen_energy + r.born_wall_energy;
+    if (e <= 0) continue;
     large = large || e > 0.01 * r.kinetic_start;
     unseen.push_back(fmt::format(
         "{:g} m/s {:.3g} J ({:.3g} % of the impact energy{})", r.speed, e, 100 * e / r.kinetic_start,
         r.born_wall_energy > 0 ? fmt::format("; {:.3g} J with the plate", r.born_wall_energy) : std::string()));
   }
-  if (known)
+  const std::string what =
+      "Contacts first found already overlapping where no contact had been computed (an element reached through an "
+      "edge or a vertex before a joint of it failed; `born_unseen_energy` and `born_wall_energy` in `series.csv`)";
+  if (known && unseen.empty())
+    doc.para(what + ": none at any speed by the compared time.");
+  else if (known)
     doc.para(fmt::format(
-        "Contacts first found already overlapping where no contact had been computed (an element reached through an "
-        "edge or a vertex before a joint of it failed), the spring energy of those overlaps by the compared time: {}. "
-        "Between elements such an overlap is forgiven, not resolved: the two stay that far into each other until "
-        "they part (the plate pushes with it). Its energy is what it would have made had it pushed{}; "
-        "`born_unseen_energy` and `born_wall_energy` in `series.csv` show when.",
-        fmt::join(unseen, ", "),
+        "{}, the spring energy of those overlaps by the compared time: {}. Between elements such an overlap is "
+        "forgiven, not resolved: the two stay that far into each other until they part (the plate pushes with it). "
+        "Its energy is what it would have made had it pushed{}.",
+        what, fmt::join(unseen, ", "),
         large ? "; **more than 1 % of the impact energy**: that run's pieces met where its contacts did not look"
               : ""));
   std::vector<std::vector<std::string>> pat;
