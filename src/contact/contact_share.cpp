@@ -229,7 +229,7 @@ void ContactSystem::reduce_step() {
                          static_cast<Real>(totals_.deepest_b), static_cast<Real>(totals_.deepest_wall)};
   for (const BornOverlaps* b : {&born_own_.split, &born_own_.unseen, &born_own_.wall})
     mine.insert(mine.end(), {b->energy, b->max_ratio, static_cast<Real>(b->pairs)});
-  constexpr std::size_t kTotals = 14;  // the numbers above; the wall records follow
+  const std::size_t n_totals = mine.size();  // the wall records follow
   mine.insert(mine.end(), wall_rec_.begin(), wall_rec_.end());
   const std::vector<std::vector<Real>> all = ex_->all_gather(mine);
   totals_.contacts = 0;
@@ -246,12 +246,13 @@ void ContactSystem::reduce_step() {
     }
     // Added in rank order: the same sum on every process (it differs from the one-process
     // run's in the last bits at most; the counts and maxima are the same).
-    for (auto [b, k] : {std::pair{&totals_.born.split, std::size_t{5}}, std::pair{&totals_.born.unseen, std::size_t{8}},
-                        std::pair{&totals_.born.wall, std::size_t{11}}}) {
+    std::size_t k = 5;  // after the contacts and the deepest overlap
+    for (BornOverlaps* b : {&totals_.born.split, &totals_.born.unseen, &totals_.born.wall}) {
       b->energy += a[k], b->max_ratio = std::max(b->max_ratio, a[k + 1]);
       b->pairs += static_cast<std::int64_t>(a[k + 2]);
+      k += 3;
     }
-    for (std::size_t k = kTotals; k + 8 <= a.size(); k += 8) rec.push_back(&a[k]);
+    for (k = n_totals; k + 8 <= a.size(); k += 8) rec.push_back(&a[k]);
   }
   std::stable_sort(rec.begin(), rec.end(),
                    [](const Real* a, const Real* b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); });

@@ -41,19 +41,26 @@ namespace dspdem::contact {
 
 /// Pairs first found overlapping at a rebuild after the first (ContactSystem::rebuild): how
 /// many so far, the normal spring energy their overlaps held when found, and the largest
-/// overlap / (r_a + r_b).
+/// overlap / (r_a + r_b). Overlaps under kRoundOff of r_a + r_b (two coincident faces) are
+/// not counted.
 struct BornOverlaps {
+  static constexpr Real kRoundOff = 1e-9;
   Real energy = 0, max_ratio = 0;
   std::int64_t pairs = 0;  // 64 bits: no padding in checkpoints
-  void add(Real e, Real ratio) { energy += e, max_ratio = std::max(max_ratio, ratio), ++pairs; }
+  void add(Real e, Real ratio) {
+    if (ratio <= kRoundOff) return;
+    energy += e, max_ratio = std::max(max_ratio, ratio), ++pairs;
+  }
 };
-/// Element pairs start from such an overlap (forgiven: no push, no energy); wall pairs push
-/// with it. `split`: the two elements had a joint between them, whose failure split them;
-/// the overlap is that joint's compression (its energy is booked with the joint). `unseen`:
-/// no joint between them, so no contact computed that overlap (an element reached through
-/// an edge or vertex before a joint of it failed, or two parts of one piece): a run whose
-/// unseen or wall energy is a sizeable part of its ledger hides an error the balance
-/// cannot show.
+/// Element pairs start from such an overlap (forgiven: no push, no energy, so the balance
+/// does not see it); wall pairs push with it (their energy enters the balance). `split`: the
+/// two elements had a joint between them, whose failure split them; the overlap is what
+/// their compression brought (the skeletons move with the elements' strain; the joint's own
+/// compression). `unseen`: no joint between them, so mostly an overlap no contact computed
+/// (an element reached through an edge or vertex before a joint of it failed, or two parts
+/// of one piece); a pair that comes into reach in the ordinary way adds at most a step's
+/// approach or two. A run whose unseen energy is a sizeable part of its ledger has elements
+/// inside each other that its balance cannot show.
 struct BornTotals {
   BornOverlaps split, unseen, wall;
 };

@@ -79,7 +79,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
       return nlohmann::ordered_json{{"pairs", b.pairs}, {"energy", num(b.energy)}, {"max_ratio", num(b.max_ratio)}};
     };
     j["contacts_born_overlapping"] = {
-        {"split", born(s.born_split)}, {"unseen", born(s.born_unseen)}, {"walls", born(s.born_wall)}};
+        {"split", born(s.born_split)}, {"unseen", born(s.born_unseen)}, {"wall", born(s.born_wall)}};
   }
   write_file_atomic(path, j.dump(2) + "\n");
 }
@@ -141,7 +141,7 @@ RunSummary read_run_summary(const std::string& path) {
   // Not in runs without contact, nor in run folders written before it was recorded.
   if (const auto bj = j.find("contacts_born_overlapping"); bj != j.end()) {
     for (auto [key, b] :
-         {std::pair{"split", &s.born_split}, std::pair{"unseen", &s.born_unseen}, std::pair{"walls", &s.born_wall}}) {
+         {std::pair{"split", &s.born_split}, std::pair{"unseen", &s.born_unseen}, std::pair{"wall", &s.born_wall}}) {
       const auto o = bj->find(key);
       if (o == bj->end() || !o->is_object()) fail("'{}': no object 'contacts_born_overlapping.{}'", path, key);
       get(*o, "pairs", b->pairs, path);

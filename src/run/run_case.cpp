@@ -138,7 +138,7 @@ class Series {
                       e.fracture_II, e.broken_joints, e.crack_area);
     if (m.contact.enabled()) {
       const contact::ContactTotals ct = m.contact.totals();
-      f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{},{:.6g},{:.6g},{:.6g}", e.contact_elastic, e.friction,
+      f_ << fmt::format(",{:.10g},{:.10g},{:.10g},{},{:.10g},{:.10g},{:.10g}", e.contact_elastic, e.friction,
                         e.contact_damping, ct.contacts, ct.born.split.energy, ct.born.unseen.energy,
                         ct.born.wall.energy);
     }

@@ -279,6 +279,9 @@ TEST(Mpi, TheBrazilianDiscSplitsAsOnOneProcess) {
   EXPECT_GT(peak, 2.0e4) << "the jaws must load the disc";  // some 35 kN
   EXPECT_GT(last(a, "broken_joints"), 100) << "the disc must have split in the window compared";
   EXPECT_GT(last(a, "contacts"), 10) << "contact must carry the pieces";
+  // The split's neighbours are first found overlapping (their compression): counted alike on
+  // every process count (compare_runs), so the count must not be zero here.
+  EXPECT_GT(dspdem::read_run_summary((run_dir(kDisc, 0) / "summary.json").string()).born_split.pairs, 0);
   const Series f = read_series(run_dir(kDisc, 0) / "fragments.csv");
   EXPECT_GE(f.rows.back()[2], 2) << "the disc must be in pieces at the last frame";
 }

@@ -311,6 +311,7 @@ TEST(Contact, APairFirstFoundOverlappingAfterTheFirstBuildStartsFromItsOverlap) 
   s.place(xs + 0.02, 0.8);
   EXPECT_EQ(s.forces(0.0).norm(), 0) << "the offset was lost at a rebuild";
   EXPECT_GT(s.m.contact.totals().rebuilds, builds);
+  EXPECT_EQ(s.m.contact.totals().born.unseen.pairs, 1) << "a pair kept through a rebuild was counted again";
   s.place(xs, 0.9);
   EXPECT_EQ(s.forces(0.0).norm(), 0);
   s.place(xs, 0.8);

@@ -10,7 +10,8 @@
 // - every speed reaches the compared time without a numerical failure, and the energy
 //   balance closes within 1 % of the largest term at every speed (the case's contact radius
 //   of 0.3 inradius keeps pieces' skeletons apart: at 0.1 the 20 m/s run created 2 %), and
-//   so does the energy of contacts first found overlapping where none had been computed;
+//   so does the energy of contacts first found overlapping where none had been computed (the
+//   balance does not see those);
 // - the pieces over time (fragments.csv) agree with the compared frame's own fragments;
 // - regression: the montage of the three speeds (fragments cut and from outside) within
 //   0.2 % of the pixels of the stored image, so a change that alters the fracture pattern
@@ -55,9 +56,10 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
     EXPECT_GT(r[i].crack_area, r[i - 1].crack_area) << r[i].speed << " m/s";
   }
   for (std::size_t i = 0; i < r.size(); ++i) EXPECT_LT(r[i].balance_max, 0.01) << r[i].speed << " m/s";
-  // Contacts first found overlapping where none had been computed are forgiven (elements) or
-  // push unseen by the balance (the plate): their energy must stay under 1 % of the impact
-  // energy, the balance's own bound (measured: none at any of the three speeds).
+  // Contacts between elements first found overlapping where none had been computed are
+  // forgiven, which the balance does not see: their energy (with the plate's, which pushes)
+  // must stay under 1 % of the impact energy, the balance's own bound (measured: none at any
+  // of the three speeds).
   for (const auto& q : r) {
     ASSERT_FALSE(std::isnan(q.born_unseen_energy)) << "series.csv without born_unseen_energy";
     EXPECT_LT(q.born_unseen_energy + q.born_wall_energy, 0.01 * q.kinetic_start) << q.speed << " m/s";

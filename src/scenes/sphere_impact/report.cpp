@@ -385,33 +385,41 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         "**Energy balance lost** (more than 1 % of the largest term) at {}: energy was made or lost by the numerics, "
         "so that run's fragments are not to be trusted; `series.csv` (`balance_error`) shows when.",
         fmt::join(lost, ", ")));
-  // Overlaps no contact computed are forgiven (element pairs) or pushed with (the plate):
-  // neither shows in the balance, so their energy is named against the impact's.
-  std::vector<std::string> unseen;
-  bool known = false, large = false;
+  // Overlaps between elements that no contact computed are forgiven, which the balance does
+  // not see, so their energy is named against the impact's (with the plate's: those push).
+  std::vector<std::string> unseen, unknown;
+  bool large = false;
   for (const auto& r : sweep) {
-    if (std::isnan(r.born_unseen_energy)) continue;
-    known = true;
+    if (std::isnan(r.born_unseen_energy)) {
+      unknown.push_back(fmt::format("{:g}", r.speed));
+      continue;
+    }
     const double e = r.born_unseen_energy + r.born_wall_energy;
     if (e <= 0) continue;
-    large = large || e > 0.01 * r.kinetic_start;
+    large = large || r.born_unseen_energy > 0.01 * r.kinetic_start;
     unseen.push_back(fmt::format(
         "{:g} m/s {:.3g} J ({:.3g} % of the impact energy{})", r.speed, e, 100 * e / r.kinetic_start,
         r.born_wall_energy > 0 ? fmt::format("; {:.3g} J with the plate", r.born_wall_energy) : std::string()));
   }
-  const std::string what =
-      "Contacts first found already overlapping where no contact had been computed (an element reached through an "
-      "edge or a vertex before a joint of it failed; `born_unseen_energy` and `born_wall_energy` in `series.csv`)";
-  if (known && unseen.empty())
-    doc.para(what + ": none at any speed by the compared time.");
-  else if (known)
-    doc.para(fmt::format(
-        "{}, the spring energy of those overlaps by the compared time: {}. Between elements such an overlap is "
-        "forgiven, not resolved: the two stay that far into each other until they part (the plate pushes with it). "
-        "Its energy is what it would have made had it pushed{}.",
-        what, fmt::join(unseen, ", "),
-        large ? "; **more than 1 % of the impact energy**: that run's pieces met where its contacts did not look"
-              : ""));
+  if (unknown.size() < sweep.size()) {
+    std::string p =
+        "Contacts first found already overlapping where no contact had been computed (an element reached through an "
+        "edge or a vertex before a joint of it failed; `born_unseen_energy` and `born_wall_energy` in `series.csv`)";
+    if (unseen.empty())
+      p += ": none by the compared time";
+    else
+      p += fmt::format(
+          ", the spring energy of those overlaps by the compared time: {}. Between elements such an overlap is "
+          "forgiven, not resolved: the two stay that far into each other until they part, and the balance does not "
+          "see it (the plate pushes with its overlap, which the balance does see). Its energy is what it would have "
+          "made had it pushed{}",
+          fmt::join(unseen, ", "),
+          large ? "; **more than 1 % of the impact energy**: that run's pieces met where its contacts did not look"
+                : "");
+    if (!unknown.empty())
+      p += fmt::format(" (not recorded at {} m/s: runs older than that record)", fmt::join(unknown, ", "));
+    doc.para(p + ".");
+  }
   std::vector<std::vector<std::string>> pat;
   for (const auto& r : sweep)
     pat.push_back({fmt::format("{:g}", r.speed), expected_pattern(r.speed),
