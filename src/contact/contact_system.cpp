@@ -257,14 +257,14 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   // marks the new pairs), new ones measured now. After the first build a pair comes into
   // reach with at most one step's approach of overlap (the candidates are rebuilt once a
   // node has moved half the skin), so a new pair that overlaps more was overlapped where no
-  // contact was computed: two elements a joint held in compression until its failure split
-  // them (recorded as split: under 1 % of r_a + r_b in the sphere: the elements' strain and
-  // the joint's compression); elements that met at an
-  // edge or a vertex of a crack and land in different pieces, parts of one piece (never
-  // tested against each other) that overlap and then split, and an element that had no free
-  // face until a joint of it failed and that a foreign piece had reached through its exposed
-  // edge or vertex (recorded as unseen: one pair in the sphere at 7.5 m/s, 0.74 mm deep,
-  // born with 420 J of spring energy 2.27 ms after contact). The offset is forgiven, not
+  // contact was computed: two elements a joint held together until its failure split them
+  // (recorded as split: under 1 % of r_a + r_b in the sphere, from the elements' strain and
+  // the joint's compression); elements that met at an edge or a vertex of a crack and land
+  // in different pieces, parts of one piece (never tested against each other) that overlap
+  // and then split, and an element that had no free face until a joint of it failed and
+  // that a foreign piece had reached through its exposed edge or vertex (recorded as unseen:
+  // one pair in the sphere at 7.5 m/s, 0.74 mm deep, born with 420 J of spring energy 2.27
+  // ms after contact). The offset is forgiven, not
   // resolved: the elements stay that far into each other until the pair opens, the overlap
   // check does not see it, and one offset serves all the pair's touches. At the first build
   // an overlap is the set-up's and pushes. Wall pairs get no offset: a wall is normally met
