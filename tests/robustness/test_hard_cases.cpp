@@ -194,19 +194,6 @@ Vec3 mass_centre(const Model& m, const std::vector<Real>& x) {
   return s / M;
 }
 
-// One tetrahedron, tip at the origin pointing down (-z) or up (+z), base at |z| = h.
-Mesh tip_tet(Real s, Real h, bool up) {
-  Mesh m;
-  m.source = "tip_tet";
-  const Real z = up ? -h : h;
-  const Vec3 p[4] = {Vec3(0, 0, 0), Vec3(-s, -s, z), Vec3(s, -s, z), Vec3(0, s, z)};
-  for (const Vec3& q : p) m.x.insert(m.x.end(), {q(0), q(1), q(2)}), m.node_tag.push_back(m.node_tag.size() + 1);
-  ElementBlock tets{CellType::Tet4, {0, 1, 2, 3}, {1}};
-  if (tet4_volume(p[0], p[1], p[2], p[3]) < 0) std::swap(tets.conn[2], tets.conn[3]);
-  m.blocks = {tets, ElementBlock{CellType::Hex8, {}, {}}};
-  return m;
-}
-
 // Two parts "b0" and "b1" flying at each other along `dir` (b0 along +dir, b1 along -dir)
 // at v each, or starting at rest (v = 0).
 struct PairRun {

@@ -2,6 +2,7 @@
 // ("b0", "b1", ...), placed and rotated in code.
 #pragma once
 #include <string>
+#include <utility>
 
 #include "support/box_mesh.hpp"
 
@@ -42,6 +43,20 @@ inline void add_part(Mesh& dst, const Mesh& src, const std::string& name, const 
   for (std::size_t b = 0; b < 2; ++b)
     all->elements[b].insert(all->elements[b].end(), g.elements[b].begin(), g.elements[b].end());
   all->nodes.insert(all->nodes.end(), g.nodes.begin(), g.nodes.end());
+}
+
+/// One tetrahedron with its vertex 0 at the origin pointing down (-z), or up (+z), its
+/// opposite face at |z| = h, spanning 2s.
+inline Mesh tip_tet(Real s, Real h, bool up = false) {
+  Mesh m;
+  m.source = "tip_tet";
+  const Real z = up ? -h : h;
+  const Vec3 p[4] = {Vec3(0, 0, 0), Vec3(-s, -s, z), Vec3(s, -s, z), Vec3(0, s, z)};
+  for (const Vec3& q : p) m.x.insert(m.x.end(), {q(0), q(1), q(2)}), m.node_tag.push_back(m.node_tag.size() + 1);
+  ElementBlock tets{CellType::Tet4, {0, 1, 2, 3}, {1}};
+  if (tet4_volume(p[0], p[1], p[2], p[3]) < 0) std::swap(tets.conn[2], tets.conn[3]);
+  m.blocks = {tets, ElementBlock{CellType::Hex8, {}, {}}};
+  return m;
 }
 
 /// A cube of side a meshed as n^3 cells (hex8, or 6 tet4 per cell), centred at the origin.

@@ -180,20 +180,6 @@ TEST(Contact, CornerAndCrossedEdgeImpactsAreBoundedAndSymmetric) {
 }
 
 namespace {
-// One tetrahedron with its vertex 0 at the origin pointing down (-z), top face at z = h.
-Mesh tip_down_tet(Real s, Real h) {
-  Mesh m;
-  m.source = "tip_down_tet";
-  const Vec3 p[4] = {Vec3(0, 0, 0), Vec3(-s, -s, h), Vec3(s, -s, h), Vec3(0, s, h)};
-  for (const Vec3& q : p) m.x.insert(m.x.end(), {q(0), q(1), q(2)}), m.node_tag.push_back(m.node_tag.size() + 1);
-  ElementBlock tets{CellType::Tet4, {0, 1, 2, 3}, {1}};
-  if (tet4_volume(p[0], p[1], p[2], p[3]) < 0) std::swap(tets.conn[2], tets.conn[3]);
-  m.blocks = {tets, ElementBlock{CellType::Hex8, {}, {}}};
-  return m;
-}
-}  // namespace
-
-namespace {
 // The tip of a tetrahedron over the top face of a 0.1 m hex cube, moved rigidly along x at a
 // fixed height: its skeleton vertex 0.2 R deeper than first touch over the face (R the two
 // contact radii). place(xs) puts the tip's vertex at x = xs; forces(dt) evaluates the
@@ -219,7 +205,7 @@ struct TipOverCube {
   static Mesh two_parts() {
     Mesh mesh;
     add_part(mesh, cube(CellType::Hex8, 1, 0.1), "cube", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
-    add_part(mesh, tip_down_tet(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
+    add_part(mesh, tip_tet(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
     return mesh;
   }
   void place(Real xs, Real height = 0.8) {  // the tip's skeleton `height` R above the cube's

@@ -47,18 +47,6 @@ Mesh five_tet_cube(Real a) {
   return m;
 }
 
-/// A tetrahedron with its tip (node 0) pointing down.
-Mesh tip_down(Real s, Real h) {
-  Mesh m;
-  m.source = "tip_down";
-  const Vec3 p[4] = {Vec3(0, 0, 0), Vec3(-s, -s, h), Vec3(s, -s, h), Vec3(0, s, h)};
-  for (const Vec3& q : p) m.x.insert(m.x.end(), {q(0), q(1), q(2)}), m.node_tag.push_back(m.node_tag.size() + 1);
-  ElementBlock t{CellType::Tet4, {0, 1, 2, 3}, {1}};
-  if (tet4_volume(p[0], p[1], p[2], p[3]) < 0) std::swap(t.conn[2], t.conn[3]);
-  m.blocks = {t, ElementBlock{CellType::Hex8, {}, {}}};
-  return m;
-}
-
 CaseConfig fracturable_contact_case() {
   CaseConfig c = simple_case(kE, kNu, kRho);
   make_fracturable(c, 1e5, 10, 1e5, 30, 10);
@@ -116,7 +104,7 @@ Vec3 force_on(const Group* g, const std::vector<Real>& f) {
 TEST(ContactBorn, AnElementReachedThroughItsExposedEdgeJoinsWithoutAPushWhenItsJointFails) {
   Mesh mesh;
   add_part(mesh, five_tet_cube(kSide), "cube", Vec3::Zero(), Vec3::Zero());
-  add_part(mesh, tip_down(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
+  add_part(mesh, tip_tet(0.03, 0.05), "tip", Vec3::Zero(), Vec3::Zero());
   Model m = build_model(fracturable_contact_case(), mesh);
   contact::ContactSystem& cs = m.contact;
   const Index central = 0, tip = 5;
