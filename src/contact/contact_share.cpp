@@ -24,8 +24,7 @@ void ContactSystem::take_share(const ContactSystem& whole, const ShareMap& map) 
   materials_ = whole.materials_;
   any_damping_ = whole.any_damping_;
   walls_ = whole.walls_;
-  skin_ = whole.skin_;      // the whole model's: the same skin, so the same rebuilds
-  joined_ = whole.joined_;  // in global numbers, as the pairs are looked up
+  skin_ = whole.skin_;  // the whole model's: the same skin, so the same rebuilds
   setup_error_ = whole.setup_error_;
   // Global -> local node (the share's nodes are numbered own first, then ghosts).
   std::map<Index, Index> g2l;
@@ -65,6 +64,13 @@ void ContactSystem::take_share(const ContactSystem& whole, const ShareMap& map) 
   global_elems_ = static_cast<Index>(whole.elems_.size());
   node_global_ = map.node_global;
   joint_owned_ = map.joint_owned;
+  // Of the joined pairs only those with an element this process owns: a pair is looked up
+  // only by the process that counts it, the owner of its first element (counts()).
+  std::vector<char> owned(static_cast<std::size_t>(global_elems_), 0);
+  for (Index l = 0; l < ne; ++l)
+    if (map.elem_owner[l] == map.rank) owned[map.elem_global[l]] = 1;
+  for (const PairKey& k : whole.joined_)
+    if (owned[k.first] || owned[k.second]) joined_.push_back(k);  // still sorted, global numbers
   skel_slot_.assign(ne, -1);
   slots_from_map();
 }

@@ -279,7 +279,8 @@ class ContactSystem {
   /// all processes' (reduce_step).
   BornTotals born_own_;
   /// The element pairs with a joint between them (global numbers, first < second, sorted):
-  /// what tells a split's overlap from an unseen one.
+  /// what tells a split's overlap from an unseen one. A process's share keeps those with an
+  /// element it owns.
   std::vector<PairKey> joined_;
   /// The touches of element e's skeleton A with wall wl.
   static void wall_touches(const Wall& wl, const Poly& A, Real r, std::vector<Touch>& out);
