@@ -198,13 +198,16 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   const std::vector<double> study_speeds = a.study_speeds.empty() ? std::vector<double>{7.5, 20.0} : a.study_speeds;
   if (a.study) {
     const double n_paper = 4539;  // [S] tetrahedra in the sphere
-    std::vector<std::string> pen, law, ss;
+    std::vector<std::string> pen, law, quad, ss;
+    bool nodal = false;  // the case's quadrature (of its first joint material); the row tries the other
     for (std::size_t i = 0; i < c.materials.size(); ++i)
       if (c.joint_materials[i].given) {
         const auto& m = c.materials[i].name;
         pen.push_back(
             override_of("materials." + m + ".joint_penalty", c.joint_materials[i].penalty >= 100 ? 30.0 : 100.0));
         law.push_back(override_of("materials." + m + ".joint_law", std::string("coupled")));
+        if (quad.empty()) nodal = c.joint_materials[i].nodal_quadrature;
+        quad.push_back(override_of("materials." + m + ".joint_quadrature", std::string(nodal ? "gauss" : "nodal")));
       }
     for (std::size_t i = 0; i < c.bodies.size(); ++i)
       ss.push_back(override_of(fmt::format("bodies.{}.kinematics", i), std::string("small_strain")));
@@ -226,6 +229,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
           {override_of("mesh.sphere_plate.contact_size", at_contact)});
       add("penalty", "joint penalty 100 <-> 30", pen);
       add("coupled_law", "joint_law = coupled (same strengths)", law);
+      add(nodal ? "gauss_joints" : "nodal_joints",
+          nodal ? "Gauss joint quadrature (reference nodal)" : "nodal joint quadrature (reference Gauss)", quad);
       add("small_strain", "small-strain kinematics (reference: co-rotational)", ss);
     }
   }
