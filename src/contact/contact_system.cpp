@@ -264,12 +264,12 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   // and then split, and an element that had no free face until a joint of it failed and
   // that a foreign piece had reached through its exposed edge or vertex (recorded as unseen:
   // one pair in the sphere at 7.5 m/s, 0.74 mm deep, born with 420 J of spring energy 2.27
-  // ms after contact). The offset is forgiven, not
-  // resolved: the elements stay that far into each other until the pair opens, the overlap
-  // check does not see it, and one offset serves all the pair's touches. At the first build
-  // an overlap is the set-up's and pushes. Wall pairs get no offset: a wall is normally met
-  // first through the candidates' free faces (recorded as wall: none in the sphere at 7.5, 20
-  // and 50 m/s; test ContactBorn stages the exception, a box's corner in an exposed edge).
+  // ms after contact). The offset is forgiven, not resolved: the elements stay that far into
+  // each other until the pair opens, the overlap check does not see it, and one offset serves
+  // all the pair's touches. At the first build an overlap is the set-up's and pushes. Wall
+  // pairs get no offset: a wall is normally met first through the candidates' free faces
+  // (recorded as wall: none in the sphere at 7.5, 20 and 50 m/s; test ContactBorn stages the
+  // exception, a box's corner in an exposed edge).
   const std::vector<PairKey> keys = pair_keys();
   born_offset_ =
       remap_values(born_offset_, old_elem_keys, std::vector<PairKey>(keys.begin(), keys.begin() + pairs_.size()), -1.0);
