@@ -59,6 +59,32 @@ std::vector<int> joint_states(const std::string& joints_vtu) {
   return out;
 }
 
+CrackReach crack_reach(const std::vector<CrackPiece>& where, const std::vector<int>& states, const Vec3& origin,
+                       const Vec3& dir, double quantile, int min_state) {
+  DSPDEM_CHECK(where.size() == states.size(), "crack_reach: {} joint positions for {} joint states", where.size(),
+               states.size());
+  DSPDEM_CHECK(quantile > 0 && quantile <= 1, "crack_reach: quantile {} outside (0, 1]", quantile);
+  std::vector<std::pair<double, double>> sa;  // (s, area) of the counted joints
+  for (std::size_t j = 0; j < where.size(); ++j)
+    if (states[j] >= min_state) sa.emplace_back((where[j].centroid - origin).dot(dir), where[j].area);
+  CrackReach r;
+  if (sa.empty()) return r;
+  std::sort(sa.begin(), sa.end());
+  for (const auto& [s, a] : sa) r.area += a;
+  r.furthest = sa.back().first;
+  double below = 0;
+  r.at_quantile = sa.back().first;
+  for (const auto& [s, a] : sa) {
+    below += a;
+    // A relative tolerance: a quantile of 1 must land on the last joint despite rounding.
+    if (below >= quantile * r.area * (1 - 1e-12)) {
+      r.at_quantile = s;
+      break;
+    }
+  }
+  return r;
+}
+
 std::vector<std::pair<double, double>> trace_path(const std::vector<CrackPiece>& pieces, int along, int across,
                                                   double lo, double hi, int bins,
                                                   bool (*keep)(const Vec3&, const void*), const void* ctx,

@@ -27,6 +27,22 @@ std::vector<CrackPiece> broken_joints(const std::string& joints_vtu, int min_sta
 /// pieces of the first frame (`broken_joints(first, 0)`: every joint where it started).
 std::vector<int> joint_states(const std::string& joints_vtu);
 
+/// How far a body's cracks reach along a direction, by their area.
+struct CrackReach {
+  double area = 0;         ///< area of the joints counted [m^2]
+  double at_quantile = 0;  ///< position s below which the quantile of that area lies [m]
+  double furthest = 0;     ///< largest s of a joint counted [m]
+};
+
+/// The reach of the joints whose `states` entry is at least `min_state`, measured at the
+/// positions `where` (a run's first joints frame, `broken_joints(first, 0)`, so that pieces
+/// moving after they broke do not move the crack) along s = (centroid - origin) . dir with
+/// `dir` a unit vector. `quantile` in (0, 1]: the smallest s of a counted joint below (or at)
+/// which that fraction of the counted area lies. All zero when no joint counts. `where` and
+/// `states` must index the same joints (Error otherwise).
+CrackReach crack_reach(const std::vector<CrackPiece>& where, const std::vector<int>& states, const Vec3& origin,
+                       const Vec3& dir, double quantile, int min_state = 2);
+
 /// How the pieces of a slice are weighted in a traced path.
 enum class PathWeight {
   Area,       ///< by area: every piece of the damaged zone counts alike

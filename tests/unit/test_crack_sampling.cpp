@@ -55,3 +55,35 @@ TEST(CrackSampling, TraceByWidthFollowsTheOpenCrackBesideASoftenedBand) {
   EXPECT_TRUE(
       trace_path({{Vec3(0.01, 0.12, 0), 1.0}}, 1, 0, 0.1, 0.15, 1, nullptr, nullptr, PathWeight::AreaWidth).empty());
 }
+
+TEST(CrackSampling, ReachIsTheAreaQuantileOfTheCountedJointsAlongADirection) {
+  // Joints at heights 10, 20, 30, 40 mm above an origin at y = -0.1 (areas 4, 3, 2, 1), the
+  // one at 30 mm not broken. Broken area 8: half of it lies at or below 10 mm, 7/8 at or
+  // below 20 mm, all of it at or below 40 mm.
+  const std::vector<CrackPiece> where = {{Vec3(0.3, -0.09, 0), 4.0},
+                                         {Vec3(-0.2, -0.08, 0.1), 3.0},
+                                         {Vec3(0.0, -0.07, 0), 2.0},
+                                         {Vec3(0.0, -0.06, -0.2), 1.0}};
+  const std::vector<int> states = {2, 2, 1, 2};
+  const Vec3 o(0, -0.1, 0);
+  auto r = crack_reach(where, states, o, Vec3::UnitY(), 0.5);
+  EXPECT_DOUBLE_EQ(r.area, 8.0);
+  EXPECT_NEAR(r.at_quantile, 0.01, 1e-15);
+  EXPECT_NEAR(r.furthest, 0.04, 1e-15);
+  EXPECT_NEAR(crack_reach(where, states, o, Vec3::UnitY(), 0.875).at_quantile, 0.02, 1e-15);
+  EXPECT_NEAR(crack_reach(where, states, o, Vec3::UnitY(), 0.9).at_quantile, 0.04, 1e-15);
+  EXPECT_NEAR(crack_reach(where, states, o, Vec3::UnitY(), 1.0).at_quantile, 0.04, 1e-15);
+  // Softening joints counted too (min_state 1): the one at 30 mm joins.
+  r = crack_reach(where, states, o, Vec3::UnitY(), 0.9, 1);
+  EXPECT_DOUBLE_EQ(r.area, 10.0);
+  EXPECT_NEAR(r.at_quantile, 0.03, 1e-15);
+  // Along -y from the top the order turns round.
+  EXPECT_NEAR(crack_reach(where, states, Vec3(0, 0, 0), -Vec3::UnitY(), 1.0).furthest, 0.09, 1e-15);
+  // Nothing broken: all zero, not the position of a joint.
+  r = crack_reach(where, {0, 1, 0, 0}, o, Vec3::UnitY(), 0.5);
+  EXPECT_EQ(r.area, 0.0);
+  EXPECT_EQ(r.furthest, 0.0);
+  // Positions and states of different joint sets, or a quantile outside (0, 1]: an error.
+  EXPECT_THROW(crack_reach(where, {2, 2}, o, Vec3::UnitY(), 0.5), std::exception);
+  EXPECT_THROW(crack_reach(where, states, o, Vec3::UnitY(), 0.0), std::exception);
+}

@@ -12,7 +12,8 @@
 //   of 0.3 inradius keeps pieces' skeletons apart: at 0.1 the 20 m/s run created 2 %), and
 //   so does the energy of contacts first found overlapping where none had been computed (the
 //   balance does not see those);
-// - the pieces over time (fragments.csv) agree with the compared frame's own fragments;
+// - the pieces over time (fragments.csv) agree with the compared frame's own fragments, and
+//   the highest broken joint never falls;
 // - regression: the montage of the three speeds (fragments cut and from outside) within
 //   0.2 % of the pixels of the stored image, so a change that alters the fracture pattern
 //   fails CI.
@@ -84,6 +85,19 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
     EXPECT_EQ(at.fragments, q.fragments.count());
     EXPECT_EQ(at.large_pieces, q.pieces_10pct);
     EXPECT_TRUE(fs::exists(fs::path(q.run_dir) / "pieces_time.csv"));
+    // How far up the cracks reach: joints never heal, so the highest broken joint can only
+    // rise frame by frame; the area quantile lies at or below it, and both within the sphere
+    // (over the diameter; a facet's sag is far under the bound's 1e-9).
+    EXPECT_EQ(at.crack_reach, q.crack_reach);
+    EXPECT_EQ(at.crack_top, q.crack_top);
+    double top = 0;
+    for (const auto& h : q.history) {
+      ASSERT_GE(h.crack_reach, 0.0) << "no joints frame at " << h.after_contact << " s after contact";
+      EXPECT_LE(h.crack_reach, h.crack_top);
+      EXPECT_GE(h.crack_top, top) << h.after_contact << " s after contact";
+      EXPECT_LE(h.crack_top, 1.0 + 1e-9);
+      top = h.crack_top;
+    }
   }
   const fs::path img = out / "images/montage_fragments.png";
   if (testsupport::regenerate_golden(img, "sphere_impact_montage.png")) GTEST_SKIP() << "baseline image regenerated";

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "report/crack_sampling.hpp"
 #include "report/fragment_history.hpp"
 #include "report/run_data.hpp"
 
@@ -95,13 +96,34 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
     }
   }
 
+  // How far up the cracks reach, frame by frame: joints frames are written with the frames,
+  // the same joints in each, so the first gives every joint's place at the start.
+  if (!run.joint_frames.empty()) {
+    const std::vector<report::CrackPiece> where = report::broken_joints(run.joint_frames.front().file, 0);
+    const Vec3 bottom(0.0, -0.5 * r.diameter, 0.0), up = Vec3::UnitY();  // the generator's sphere is centred at 0
+    auto reach_at = [&](std::size_t f, double& reach, double& top) {
+      const report::CrackReach cr = report::crack_reach(where, report::joint_states(run.joint_frames[f].file), bottom,
+                                                        up, SphereImpactResult::reach_fraction);
+      reach = cr.at_quantile / r.diameter, top = cr.furthest / r.diameter;
+    };
+    const auto nearest_joints = [&](double time) {
+      std::size_t best = 0;
+      for (std::size_t f = 1; f < run.joint_frames.size(); ++f)
+        if (std::abs(run.joint_frames[f].time - time) < std::abs(run.joint_frames[best].time - time)) best = f;
+      return best;
+    };
+    reach_at(nearest_joints(r.t_compare), r.crack_reach, r.crack_top);
+    for (auto& h : r.history) reach_at(nearest_joints(h.after_contact + r.t_contact), h.crack_reach, h.crack_top);
+  }
+
   if (write_files) {
     std::ofstream ph(fs::path(run_dir) / "pieces_time.csv");
     DSPDEM_CHECK(ph.good(), "cannot write '{}/pieces_time.csv'", run_dir);
-    ph << "frame,time_ms,after_contact_ms,fragments,largest,second,large_pieces\n";
+    ph << "frame,time_ms,after_contact_ms,fragments,largest,second,large_pieces,crack_reach,crack_top\n";
     for (const auto& h : r.history)
-      ph << fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{}\n", h.frame, 1e3 * (h.after_contact + r.t_contact),
-                        1e3 * h.after_contact, h.fragments, h.largest, h.second, h.large_pieces);
+      ph << fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{},{:.4f},{:.4f}\n", h.frame,
+                        1e3 * (h.after_contact + r.t_contact), 1e3 * h.after_contact, h.fragments, h.largest, h.second,
+                        h.large_pieces, h.crack_reach, h.crack_top);
     std::ofstream f(fs::path(run_dir) / "sphere_series.csv");
     DSPDEM_CHECK(f.good(), "cannot write '{}/sphere_series.csv'", run_dir);
     f << "time_ms,broken_joints,crack_area_cm2,plate_force_kN,vy_centre,kinetic,elastic,fracture,friction,damping\n";

@@ -31,7 +31,13 @@ struct SphereImpactResult {
   bool through_crack = false;             ///< a second piece of at least through_piece_fraction
   double second_fraction = 0;             ///< second largest piece over the mass
   long broken_joints = 0, joints = 0;
-  double crack_area = 0;          ///< broken joints' area at the compared time [m^2]
+  double crack_area = 0;  ///< broken joints' area at the compared time [m^2]
+  /// How far up the cracks reach at the compared time, over the diameter, from the sphere's
+  /// lowest point along the impact's axis, with each joint where it was at the start:
+  /// `reach_fraction` of the broken joints' area lies at or below `crack_reach`, and
+  /// `crack_top` is the highest broken joint (-1: no joints frame).
+  static constexpr double reach_fraction = 0.95;
+  double crack_reach = -1, crack_top = -1;
   double t_first_broken = -1;     ///< first series row with a broken joint [s]
   double plate_force_peak = 0;    ///< largest |f_y| on the plate [N]
   double t_plate_force_peak = 0;  ///< when [s]
@@ -56,6 +62,7 @@ struct SphereImpactResult {
     double largest = 0, second = 0;  ///< over the mass
     int large_pieces = 0;            ///< of at least large_piece_fraction
     long fragments = 0;
+    double crack_reach = -1, crack_top = -1;  ///< as the result's, at this frame (-1: no joints frame)
   };
   std::vector<PiecesAt> history;
   /// First frame of `history` with two large pieces or more, after the first contact [s]; -1:
@@ -74,7 +81,8 @@ struct SphereImpactResult {
 /// never touches); with `write_files`, writes sphere_series.csv (time in ms, broken joints,
 /// crack area in cm^2, plate force in kN, centre-of-mass vy, energies), pieces_time.csv
 /// (`history`: frame, time and time after contact in ms, fragments, largest, second, large
-/// pieces) and fragment_masses.csv (the cumulative mass distribution at that frame) there.
+/// pieces, crack reach and top over the diameter) and fragment_masses.csv (the cumulative mass distribution at that
+/// frame) there.
 SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
                                       bool write_files);
 
