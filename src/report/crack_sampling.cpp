@@ -75,9 +75,8 @@ CrackReach crack_reach(const std::vector<CrackPiece>& where, const std::vector<i
   double below = 0;
   r.at_quantile = sa.back().first;
   for (const auto& [s, a] : sa) {
-    below += a;
-    // A relative tolerance: a quantile of 1 must land on the last joint despite rounding.
-    if (below >= quantile * r.area * (1 - 1e-12)) {
+    below += a;  // summed in the order of r.area's sum, so a quantile of 1 ends on the last joint
+    if (below >= quantile * r.area) {
       r.at_quantile = s;
       break;
     }

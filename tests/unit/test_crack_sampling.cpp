@@ -77,13 +77,18 @@ TEST(CrackSampling, ReachIsTheAreaQuantileOfTheCountedJointsAlongADirection) {
   r = crack_reach(where, states, o, Vec3::UnitY(), 0.9, 1);
   EXPECT_DOUBLE_EQ(r.area, 10.0);
   EXPECT_NEAR(r.at_quantile, 0.03, 1e-15);
-  // Along -y from the top the order turns round.
-  EXPECT_NEAR(crack_reach(where, states, Vec3(0, 0, 0), -Vec3::UnitY(), 1.0).furthest, 0.09, 1e-15);
+  // Along -y from y = 0 the order turns round: the joint at 40 mm (area 1) comes first at
+  // s = 60 mm, then 20 mm (area 3) at 80 mm, which takes the half of 8 (1 + 3 = 4).
+  r = crack_reach(where, states, Vec3(0, 0, 0), -Vec3::UnitY(), 0.5);
+  EXPECT_NEAR(r.at_quantile, 0.08, 1e-15);
+  EXPECT_NEAR(r.furthest, 0.09, 1e-15);
   // Nothing broken: all zero, not the position of a joint.
   r = crack_reach(where, {0, 1, 0, 0}, o, Vec3::UnitY(), 0.5);
   EXPECT_EQ(r.area, 0.0);
+  EXPECT_EQ(r.at_quantile, 0.0);
   EXPECT_EQ(r.furthest, 0.0);
   // Positions and states of different joint sets, or a quantile outside (0, 1]: an error.
   EXPECT_THROW(crack_reach(where, {2, 2}, o, Vec3::UnitY(), 0.5), std::exception);
   EXPECT_THROW(crack_reach(where, states, o, Vec3::UnitY(), 0.0), std::exception);
+  EXPECT_THROW(crack_reach(where, states, o, Vec3::UnitY(), 1.5), std::exception);
 }

@@ -96,24 +96,25 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
     }
   }
 
-  // How far up the cracks reach, frame by frame: joints frames are written with the frames,
-  // the same joints in each, so the first gives every joint's place at the start.
-  if (!run.joint_frames.empty()) {
-    const std::vector<report::CrackPiece> where = report::broken_joints(run.joint_frames.front().file, 0);
+  // How far up the cracks reach, frame by frame. Joints frames are written with the frames
+  // (same count, same times), the same joints in each, so the first gives every joint's place
+  // at the start. A run without them, or with a set that does not match its frames, keeps -1.
+  const auto& jf = run.joint_frames;
+  bool paired = !jf.empty() && jf.size() == run.frames.size() && fs::exists(jf.front().file);
+  for (std::size_t f = 0; paired && f < jf.size(); ++f)
+    paired = std::abs(jf[f].time - run.frames[f].time) <= 1e-9 * std::max(1.0, std::abs(run.frames[f].time));
+  if (paired) {
+    const std::vector<report::CrackPiece> where = report::broken_joints(jf.front().file, 0);
     const Vec3 bottom(0.0, -0.5 * r.diameter, 0.0), up = Vec3::UnitY();  // the generator's sphere is centred at 0
-    auto reach_at = [&](std::size_t f, double& reach, double& top) {
-      const report::CrackReach cr = report::crack_reach(where, report::joint_states(run.joint_frames[f].file), bottom,
-                                                        up, SphereImpactResult::reach_fraction);
+    auto reach_at = [&](Index f, double& reach, double& top) {
+      const report::CrackReach cr =
+          report::crack_reach(where, report::joint_states(jf[static_cast<std::size_t>(f)].file), bottom, up,
+                              SphereImpactResult::reach_fraction);
       reach = cr.at_quantile / r.diameter, top = cr.furthest / r.diameter;
     };
-    const auto nearest_joints = [&](double time) {
-      std::size_t best = 0;
-      for (std::size_t f = 1; f < run.joint_frames.size(); ++f)
-        if (std::abs(run.joint_frames[f].time - time) < std::abs(run.joint_frames[best].time - time)) best = f;
-      return best;
-    };
-    reach_at(nearest_joints(r.t_compare), r.crack_reach, r.crack_top);
-    for (auto& h : r.history) reach_at(nearest_joints(h.after_contact + r.t_contact), h.crack_reach, h.crack_top);
+    reach_at(r.frame, r.crack_reach, r.crack_top);
+    for (auto& h : r.history)  // fragments.csv numbers the frames as run.pvd does
+      if (h.frame >= 0 && static_cast<std::size_t>(h.frame) < jf.size()) reach_at(h.frame, h.crack_reach, h.crack_top);
   }
 
   if (write_files) {

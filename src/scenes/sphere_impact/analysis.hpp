@@ -35,7 +35,8 @@ struct SphereImpactResult {
   /// How far up the cracks reach at the compared time, over the diameter, from the sphere's
   /// lowest point along the impact's axis, with each joint where it was at the start:
   /// `reach_fraction` of the broken joints' area lies at or below `crack_reach`, and
-  /// `crack_top` is the highest broken joint (-1: no joints frame).
+  /// `crack_top` is the highest broken joint's centroid (-1: no joints frames paired with the
+  /// run's frames).
   static constexpr double reach_fraction = 0.95;
   double crack_reach = -1, crack_top = -1;
   double t_first_broken = -1;     ///< first series row with a broken joint [s]

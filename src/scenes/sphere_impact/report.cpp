@@ -459,8 +459,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<std::string> failed;
     std::ofstream csv(fs::path(dir) / "orientations.csv");
     csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
-           "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top\n";  // -1: not by the compared time; nan: no
-                                                                                // history
+           "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top\n";
+    // two_large_after_contact_ms -1: not by the compared time, nan: no history; crack_reach
+    // and crack_top -1: no joints frames.
     std::vector<std::vector<std::string>> rows_o;
     for (std::size_t si = 0; si < speeds.size(); ++si) {
       std::vector<std::size_t> runs = {si};
@@ -529,9 +530,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     doc.para(fmt::format(
         "How far up the cracks reach: the height above the sphere's lowest point below which {:.0f} % of the broken "
         "joints' area lies, over the diameter, each joint where it was at the start (so a piece flying off does not "
-        "move its crack). The crushed base holds most of that area at every speed; a crack climbing towards 1 runs "
-        "up through the sphere, as the paper's meridian cracks do, whether or not it has cut a piece free yet. The "
-        "table's second figure is the highest broken joint. Per speed: `speeds/<v>/pieces_time.csv`.",
+        "move its crack). It rises as broken joints spread up through the sphere, whether or not they have cut a "
+        "piece free yet. The table's second figure is the highest broken joint (its centroid). Per speed: "
+        "`speeds/<v>/pieces_time.csv`.",
         100 * SphereImpactResult::reach_fraction));
     doc.figure("crack reach against time", "images/crack_reach.png");
   }
