@@ -173,9 +173,38 @@ bool in_face_of_vertex(const Poly& P, const Frames& fp, int i, const Vec3& q) {
   return false;
 }
 
+// Signed distances of P's vertices to the planes of Q's triangles: [vertex][triangle].
+using PlaneDistances = std::array<std::array<Real, 12>, 8>;
+
+// How far Q's own vertices lie outside the planes of its triangles (0 for a convex skeleton,
+// up to rounding; more for a warped hexahedron face or an inverted element). Then Q lies in
+// every half-space d_k <= bulge, so a point at d_k >= R + bulge from one plane is at least R
+// from Q: none of its features can be in contact with it.
+Real bulge(const Poly& Q, const Frames& fq) {
+  Real b = 0;
+  for (std::size_t k = 0; k < Q.topo->tris.size(); ++k) {
+    if (!fq[k].ok) return INFINITY;  // a collapsed triangle has no plane to bound by
+    for (int j = 0; j < Q.topo->nv; ++j) b = std::max(b, (Q.v[j] - fq[k].a).dot(fq[k].n));
+  }
+  return b;
+}
+
+// The distance past which a vertex or edge of P is skipped as out of reach of Q: R plus Q's
+// bulge plus a margin for the selection tolerances (a vertex may be taken by a face or edge
+// up to kSelect of its length outside it, so its distance may be that much below the true
+// one). Exact: a skipped feature is one the full tests would not have made a contact of.
+Real reach(const Poly& A, const Poly& B, Real R, Real bulge_q) {
+  Vec3 lo = A.v[0], hi = A.v[0];
+  for (int k = 1; k < A.topo->nv; ++k) lo = lo.cwiseMin(A.v[k]), hi = hi.cwiseMax(A.v[k]);
+  for (int k = 0; k < B.topo->nv; ++k) lo = lo.cwiseMin(B.v[k]), hi = hi.cwiseMax(B.v[k]);
+  return R + bulge_q + 1e-6 * (R + (hi - lo).norm());
+}
+
 // Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
-void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames& fq, Real R, bool flip,
-                    std::vector<Touch>& out) {
+// Fills dist with P's vertices' distances to Q's planes; a vertex farther than `skip` from one
+// of them is passed over after its projections (see reach).
+void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames& fq, Real R, Real skip, bool flip,
+                    PlaneDistances& dist, std::vector<Touch>& out) {
   const Topology& tq = *Q.topo;
   const Vec3 cp = P.centre(), cq = Q.centre();
   // Vertex ip of P against a point of Q combining Q's vertices iq with weights wq.
@@ -212,13 +241,17 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
     int deep_face = -1;
     TriProj dp{-1, -1, -1, 0, Vec3::UnitZ()};
     bool outside = tq.tris.empty();  // a segment (no faces) has no inside
+    Real farthest = -INFINITY;
     for (std::size_t k = 0; k < tq.tris.size(); ++k) {
       const TriProj pr = project(p, fq[k]);
+      dist[i][k] = pr.d;
+      farthest = std::max(farthest, pr.d);
       outside |= pr.d > 0;
       if (!inside(pr, tq.tri_diag[k])) continue;
       if (pr.d > 0 && pr.d < best) kind = Face, feat = static_cast<int>(k), best = pr.d, bp = pr;
       if (pr.d <= 0 && pr.d > deepest) deepest = pr.d, deep_face = static_cast<int>(k), dp = pr;
     }
+    if (farthest >= skip) continue;
     if (!outside) {
       // Inside Q's skeleton (deep penetration): push out through the nearest face.
       if (deep_face >= 0 && deepest > -R)
@@ -348,7 +381,7 @@ Real sin2_angle(const Vec3& u, const Vec3& v, Vec3* ds_du, Vec3* ds_dv) {
   return 1 - c * c / (uu * vv);
 }
 
-void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out) {
+void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune) {
   const Real R = rA + rB;
   const std::size_t first = out.size();
   // Most candidate pairs of the broad phase do not touch: their skeletons' boxes, grown by
@@ -358,14 +391,32 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
   for (int k = 1; k < B.topo->nv; ++k) blo = blo.cwiseMin(B.v[k]), bhi = bhi.cwiseMax(B.v[k]);
   if (((alo.array() - R) > bhi.array()).any() || ((blo.array() - R) > ahi.array()).any()) return;
   const Frames fa = frames_of(A), fb = frames_of(B);
-  vertex_against(A, fa, B, fb, R, false, out);
-  vertex_against(B, fb, A, fa, R, true, out);
+  // Most vertices and edges of a touching pair are out of reach of the other skeleton (a
+  // tetrahedron resting on a face has one vertex and three edges away from it): a plane of
+  // the other side bounds them away, and their feature tests are skipped.
+  const Real skip_a = prune ? reach(A, B, R, bulge(B, fb)) : INFINITY;
+  const Real skip_b = prune ? reach(A, B, R, bulge(A, fa)) : INFINITY;
+  PlaneDistances da, db;  // A's vertices to B's planes, B's to A's
+  vertex_against(A, fa, B, fb, R, skip_a, false, da, out);
+  vertex_against(B, fb, A, fa, R, skip_b, true, db, out);
   const Topology &ta = *A.topo, &tb = *B.topo;
+  // An edge whose two ends lie past `skip` of one plane of the other skeleton is out of reach.
+  auto far_edges = [](const Topology& t, const PlaneDistances& d, std::size_t planes, Real skip) {
+    std::array<bool, 12> far{};
+    for (std::size_t e = 0; e < t.edges.size(); ++e)
+      for (std::size_t k = 0; k < planes && !far[e]; ++k)
+        far[e] = std::min(d[t.edges[e][0]][k], d[t.edges[e][1]][k]) >= skip;
+    return far;
+  };
+  const std::array<bool, 12> far_a = far_edges(ta, da, tb.tris.size(), skip_a);
+  const std::array<bool, 12> far_b = far_edges(tb, db, ta.tris.size(), skip_b);
   const Vec3 ca = A.centre(), cb = B.centre();
   for (std::size_t i = 0; i < ta.edges.size(); ++i) {
+    if (far_a[i]) continue;
     const Vec3 &a0 = A.v[ta.edges[i][0]], &a1 = A.v[ta.edges[i][1]];
     const Vec3 elo = a0.cwiseMin(a1).array() - R, ehi = a0.cwiseMax(a1).array() + R;
     for (std::size_t j = 0; j < tb.edges.size(); ++j) {
+      if (far_b[j]) continue;
       const Vec3 &b0 = B.v[tb.edges[j][0]], &b1 = B.v[tb.edges[j][1]];
       if ((b0.cwiseMax(b1).array() < elo.array()).any() || (b0.cwiseMin(b1).array() > ehi.array()).any()) continue;
       Vec3 pa, pb;

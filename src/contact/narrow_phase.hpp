@@ -75,7 +75,10 @@ Real sin2_angle(const Vec3& u, const Vec3& v, Vec3* ds_du = nullptr, Vec3* ds_dv
 /// Appends the contacts between A (radius rA) and B (radius rB) to `out`. Contacts closer
 /// than rA + rB to each other are blended (Touch::weight) so that one geometric contact
 /// found through several feature pairs counts once and the total force stays continuous.
-void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out);
+/// Vertices and edges that a plane of the other skeleton bounds out of reach are skipped;
+/// `prune = false` runs every feature test instead (for tests: the result is the same to
+/// the bit).
+void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune = true);
 
 /// Contacts of skeleton A with the half-space {x : (x - p) . n <= 0} (a rigid plane of
 /// radius 0): one per vertex closer than rA (kind VF, fb = 0).
