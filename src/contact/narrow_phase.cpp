@@ -192,13 +192,9 @@ Real bulge(const Poly& Q, const Frames& fq) {
 // The distance past which a vertex or edge of P is skipped as out of reach of Q: R plus Q's
 // bulge plus a margin for the selection tolerances (a vertex may be taken by a face or edge
 // up to kSelect of its length outside it, so its distance may be that much below the true
-// one). Exact: a skipped feature is one the full tests would not have made a contact of.
-Real reach(const Poly& A, const Poly& B, Real R, Real bulge_q) {
-  Vec3 lo = A.v[0], hi = A.v[0];
-  for (int k = 1; k < A.topo->nv; ++k) lo = lo.cwiseMin(A.v[k]), hi = hi.cwiseMax(A.v[k]);
-  for (int k = 0; k < B.topo->nv; ++k) lo = lo.cwiseMin(B.v[k]), hi = hi.cwiseMax(B.v[k]);
-  return R + bulge_q + 1e-6 * (R + (hi - lo).norm());
-}
+// one; `size` bounds the lengths). Exact: a skipped feature is one the full tests would not
+// have made a contact of.
+Real reach(Real R, Real bulge_q, Real size) { return R + bulge_q + 1e-6 * (R + size); }
 
 // Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
 // Fills dist with P's vertices' distances to Q's planes; a vertex farther than `skip` from one
@@ -241,17 +237,21 @@ void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames
     int deep_face = -1;
     TriProj dp{-1, -1, -1, 0, Vec3::UnitZ()};
     bool outside = tq.tris.empty();  // a segment (no faces) has no inside
+    // The planes' distances first (project's own expression): a vertex out of reach needs
+    // no barycentric coordinates.
     Real farthest = -INFINITY;
     for (std::size_t k = 0; k < tq.tris.size(); ++k) {
+      dist[i][k] = fq[k].ok ? (p - fq[k].a).dot(fq[k].n) : 0.0;
+      farthest = std::max(farthest, dist[i][k]);
+    }
+    if (farthest >= skip) continue;
+    for (std::size_t k = 0; k < tq.tris.size(); ++k) {
       const TriProj pr = project(p, fq[k]);
-      dist[i][k] = pr.d;
-      farthest = std::max(farthest, pr.d);
       outside |= pr.d > 0;
       if (!inside(pr, tq.tri_diag[k])) continue;
       if (pr.d > 0 && pr.d < best) kind = Face, feat = static_cast<int>(k), best = pr.d, bp = pr;
       if (pr.d <= 0 && pr.d > deepest) deepest = pr.d, deep_face = static_cast<int>(k), dp = pr;
     }
-    if (farthest >= skip) continue;
     if (!outside) {
       // Inside Q's skeleton (deep penetration): push out through the nearest face.
       if (deep_face >= 0 && deepest > -R)
@@ -394,8 +394,9 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
   // Most vertices and edges of a touching pair are out of reach of the other skeleton (a
   // tetrahedron resting on a face has one vertex and three edges away from it): a plane of
   // the other side bounds them away, and their feature tests are skipped.
-  const Real skip_a = prune ? reach(A, B, R, bulge(B, fb)) : INFINITY;
-  const Real skip_b = prune ? reach(A, B, R, bulge(A, fa)) : INFINITY;
+  const Real size = (ahi.cwiseMax(bhi) - alo.cwiseMin(blo)).norm();
+  const Real skip_a = prune ? reach(R, bulge(B, fb), size) : INFINITY;
+  const Real skip_b = prune ? reach(R, bulge(A, fa), size) : INFINITY;
   PlaneDistances da, db;  // A's vertices to B's planes, B's to A's
   vertex_against(A, fa, B, fb, R, skip_a, false, da, out);
   vertex_against(B, fb, A, fa, R, skip_b, true, db, out);
