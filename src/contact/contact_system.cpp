@@ -592,7 +592,7 @@ void ContactSystem::slots_from_map() {
 void ContactSystem::cache_skeletons(const Real* x) {
   const Index ns = static_cast<Index>(skel_elems_.size());
 #pragma omp parallel for schedule(static) if (ns > 1024)
-  for (Index i = 0; i < ns; ++i) skel_cache_[i] = skeleton_poly(skel_elems_[i], x);
+  for (Index i = 0; i < ns; ++i) prepare(skeleton_poly(skel_elems_[i], x), skel_cache_[i]);
 }
 
 void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,
@@ -616,7 +616,7 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   }
   const auto [w, e] = wall_pairs_[p - npair];
   const Wall& wl = walls_[w];
-  wall_touches(wl, cached(e), radius_[e], touches);
+  wall_touches(wl, cached(e).poly, radius_[e], touches);
   for (const Touch& t : touches)
     if (evaluate(p, e, -1 - w, &wl, t, x, v, dt, 0.0, o)) out.push_back(o);
 }

@@ -205,7 +205,7 @@ class ContactSystem {
                 Real offset, TouchOut& o) const;
   void gather(const TouchOut& o, Real* f);
   void cache_skeletons(const Real* x);
-  const Poly& cached(Index e) const { return skel_cache_[skel_slot_[e]]; }
+  const Prepared& cached(Index e) const { return skel_cache_[skel_slot_[e]]; }
   std::vector<PairKey> pair_keys() const;
   /// Node n's three values in x (a local node) or in the lent nodes' `lent` array.
   const Real* at(const Real* x, const std::vector<Real>& lent, Index n) const {
@@ -266,8 +266,8 @@ class ContactSystem {
   /// names have their skeleton computed each step: on the intact Brazilian disc, only the
   /// elements near its jaws, not its thousands of surface elements (issue 19).
   std::vector<Index> skel_slot_;
-  std::vector<Index> skel_elems_;  ///< the elements with a slot, in slot order
-  std::vector<Poly> skel_cache_;   ///< their skeletons at this step
+  std::vector<Index> skel_elems_;     ///< the elements with a slot, in slot order
+  std::vector<Prepared> skel_cache_;  ///< their skeletons at this step, prepared for their pairs
   /// skel_elems_ and the cache's size from skel_slot_ (after a checkpoint is read).
   void slots_from_map();
   std::vector<std::vector<TouchOut>> arena_;  ///< per thread

@@ -15,14 +15,6 @@ struct TriProj {
   Vec3 n;
 };
 
-// A triangle's frame, computed once per pair: projecting the skeleton vertices of the other
-// side on it then costs two dot products and a few multiplications.
-struct TriFrame {
-  Vec3 a, e1, e2, n;
-  Real d00, d01, d11, inv;
-  bool ok;
-};
-
 TriFrame frame(const Vec3& a, const Vec3& b, const Vec3& c) {
   TriFrame f;
   f.a = a, f.e1 = b - a, f.e2 = c - a;
@@ -50,13 +42,6 @@ TriProj project(const Vec3& p, const TriFrame& f) {
 }
 
 using Frames = std::array<TriFrame, 12>;
-
-Frames frames_of(const Poly& P) {
-  Frames fr;
-  const auto& tris = P.topo->tris;
-  for (std::size_t k = 0; k < tris.size(); ++k) fr[k] = frame(P.v[tris[k][0]], P.v[tris[k][1]], P.v[tris[k][2]]);
-  return fr;
-}
 
 // A vertex defers to an edge-edge pair when one of its own edges points towards the
 // contact, and edge-edge pairs need their closest points inside both edges; both tests are
@@ -176,19 +161,6 @@ bool in_face_of_vertex(const Poly& P, const Frames& fp, int i, const Vec3& q) {
 // Signed distances of P's vertices to the planes of Q's triangles: [vertex][triangle].
 using PlaneDistances = std::array<std::array<Real, 12>, 8>;
 
-// How far Q's own vertices lie outside the planes of its triangles (0 for a convex skeleton,
-// up to rounding; more for a warped hexahedron face or an inverted element). Then Q lies in
-// every half-space d_k <= bulge, so a point at d_k >= R + bulge from one plane is at least R
-// from Q: none of its features can be in contact with it.
-Real bulge(const Poly& Q, const Frames& fq) {
-  Real b = 0;
-  for (std::size_t k = 0; k < Q.topo->tris.size(); ++k) {
-    if (!fq[k].ok) return INFINITY;  // a collapsed triangle has no plane to bound by
-    for (int j = 0; j < Q.topo->nv; ++j) b = std::max(b, (Q.v[j] - fq[k].a).dot(fq[k].n));
-  }
-  return b;
-}
-
 // The distance past which a vertex or edge of P is skipped as out of reach of Q: R plus Q's
 // bulge plus a margin for the selection tolerances (a vertex may be taken by a face or edge
 // up to kSelect of its length outside it, so its distance may be that much below the true
@@ -198,11 +170,14 @@ Real reach(Real R, Real bulge_q, Real size) { return R + bulge_q + 1e-6 * (R + s
 
 // Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
 // Fills dist with P's vertices' distances to Q's planes; a vertex farther than `skip` from one
-// of them is passed over after its projections (see reach).
-void vertex_against(const Poly& P, const Frames& fp, const Poly& Q, const Frames& fq, Real R, Real skip, bool flip,
-                    PlaneDistances& dist, std::vector<Touch>& out) {
+// of them is passed over (see reach). Q lies in every half-space d_k <= Q's bulge, so a point
+// at d_k >= R + bulge from one plane is at least R from Q.
+void vertex_against(const Prepared& PP, const Prepared& QP, Real R, Real skip, bool flip, PlaneDistances& dist,
+                    std::vector<Touch>& out) {
+  const Poly &P = PP.poly, &Q = QP.poly;
+  const Frames &fp = PP.frames, &fq = QP.frames;
   const Topology& tq = *Q.topo;
-  const Vec3 cp = P.centre(), cq = Q.centre();
+  const Vec3 &cp = PP.centre, &cq = QP.centre;
   // Vertex ip of P against a point of Q combining Q's vertices iq with weights wq.
   auto emit = [&](Feature k_pa, Feature k_pb, int fp, int fq, const Vec3& pp, const Vec3& pq, const Vec3& n_qp, Real d,
                   int ip, std::array<int, 3> iq, std::array<Real, 3> wq, const EdgeFades* faded = nullptr) {
@@ -381,25 +356,48 @@ Real sin2_angle(const Vec3& u, const Vec3& v, Vec3* ds_du, Vec3* ds_dv) {
   return 1 - c * c / (uu * vv);
 }
 
+void prepare(const Poly& p, Prepared& out) {
+  out.poly = p;
+  const auto& tris = p.topo->tris;
+  for (std::size_t k = 0; k < tris.size(); ++k)
+    out.frames[k] = frame(p.v[tris[k][0]], p.v[tris[k][1]], p.v[tris[k][2]]);
+  out.lo = out.hi = p.v[0];
+  for (int k = 1; k < p.topo->nv; ++k) out.lo = out.lo.cwiseMin(p.v[k]), out.hi = out.hi.cwiseMax(p.v[k]);
+  out.centre = p.centre();
+  out.bulge = 0;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    const TriFrame& f = out.frames[k];
+    if (!f.ok) {  // a collapsed triangle has no plane to bound by
+      out.bulge = INFINITY;
+      break;
+    }
+    for (int j = 0; j < p.topo->nv; ++j) out.bulge = std::max(out.bulge, (p.v[j] - f.a).dot(f.n));
+  }
+}
+
 void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune) {
+  Prepared pa, pb;
+  prepare(A, pa), prepare(B, pb);
+  find_touches(pa, rA, pb, rB, out, prune);
+}
+
+void find_touches(const Prepared& PA, Real rA, const Prepared& PB, Real rB, std::vector<Touch>& out, bool prune) {
+  const Poly &A = PA.poly, &B = PB.poly;
   const Real R = rA + rB;
   const std::size_t first = out.size();
   // Most candidate pairs of the broad phase do not touch: their skeletons' boxes, grown by
   // R, are apart. Checking that first skips the feature enumeration for them.
-  Vec3 alo = A.v[0], ahi = A.v[0], blo = B.v[0], bhi = B.v[0];
-  for (int k = 1; k < A.topo->nv; ++k) alo = alo.cwiseMin(A.v[k]), ahi = ahi.cwiseMax(A.v[k]);
-  for (int k = 1; k < B.topo->nv; ++k) blo = blo.cwiseMin(B.v[k]), bhi = bhi.cwiseMax(B.v[k]);
+  const Vec3 &alo = PA.lo, &ahi = PA.hi, &blo = PB.lo, &bhi = PB.hi;
   if (((alo.array() - R) > bhi.array()).any() || ((blo.array() - R) > ahi.array()).any()) return;
-  const Frames fa = frames_of(A), fb = frames_of(B);
   // Most vertices and edges of a touching pair are out of reach of the other skeleton (a
   // tetrahedron resting on a face has one vertex and three edges away from it): a plane of
   // the other side bounds them away, and their feature tests are skipped.
   const Real size = (ahi.cwiseMax(bhi) - alo.cwiseMin(blo)).norm();
-  const Real skip_a = prune ? reach(R, bulge(B, fb), size) : INFINITY;
-  const Real skip_b = prune ? reach(R, bulge(A, fa), size) : INFINITY;
+  const Real skip_a = prune ? reach(R, PB.bulge, size) : INFINITY;
+  const Real skip_b = prune ? reach(R, PA.bulge, size) : INFINITY;
   PlaneDistances da, db;  // A's vertices to B's planes, B's to A's
-  vertex_against(A, fa, B, fb, R, skip_a, false, da, out);
-  vertex_against(B, fb, A, fa, R, skip_b, true, db, out);
+  vertex_against(PA, PB, R, skip_a, false, da, out);
+  vertex_against(PB, PA, R, skip_b, true, db, out);
   const Topology &ta = *A.topo, &tb = *B.topo;
   // An edge whose two ends lie past `skip` of one plane of the other skeleton is out of reach.
   auto far_edges = [](const Topology& t, const PlaneDistances& d, std::size_t planes, Real skip) {
@@ -411,7 +409,7 @@ void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<To
   };
   const std::array<bool, 12> far_a = far_edges(ta, da, tb.tris.size(), skip_a);
   const std::array<bool, 12> far_b = far_edges(tb, db, ta.tris.size(), skip_b);
-  const Vec3 ca = A.centre(), cb = B.centre();
+  const Vec3 &ca = PA.centre, &cb = PB.centre;
   for (std::size_t i = 0; i < ta.edges.size(); ++i) {
     if (far_a[i]) continue;
     const Vec3 &a0 = A.v[ta.edges[i][0]], &a1 = A.v[ta.edges[i][1]];
