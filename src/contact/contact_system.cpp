@@ -341,7 +341,9 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
       const auto [w, e] = wall_pairs_[q];
       if (seen[q] > 0 || !counts(e)) continue;
       const Wall& wl = walls_[w];
-      wall_touches(wl, skeleton_poly(e, x), radius_[e], touches_);
+      Prepared pe;
+      prepare(skeleton_poly(e, x), pe);
+      wall_touches(wl, pe, radius_[e], touches_);
       const Real R = radius_[e] + (wl.type == Wall::Type::Cylinder ? wl.radius : 0.0);
       const auto [worst, energy] = overlap_of(touches_, R, pair_params(e, -1, &wl).kn);
       if (worst > 0) born_own_.wall.add(energy, worst / R);
@@ -616,17 +618,17 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   }
   const auto [w, e] = wall_pairs_[p - npair];
   const Wall& wl = walls_[w];
-  wall_touches(wl, cached(e).poly, radius_[e], touches);
+  wall_touches(wl, cached(e), radius_[e], touches);
   for (const Touch& t : touches)
     if (evaluate(p, e, -1 - w, &wl, t, x, v, dt, 0.0, o)) out.push_back(o);
 }
 
-void ContactSystem::wall_touches(const Wall& wl, const Poly& A, Real r, std::vector<Touch>& out) {
+void ContactSystem::wall_touches(const Wall& wl, const Prepared& A, Real r, std::vector<Touch>& out) {
   out.clear();
   if (wl.type == Wall::Type::Plane)
-    find_plane_touches(A, r, wl.centre, wl.plane_normal(), out);
+    find_plane_touches(A.poly, r, wl.centre, wl.plane_normal(), out);
   else if (wl.type == Wall::Type::Jaw)
-    find_jaw_touches(A, r, wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle, out);
+    find_jaw_touches(A.poly, r, wl.centre, wl.jaw_axis(), wl.plane_normal(), wl.radius, wl.cos_half_angle, out);
   else if (wl.type == Wall::Type::Cylinder)
     find_touches(A, r, wl.axis_poly(), wl.radius, out);
   else

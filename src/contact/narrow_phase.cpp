@@ -162,15 +162,20 @@ bool in_face_of_vertex(const Poly& P, const Frames& fp, int i, const Vec3& q) {
 using PlaneDistances = std::array<std::array<Real, 12>, 8>;
 
 // The distance past which a vertex or edge of P is skipped as out of reach of Q: R plus Q's
-// bulge plus a margin for the selection tolerances (a vertex may be taken by a face or edge
-// up to kSelect of its length outside it, so its distance may be that much below the true
-// one; `size` bounds the lengths). Exact: a skipped feature is one the full tests would not
-// have made a contact of.
+// bulge plus a margin. Q lies in every half-space d_k <= bulge (inside the hull of its
+// vertices), so a point with d_k >= R + bulge + margin on the outer side of one plane is
+// farther than R from every point of Q by the margin. The margin covers where the tests take
+// a point of Q that is not quite in Q: a face or an edge accepts a projection up to kSelect
+// of its size outside it (well-conditioned triangles only: prepare turns the pruning off
+// against a flat one), and `size` bounds those sizes. The edge-edge test accepts closest
+// points within kBand of the edges' ends, far more than the margin, but then clamps them onto
+// the segments: that clamping is what makes skipping an edge exact. So a skipped feature is
+// one the full tests would not have made a contact of.
 Real reach(Real R, Real bulge_q, Real size) { return R + bulge_q + 1e-6 * (R + size); }
 
 // Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
-// Fills dist with P's vertices' distances to Q's planes; a vertex farther than `skip` from one
-// of them is passed over (see reach). Q lies in every half-space d_k <= Q's bulge, so a point
+// Fills dist with P's vertices' signed distances to Q's planes; a vertex at `skip` or more on
+// the outer side of one of them is passed over (see reach). Q lies in every half-space d_k <= Q's bulge, so a point
 // at d_k >= R + bulge from one plane is at least R from Q.
 void vertex_against(const Prepared& PP, const Prepared& QP, Real R, Real skip, bool flip, PlaneDistances& dist,
                     std::vector<Touch>& out) {
@@ -212,8 +217,7 @@ void vertex_against(const Prepared& PP, const Prepared& QP, Real R, Real skip, b
     int deep_face = -1;
     TriProj dp{-1, -1, -1, 0, Vec3::UnitZ()};
     bool outside = tq.tris.empty();  // a segment (no faces) has no inside
-    // The planes' distances first (project's own expression): a vertex out of reach needs
-    // no barycentric coordinates.
+    // The planes' distances first: a vertex out of reach needs no barycentric coordinates.
     Real farthest = -INFINITY;
     for (std::size_t k = 0; k < tq.tris.size(); ++k) {
       dist[i][k] = fq[k].ok ? (p - fq[k].a).dot(fq[k].n) : 0.0;
@@ -367,7 +371,11 @@ void prepare(const Poly& p, Prepared& out) {
   out.bulge = 0;
   for (std::size_t k = 0; k < tris.size(); ++k) {
     const TriFrame& f = out.frames[k];
-    if (!f.ok) {  // a collapsed triangle has no plane to bound by
+    // A collapsed triangle has no plane to bound by. A nearly flat one (sin^2 of its angle
+    // under 1e-8) has barycentric coordinates that round off by more than kSelect, so that
+    // the face test may take points well outside it (project's inv is even 0 once the
+    // determinant cancels): no bound is trusted against such a skeleton.
+    if (!f.ok || !(f.d00 * f.d11 - f.d01 * f.d01 > 1e-8 * f.d00 * f.d11)) {
       out.bulge = INFINITY;
       break;
     }
@@ -375,10 +383,20 @@ void prepare(const Poly& p, Prepared& out) {
   }
 }
 
+void find_touches(const Prepared& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune) {
+  const Real R = rA + rB;
+  Vec3 lo = B.v[0], hi = B.v[0];
+  for (int k = 1; k < B.topo->nv; ++k) lo = lo.cwiseMin(B.v[k]), hi = hi.cwiseMax(B.v[k]);
+  if (((A.lo.array() - R) > hi.array()).any() || ((lo.array() - R) > A.hi.array()).any()) return;
+  Prepared pb;
+  prepare(B, pb);
+  find_touches(A, rA, pb, rB, out, prune);
+}
+
 void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune) {
-  Prepared pa, pb;
-  prepare(A, pa), prepare(B, pb);
-  find_touches(pa, rA, pb, rB, out, prune);
+  Prepared pa;
+  prepare(A, pa);
+  find_touches(pa, rA, B, rB, out, prune);
 }
 
 void find_touches(const Prepared& PA, Real rA, const Prepared& PB, Real rB, std::vector<Touch>& out, bool prune) {

@@ -75,15 +75,17 @@ Real sin2_angle(const Vec3& u, const Vec3& v, Vec3* ds_du = nullptr, Vec3* ds_dv
 /// A triangle's frame: projecting a point on it then costs two dot products and a few
 /// multiplications.
 struct TriFrame {
-  Vec3 a, e1, e2, n;  ///< first vertex, edges from it, unit outward normal
+  Vec3 a, e1, e2, n;  ///< first vertex, edges from it, unit normal (outward unless the element is inverted)
   Real d00, d01, d11, inv;
-  bool ok;  ///< false for a collapsed triangle (no normal)
+  bool ok;  ///< false for a collapsed triangle (no normal; n is then UnitZ)
 };
 
 /// A skeleton with what every pair it is in needs of it alone: its triangles' frames, its
-/// box, its centre and how far its own vertices lie outside its triangles' planes (0 for a
-/// convex skeleton up to rounding; more for a warped hexahedron face or an inverted element).
-/// Prepared once per step, it is shared by the skeleton's pairs.
+/// box, its centre and its bulge, how far its own vertices lie outside its triangles' planes
+/// (0 for a convex skeleton up to rounding; more for a warped hexahedron face or an inverted
+/// element; infinite where a triangle is collapsed or so flat that its barycentric
+/// coordinates are not to be trusted, which turns the pruning off against it). Prepared once
+/// per step, it is shared by the skeleton's pairs.
 struct Prepared {
   Poly poly;
   std::array<TriFrame, 12> frames;
@@ -97,9 +99,10 @@ void prepare(const Poly& p, Prepared& out);
 /// found through several feature pairs counts once and the total force stays continuous.
 /// Vertices and edges that a plane of the other skeleton bounds out of reach are skipped;
 /// `prune = false` runs every feature test instead (for tests: the result is the same to
-/// the bit).
+/// the bit, see `reach` in narrow_phase.cpp for why).
 void find_touches(const Prepared& A, Real rA, const Prepared& B, Real rB, std::vector<Touch>& out, bool prune = true);
-/// The same for skeletons not prepared (prepares both).
+/// The same for skeletons not prepared (prepares them, B once their boxes are in reach).
+void find_touches(const Prepared& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune = true);
 void find_touches(const Poly& A, Real rA, const Poly& B, Real rB, std::vector<Touch>& out, bool prune = true);
 
 /// Contacts of skeleton A with the half-space {x : (x - p) . n <= 0} (a rigid plane of

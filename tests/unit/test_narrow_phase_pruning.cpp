@@ -1,13 +1,14 @@
 // The narrow phase skips the vertices and edges of one skeleton that a plane of the other
-// bounds out of reach (narrow_phase.cpp: bulge, reach). That must change nothing: on random
-// pairs of tetrahedra, warped hexahedra, inverted tetrahedra and segments, at distances from
-// interpenetrating to out of reach, and on aligned stacks where features sit on each
-// other's region boundaries, the pruned search gives the same touches as the full one, to
-// the bit and in the same order.
+// bounds out of reach (narrow_phase.cpp: prepare's bulge, reach). That must change nothing:
+// on random pairs of tetrahedra, warped hexahedra, inverted tetrahedra, slivers, needles and
+// segments, at distances from interpenetrating to out of reach, and on aligned stacks where
+// features sit on each other's region boundaries, the pruned search gives the same touches
+// as the full one, to the bit and in the same order.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "contact/narrow_phase.hpp"
@@ -46,6 +47,20 @@ Poly hex(const Vec3& at, const Mat3& rot, Real size, Real jitter, std::mt19937& 
   return p;
 }
 
+// A tetrahedron squashed towards the plane through its centre normal to `axis` (a sliver at
+// squash 1e-6 to 1e-9: its faces are nearly flat triangles, whose barycentric coordinates
+// round off badly), or one vertex pulled onto the line of two others (a needle face).
+Poly degenerate(const Vec3& at, const Mat3& rot, Real size, Real squash, bool needle, std::mt19937& rng) {
+  Poly p = tet(at, rot, size, 0.2, rng);
+  if (needle) {
+    p.v[2] = p.v[0] + 0.5 * (p.v[1] - p.v[0]) + squash * size * (rot * Vec3::UnitZ());
+    return p;
+  }
+  const Vec3 axis = rot * Vec3::UnitZ();
+  for (int k = 0; k < 4; ++k) p.v[k] -= (1 - squash) * (p.v[k] - at).dot(axis) * axis;
+  return p;
+}
+
 Poly segment(const Vec3& at, const Mat3& rot, Real length) {
   Poly p;
   p.topo = &topology(Shape::Segment);
@@ -68,7 +83,8 @@ std::size_t expect_same(const Poly& A, Real rA, const Poly& B, Real rB, const st
         << what << ", touch " << i;
     for (int m = 0; m < f.n_fades; ++m)
       EXPECT_TRUE(f.fades[m].a0 == p.fades[m].a0 && f.fades[m].a1 == p.fades[m].a1 && f.fades[m].b0 == p.fades[m].b0 &&
-                  f.fades[m].b1 == p.fades[m].b1 && f.fades[m].dw_ds == p.fades[m].dw_ds)
+                  f.fades[m].b1 == p.fades[m].b1 && f.fades[m].u == p.fades[m].u && f.fades[m].v == p.fades[m].v &&
+                  f.fades[m].dw_ds == p.fades[m].dw_ds)
           << what << ", touch " << i << ", fade " << m;
   }
   return full.size();
@@ -82,13 +98,17 @@ TEST(NarrowPhasePruning, RandomPairsGiveTheFullSearchsTouches) {
   std::normal_distribution<Real> g(0, 1);
   const Real size = 0.01;
   std::size_t touches = 0, touching_pairs = 0;
-  for (int n = 0; n < 20000; ++n) {
-    const int kind_a = n % 5, kind_b = (n / 5) % 5;  // tet, tet, hex, inverted tet, segment
+  for (int n = 0; n < 28000; ++n) {
+    // tet, tet, hex, inverted tet, segment, sliver, needle
+    const int kind_a = n % 7, kind_b = (n / 7) % 7;
     auto make = [&](int kind, const Vec3& at) {
       const Mat3 rot = random_rotation(rng);
+      const Real squash = std::pow(10.0, -9 + 3 * unit(rng));
       if (kind <= 1) return tet(at, rot, size, 0.2, rng);
       if (kind == 2) return hex(at, rot, size, 0.05, rng);  // warped faces: a bulge of up to ~1e-3 m
       if (kind == 3) return tet(at, rot, size, 0.2, rng, true);
+      if (kind == 5) return degenerate(at, rot, size, squash, false, rng);
+      if (kind == 6) return degenerate(at, rot, size, squash, true, rng);
       return segment(at, rot, 2 * size);
     };
     // Centres from coincident to 1.5 sizes apart: from deep overlap to out of reach.
