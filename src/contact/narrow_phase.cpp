@@ -175,8 +175,7 @@ Real reach(Real R, Real bulge_q, Real size) { return R + bulge_q + 1e-6 * (R + s
 
 // Vertex i of P against the features of Q (VF, VE, VV from P's side). `flip` when P is B.
 // Fills dist with P's vertices' signed distances to Q's planes; a vertex at `skip` or more on
-// the outer side of one of them is passed over (see reach). Q lies in every half-space d_k <= Q's bulge, so a point
-// at d_k >= R + bulge from one plane is at least R from Q.
+// the outer side of one of them is out of reach of Q and passed over (see reach).
 void vertex_against(const Prepared& PP, const Prepared& QP, Real R, Real skip, bool flip, PlaneDistances& dist,
                     std::vector<Touch>& out) {
   const Poly &P = PP.poly, &Q = QP.poly;

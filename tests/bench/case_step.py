@@ -65,8 +65,9 @@ def main():
                     B.append(run(a.vs, t, a.end, Path(tmp) / f"b{t}_{i}", a.vs_case or a.case, a.set))
             rows[t] = (A, B)
     first = rows[a.threads[0]][0][0]
-    print(f"{Path(a.case).name}{''.join(' --set ' + kv for kv in a.set)}, first {first['steps']} steps: {first['elements']} elements, {first['joints']} joints; "
-          f"median of {a.pairs} run(s) per cell; set-up excluded.\n")
+    sets = "".join(" --set " + kv for kv in a.set)
+    print(f"{Path(a.case).name}{sets}, first {first['steps']} steps: {first['elements']} elements, "
+          f"{first['joints']} joints; median of {a.pairs} run(s) per cell; set-up excluded.\n")
     head = "| threads | A ms/step | A element-steps/s |"
     if a.vs:
         head += " B ms/step | A/B (median of pairs) |"
