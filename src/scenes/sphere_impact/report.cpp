@@ -461,7 +461,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
            "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top\n";
     // two_large_after_contact_ms -1: not by the compared time, nan: no history; crack_reach
-    // and crack_top -1: no joints frames.
+    // and crack_top -1: no joints frames paired with the run's frames.
     std::vector<std::vector<std::string>> rows_o;
     for (std::size_t si = 0; si < speeds.size(); ++si) {
       std::vector<std::size_t> runs = {si};
