@@ -115,7 +115,7 @@ std::vector<std::string> energy_row(const SphereImpactResult& r) {
 std::string expected_pattern(double v) {
   if (v <= 5.0 + 1e-9) return "no through crack";
   if (std::abs(v - 7.5) < 1e-9) return "a few large pieces";
-  if (v < 20.0 - 1e-9) return "a few large pieces (assumed: the paper describes 5, 7.5 and 20 m/s)";
+  if (v < 20.0 - 1e-9) return "a few large pieces (assumed: the paper describes up to 5, 7.5, and 20 m/s on)";
   return "crushed base, many small pieces";
 }
 
@@ -501,8 +501,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         "Fracture at an impact is chaotic: which elements meet the plate first decides where cracks run. Each speed "
         "was run again with the sphere turned before meshing (`mesh.sphere_plate.orientation` {}: gmsh meshes each "
         "differently at the same size), so the pattern can be told from one mesh's chance. Per run, by "
-        "orientation ({} is the case's own mesh). Folders: `{}`; every run in `orientations.csv`.",
-        last == k0 + 1 ? std::to_string(last) : fmt::format("{} to {}", k0 + 1, last), k0,
+        "orientation ({}). Folders: `{}`; every run in `orientations.csv`.",
+        last == k0 + 1 ? std::to_string(last) : fmt::format("{} to {}", k0 + 1, last),
+        k0 == 0 ? std::string("0 is the case's own mesh")
+                : fmt::format("{} is the sweep's own runs, the orientation the case was given", k0),
         fs::relative(fs::path(sweep_root) / "orientations", dir).string()));
     if (!failed.empty()) {
       std::string f;
