@@ -469,6 +469,11 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   const std::string md = slurp(dir_ / "rep" / "report.md");
   EXPECT_NE(md.find("### The pattern over 3 orientations of the mesh"), std::string::npos) << md;
   EXPECT_NE(md.find("| 7.5 | a few large pieces | 3 |"), std::string::npos) << md;
+  // Over two speeds, per orientation the first speed with a through crack and with a few
+  // large pieces, and their median.
+  EXPECT_NE(md.find("| orientation | first through crack | first a few large pieces |"), std::string::npos) << md;
+  EXPECT_NE(md.find("\n| 2 | "), std::string::npos) << md;
+  EXPECT_NE(md.find("\n| median | "), std::string::npos) << md;
   for (const char* o : {"v2.5_o1", "v2.5_o2", "v7.5_o1", "v7.5_o2"})
     EXPECT_TRUE(fs::exists(dir_ / "rep" / "orientations" / o / "summary.json")) << o;
   EXPECT_NE(slurp(dir_ / "rep" / "orientations" / "v7.5_o2" / "case.resolved.toml").find("orientation = 2"),
