@@ -1,25 +1,28 @@
 #include "report/onsets.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <map>
 
 namespace dspdem::report {
 
 std::vector<Onset> first_onsets(const std::vector<SweepPoint>& points) {
-  std::map<int, double> first;  // ordered by realisation
+  std::map<int, Onset> by;  // ordered by realisation
   for (const SweepPoint& p : points) {
-    double& f = first.try_emplace(p.realisation, std::numeric_limits<double>::infinity()).first->second;
-    if (p.holds) f = std::min(f, p.value);
+    Onset& o = by.try_emplace(p.realisation, Onset{p.realisation}).first->second;
+    if (!p.known) continue;
+    if (p.holds) o.first = std::min(o.first, p.value);
+    if (!(o.highest_known >= p.value)) o.highest_known = p.value;  // NaN at first: taken
   }
+  for (const SweepPoint& p : points)
+    if (!p.known && p.value < by[p.realisation].first) by[p.realisation].failed_below = true;
   std::vector<Onset> out;
-  out.reserve(first.size());
-  for (const auto& [r, f] : first) out.push_back({r, f});
+  out.reserve(by.size());
+  for (const auto& [r, o] : by) out.push_back(o);
   return out;
 }
 
 Middle middle(std::vector<double> v) {
-  if (v.empty()) return {std::nan(""), std::nan("")};
+  if (v.empty()) return {};
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return {v[(n - 1) / 2], v[n / 2]};
