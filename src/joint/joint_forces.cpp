@@ -180,22 +180,23 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
   }
 }
 
-// The common case of a tetrahedral model with nodal quadrature, before anything cracks: four
-// triangular joints under one law with all their points lean and elastic. The four
-// joints are the four lanes of lane::V4, so each operation of joint_kernel<3, true, 4> is one
-// operation for the four: the same arithmetic in the same order (so the same bits; the
-// oracle test checks it), without the per-joint square root and division latencies of the
+// The common case, before anything cracks: four joints of one face size and rule, under one
+// law, with all their points lean and elastic. The four joints are the four lanes of
+// lane::V4, so each operation of joint_kernel<NPF, NODAL, 4> is one operation for the four:
+// the same arithmetic in the same order (so the same bits; the oracle test checks it, for
+// every face size and rule), without the per-joint square root and division latencies of the
 // scalar kernel. Returns false, having written nothing, when the batch is not that case or
 // when any point may leave its elastic branch (lean_update's tests, taken conservatively):
 // the caller then runs the scalar kernel, which decides exactly.
-bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&w)[4], Real* out) {
+template <int NPF, bool NODAL>
+bool lean_batch(JointSet& js, Index j0, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
   using lane::V4;
   const std::size_t p0 = 4 * static_cast<std::size_t>(j0);
   if (!js.offset.empty()) return false;  // extrinsic joints: the scalar kernel adds the offsets
   const JointLaw law = js.params[js.param[j0]].law;
   for (int b = 0; b < 4; ++b) {
     if (js.params[js.param[j0 + b]].law != law) return false;
-    for (int g = 0; g < 3; ++g)
+    for (int g = 0; g < NPF; ++g)
       if (js.full[p0 + 4 * b + g]) return false;
   }
   // Lane b is joint j0 + b (each joint has its own parameters: the penalty follows its
@@ -218,15 +219,18 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
     return V4::gather(q, q + stride, q + 2 * stride, q + 3 * stride);
   };
   const V4 zero = V4::set1(0.0), half = V4::set1(0.5);
-  V4 dx[3][3], xm[3][3];
-  for (int k = 0; k < 3; ++k)
+  V4 dx[NPF][3], xm[NPF][3];
+  for (int k = 0; k < NPF; ++k)
     for (int d = 0; d < 3; ++d) {
       const V4 A = pos(ja, k, d), B = pos(jb, k, d);
       dx[k][d] = B - A;
       xm[k][d] = half * (A + B);
     }
+  // The scalar kernel's normal: (x1 - x0) x (x2 - x0) on a triangle, the diagonals'
+  // (x2 - x0) x (x3 - x1) on a quadrilateral.
   V4 e1[3], e2[3];
-  for (int d = 0; d < 3; ++d) e1[d] = xm[1][d] - xm[0][d], e2[d] = xm[2][d] - xm[0][d];
+  for (int d = 0; d < 3; ++d)
+    e1[d] = xm[NPF == 3 ? 1 : 2][d] - xm[0][d], e2[d] = NPF == 3 ? xm[2][d] - xm[0][d] : xm[3][d] - xm[1][d];
   V4 n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
   const V4 nl = lane::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!lane::all(lane::gt(nl, zero))) return false;  // a collapsed face: the scalar kernel's case
@@ -235,10 +239,21 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
            c = par(&CohesiveParams::c), tan_phi = par(&CohesiveParams::tan_phi);
   const V4 area0 = V4::load(&js.area0[j0]);
   V4 ok = lane::gt(nl, zero);  // all set
-  V4 dn[3], ds[3], sv[3][3], sn[3], ss[3], dn_max[3];
-  for (int g = 0; g < 3; ++g) {
-    dn[g] = dx[g][0] * n[0] + dx[g][1] * n[1] + dx[g][2] * n[2];
-    for (int d = 0; d < 3; ++d) sv[g][d] = dx[g][d] - dn[g] * n[d];
+  V4 dn[NPF], ds[NPF], sv[NPF][3], sn[NPF], ss[NPF], dn_max[NPF];
+  for (int g = 0; g < NPF; ++g) {
+    // The jump at point g: at a node, the node pair's; at a Gauss point, summed over the
+    // nodes from zero as the scalar kernel sums it.
+    V4 jump[3];
+    for (int d = 0; d < 3; ++d) {
+      if constexpr (NODAL) {
+        jump[d] = dx[g][d];
+      } else {
+        jump[d] = zero;
+        for (int k = 0; k < NPF; ++k) jump[d] = jump[d] + V4::set1(N[g][k]) * dx[k][d];
+      }
+    }
+    dn[g] = jump[0] * n[0] + jump[1] * n[1] + jump[2] * n[2];
+    for (int d = 0; d < 3; ++d) sv[g][d] = jump[d] - dn[g] * n[d];
     ds[g] = lane::sqrt(sv[g][0] * sv[g][0] + sv[g][1] * sv[g][1] + sv[g][2] * sv[g][2]);
     // lean_update, lane by lane.
     sn[g] = kn * dn[g];
@@ -260,18 +275,34 @@ bool lean_batch_tri_nodal(JointSet& js, Index j0, const Real* x, const double (&
     }
   }
   if (!lane::all(ok)) return false;
-  // Forces of side A; written only now that every lane is known to be elastic.
-  for (int g = 0; g < 3; ++g) {
+  // Forces of side A; written only now that every lane is known to be elastic. At a node the
+  // point's force is its node's (0 - y, as the scalar kernel writes it); Gauss points spread
+  // theirs over the nodes, point after point, from zero.
+  V4 fa[NPF][3];
+  if constexpr (!NODAL)
+    for (int k = 0; k < NPF; ++k)
+      for (int d = 0; d < 3; ++d) fa[k][d] = zero;
+  for (int g = 0; g < NPF; ++g) {
     V4 t[3];
     const V4 slip = lane::gt(ds[g], zero), r = ss[g] / lane::select(slip, ds[g], V4::set1(1.0));
     for (int d = 0; d < 3; ++d)
       t[d] = lane::select(slip, lane::neg(sn[g]) * n[d] - r * sv[g][d], lane::neg(sn[g]) * n[d]);
     const V4 wa = V4::set1(w[g]) * area0;
-    for (int d = 0; d < 3; ++d) (zero - wa * t[d]).scatter(out + 3 * g + d, 12);
+    for (int d = 0; d < 3; ++d) {
+      if constexpr (NODAL) {
+        (zero - wa * t[d]).scatter(out + 3 * g + d, 12);
+      } else {
+        for (int k = 0; k < NPF; ++k) fa[k][d] = fa[k][d] - V4::set1(N[g][k]) * wa * t[d];
+      }
+    }
     LeanPoint& l = js.lean[p0 + g];
     dn[g].scatter(&l.dn, stride), ds[g].scatter(&l.ds, stride);
     dn_max[g].scatter(&l.dn_max, stride);
   }
+  if constexpr (!NODAL)
+    for (int k = 0; k < NPF; ++k)
+      for (int d = 0; d < 3; ++d) fa[k][d].scatter(out + 3 * k + d, 12);
+  // A triangle's 4th slot (3 numbers) is not written, as the scalar kernel leaves it.
   for (int b = 0; b < 4; ++b) js.status[j0 + b] = JointStatus::Intact;
   return true;
 }
@@ -294,6 +325,15 @@ void run_kernel(JointSet& js, Index j0, const Real* x, const QuadratureTables& q
   else
     nodal ? joint_kernel<4, true, B>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out)
           : joint_kernel<4, false, B>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out);
+}
+bool run_lean_batch(JointSet& js, Index j0, const Real* x, const QuadratureTables& qt, Real* out) {
+  const int ri = static_cast<int>(js.rule(j0));
+  const bool nodal = js.rule(j0) == Quadrature::Nodal;
+  if (js.npf[j0] == 3)
+    return nodal ? lean_batch<3, true>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out)
+                 : lean_batch<3, false>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out);
+  return nodal ? lean_batch<4, true>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out)
+               : lean_batch<4, false>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out);
 }
 }  // namespace
 
@@ -318,9 +358,7 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
     if (!any) continue;  // nothing of this batch is gathered
     if (j1 - j0 == batch && uniform_batch<batch>(js, j0)) {
       Real* out = &slots[12 * static_cast<std::size_t>(j0)];
-      const bool lean = js.npf[j0] == 3 && js.rule(j0) == Quadrature::Nodal &&
-                        lean_batch_tri_nodal(js, j0, x, qt.w[0][static_cast<int>(Quadrature::Nodal)], out);
-      if (!lean) run_kernel<batch>(js, j0, x, qt, out);
+      if (!run_lean_batch(js, j0, x, qt, out)) run_kernel<batch>(js, j0, x, qt, out);
       continue;
     }
     for (Index j = j0; j < j1; ++j) {
