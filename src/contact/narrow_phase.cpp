@@ -41,8 +41,6 @@ TriProj project(const Vec3& p, const TriFrame& f) {
   return r;
 }
 
-using Frames = std::array<TriFrame, 12>;
-
 // A vertex defers to an edge-edge pair when one of its own edges points towards the
 // contact, and edge-edge pairs need their closest points inside both edges; both tests are
 // generous by this band (a fraction of the edge length), so that where aligned stacks sit,

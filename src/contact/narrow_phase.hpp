@@ -86,9 +86,12 @@ struct TriFrame {
 /// element; infinite where a triangle is collapsed or so flat that its barycentric
 /// coordinates are not to be trusted, which turns the pruning off against it). Prepared once
 /// per step, it is shared by the skeleton's pairs.
+/// The frames of a skeleton's triangles (12: a hexahedron's 6 faces split in two).
+using Frames = std::array<TriFrame, 12>;
+
 struct Prepared {
   Poly poly;
-  std::array<TriFrame, 12> frames;
+  Frames frames;
   Vec3 lo, hi, centre;
   Real bulge;
 };
