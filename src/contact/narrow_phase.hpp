@@ -80,15 +80,15 @@ struct TriFrame {
   bool ok;  ///< false for a collapsed triangle (no normal; n is then UnitZ)
 };
 
+/// The frames of a skeleton's triangles (12: a hexahedron's 6 faces split in two).
+using Frames = std::array<TriFrame, 12>;
+
 /// A skeleton with what every pair it is in needs of it alone: its triangles' frames, its
 /// box, its centre and its bulge, how far its own vertices lie outside its triangles' planes
 /// (0 for a convex skeleton up to rounding; more for a warped hexahedron face or an inverted
 /// element; infinite where a triangle is collapsed or so flat that its barycentric
 /// coordinates are not to be trusted, which turns the pruning off against it). Prepared once
 /// per step, it is shared by the skeleton's pairs.
-/// The frames of a skeleton's triangles (12: a hexahedron's 6 faces split in two).
-using Frames = std::array<TriFrame, 12>;
-
 struct Prepared {
   Poly poly;
   Frames frames;

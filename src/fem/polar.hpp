@@ -21,9 +21,10 @@ inline bool polar_rotation(const Mat3& F, Mat3& R, int* iterations = nullptr) {
     ++it;
     // Near the solution each step squares the error (to half of it): after a step that moved
     // R by |change| the error left is about |change|^2 / 2. Below |change| = 1e-8 that is
-    // 5e-17, under half the spacing of doubles near 1, so a further step could move R by
-    // rounding only. (The old bound, |change| < 1e-10, took that step on nearly every
-    // element: a third of the decomposition's cost for no digit.)
+    // 5e-17 (Frobenius), under half the spacing of doubles near 1, the size of a rotation's
+    // largest entries: a further step would move R by about its own rounding (a few units in
+    // the last place of each entry). (The old bound, |change| < 1e-10, took that step on
+    // nearly every element: a third of the decomposition's cost for no digit.)
     if (change < 1e-16) break;
   }
   if (iterations) *iterations = it;
