@@ -46,7 +46,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
     Mat3 eps;
     M34 Q;
     if constexpr (Corot) {
-      polar_rotation(F, R);
+      polar_rotation(F, det, R);
       const Mat3 RtF = R.transpose() * F;
       eps = 0.5 * (RtF + RtF.transpose()) - Mat3::Identity();
       // Relative to node 0 to keep round-off independent of where the body sits.

@@ -9,9 +9,11 @@
 
 namespace dspdem {
 
-/// R from F (det F > 0); `iterations`, if given, receives the Newton steps taken.
-inline bool polar_rotation(const Mat3& F, Mat3& R, int* iterations = nullptr) {
-  if (!(F.determinant() > 0.0)) return false;
+/// R from F, whose determinant the caller has already computed as det (the element kernels
+/// need it for their inversion check anyway); false, R untouched, when det <= 0.
+/// `iterations`, if given, receives the Newton steps taken.
+inline bool polar_rotation(const Mat3& F, Real det, Mat3& R, int* iterations = nullptr) {
+  if (!(det > 0.0)) return false;
   R = F;
   int it = 0;
   while (it < 30) {
@@ -29,6 +31,11 @@ inline bool polar_rotation(const Mat3& F, Mat3& R, int* iterations = nullptr) {
   }
   if (iterations) *iterations = it;
   return true;
+}
+
+/// The same, computing det F itself.
+inline bool polar_rotation(const Mat3& F, Mat3& R, int* iterations = nullptr) {
+  return polar_rotation(F, F.determinant(), R, iterations);
 }
 
 }  // namespace dspdem

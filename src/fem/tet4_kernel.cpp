@@ -37,7 +37,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
     Mat3 eps;
     const Real det = F.determinant();
     if constexpr (Corot) {
-      polar_rotation(F, R);
+      polar_rotation(F, det, R);
       const Mat3 RtF = R.transpose() * F;
       eps = 0.5 * (RtF + RtF.transpose()) - Mat3::Identity();
     } else {
