@@ -315,25 +315,30 @@ bool uniform_batch(const JointSet& js, Index j0) {
   return true;
 }
 
+// Calls k.template operator()<NPF, NODAL>(N, w) with the face size and rule of joint j0 and
+// their quadrature tables: the one place where the run-time face maps onto the kernels'
+// template arguments.
+template <class K>
+decltype(auto) with_face(const JointSet& js, Index j0, const QuadratureTables& qt, K&& k) {
+  const int ri = static_cast<int>(js.rule(j0));
+  const bool nodal = js.rule(j0) == Quadrature::Nodal;
+  const int fi = js.npf[j0] == 3 ? 0 : 1;
+  const auto& N = qt.N[fi][ri];
+  const auto& w = qt.w[fi][ri];
+  if (fi == 0) return nodal ? k.template operator()<3, true>(N, w) : k.template operator()<3, false>(N, w);
+  return nodal ? k.template operator()<4, true>(N, w) : k.template operator()<4, false>(N, w);
+}
+
 template <int B>
 void run_kernel(JointSet& js, Index j0, const Real* x, const QuadratureTables& qt, Real* out) {
-  const int ri = static_cast<int>(js.rule(j0));
-  const bool nodal = js.rule(j0) == Quadrature::Nodal;
-  if (js.npf[j0] == 3)
-    nodal ? joint_kernel<3, true, B>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out)
-          : joint_kernel<3, false, B>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out);
-  else
-    nodal ? joint_kernel<4, true, B>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out)
-          : joint_kernel<4, false, B>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out);
+  with_face(js, j0, qt, [&]<int NPF, bool NODAL>(const auto& N, const auto& w) {
+    joint_kernel<NPF, NODAL, B>(js, j0, x, N, w, out);
+  });
 }
 bool run_lean_batch(JointSet& js, Index j0, const Real* x, const QuadratureTables& qt, Real* out) {
-  const int ri = static_cast<int>(js.rule(j0));
-  const bool nodal = js.rule(j0) == Quadrature::Nodal;
-  if (js.npf[j0] == 3)
-    return nodal ? lean_batch<3, true>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out)
-                 : lean_batch<3, false>(js, j0, x, qt.N[0][ri], qt.w[0][ri], out);
-  return nodal ? lean_batch<4, true>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out)
-               : lean_batch<4, false>(js, j0, x, qt.N[1][ri], qt.w[1][ri], out);
+  return with_face(js, j0, qt, [&]<int NPF, bool NODAL>(const auto& N, const auto& w) {
+    return lean_batch<NPF, NODAL>(js, j0, x, N, w, out);
+  });
 }
 }  // namespace
 
