@@ -89,11 +89,14 @@ using Frames = std::array<TriFrame, 12>;
 /// element; infinite where a triangle is collapsed or so flat that its barycentric
 /// coordinates are not to be trusted, which turns the pruning off against it). Prepared once
 /// per step, it is shared by the skeleton's pairs.
+/// The box, centre and bulge stand before the frames, next to the vertices: a pair's first
+/// test reads the boxes, and a tetrahedron's 4 frames of the 12 then follow in the same
+/// stretch of memory instead of the box lying past 8 unused frames.
 struct Prepared {
   Poly poly;
-  Frames frames;
   Vec3 lo, hi, centre;
   Real bulge;
+  Frames frames;
 };
 void prepare(const Poly& p, Prepared& out);
 
