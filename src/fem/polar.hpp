@@ -1,7 +1,8 @@
 // Rotation part R of the polar decomposition F = R U, for the co-rotational update.
 // Higham's Newton iteration R <- (R + R^-T)/2 converges quadratically from F itself; for the
 // small-strain, large-rotation states of brittle solids F is nearly orthogonal, so it takes
-// two or three iterations. Returns false when det F <= 0 (inverted element).
+// two iterations on an elastic element (test_polar asserts it), more only under large strain.
+// Returns false when det F <= 0 (inverted element).
 #pragma once
 #include <Eigen/Dense>
 
