@@ -234,13 +234,15 @@ int render_command(const RenderArgs& in) {
     log::info("  stress view: {} in [{:.4g}, {:.4g}], magnification {}", o.field, o.range[0], o.range[1], o.magnify);
 
   if (rc.animation && !a.no_animation && sel.size() > 1) {
+    std::vector<render::AnimationJob> todo;
     for (const auto& view : a.views) {
-      std::vector<std::string> pngs;
+      render::AnimationJob j{{}, (fs::path(a.run_dir) / "images" / view).string()};
       for (std::size_t i : sel)
-        pngs.push_back((fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
-      const auto files = render::write_animation(pngs, (fs::path(a.run_dir) / "images" / view).string(), rc.fps);
-      for (const auto& f : files) log::info("  animation {}", f);
+        j.pngs.push_back((fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
+      todo.push_back(std::move(j));
     }
+    for (const auto& files : render::write_animations(todo, rc.fps, jobs))
+      for (const auto& f : files) log::info("  animation {}", f);
   }
   // Plots: energies and monitors against time, then the case's extra plots.
   const fs::path csv = fs::path(a.run_dir) / "series.csv";

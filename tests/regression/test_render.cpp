@@ -89,9 +89,9 @@ TEST(Render, WritesFramesAnimationAndPlotsWithoutDisplay) {
                " --set time.end=0.004 --set output.frame_interval=0.001 --set render.width=160 --set render.height=120")
                 .code,
             0);
-  const Result r2 = sh(bin() + " render " + out2.string());
+  // Two views on two jobs: their animations are encoded side by side (render::write_animations).
+  const Result r2 = sh(bin() + " render " + out2.string() + " --view stress --view fragments --jobs 2");
   ASSERT_EQ(r2.code, 0) << r2.out;
-  EXPECT_GT(fs::file_size(out2 / "images/stress.ogv"), 1000u);
   EXPECT_TRUE(fs::exists(out2 / "images/plots/tip_uy.png"));
   // The .mp4 (H.264) and .gif through ffmpeg, which .ci/install-deps installs: each holds
   // every frame drawn, also when the frames drawn skip some of the run's (every:2 draws 0, 2,
@@ -103,9 +103,13 @@ TEST(Render, WritesFramesAnimationAndPlotsWithoutDisplay) {
            video.string());
     return p.code == 0 ? std::atoi(p.out.c_str()) : -1;
   };
-  EXPECT_EQ(frames_in(out2 / "images/stress.mp4"), 5);
-  EXPECT_EQ(frames_in(out2 / "images/stress.gif"), 5);
-  const Result r3 = sh(bin() + " render " + out2.string() + " --frames every:2");
+  for (const char* view : {"stress", "fragments"}) {
+    EXPECT_GT(fs::file_size(out2 / "images" / (std::string(view) + ".ogv")), 1000u) << view;
+    EXPECT_EQ(frames_in(out2 / "images" / (std::string(view) + ".mp4")), 5) << view;
+    EXPECT_EQ(frames_in(out2 / "images" / (std::string(view) + ".gif")), 5) << view;
+  }
+  // One job: the encodings one after the other.
+  const Result r3 = sh(bin() + " render " + out2.string() + " --frames every:2 --jobs 1");
   ASSERT_EQ(r3.code, 0) << r3.out;
   EXPECT_EQ(frames_in(out2 / "images/stress.mp4"), 3);
   EXPECT_EQ(frames_in(out2 / "images/stress.gif"), 3);
