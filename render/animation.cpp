@@ -1,14 +1,17 @@
 #include "render/animation.hpp"
 
 #include <fmt/format.h>
+#include <signal.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkOggTheoraWriter.h>
 #include <vtkPNGReader.h>
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <filesystem>
+#include <system_error>
 #include <thread>
 
 #include "core/error.hpp"
@@ -83,43 +86,58 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
   DSPDEM_CHECK(!pngs.empty(), "no frames for animation '{}'", base);
   std::vector<std::string> out;
   const std::string ffmpeg = find_on_path("ffmpeg");
-  const fs::path seq = base + ".seq";
-  const bool staged = !ffmpeg.empty() && stage_sequence(pngs, seq, base);
   const std::vector<std::string> exts = {"mp4", "gif"};
   auto tmp_of = [&](const std::string& ext) { return base + ".tmp." + ext; };
   auto log_of = [&](const std::string& ext) { return base + "." + ext + ".log"; };
+  // ffmpeg's encodings and their files: each child is waited for once (its pid then -1). On
+  // the way out the frame links and temporary files go; on an early one (an exception) the
+  // children still running are stopped first and their logs go too, so no encoder goes on
+  // writing from a folder that is being removed.
+  struct Encoders {
+    fs::path seq;
+    std::vector<pid_t> pids;
+    std::vector<std::string> tmps, logs;
+    bool done = false;
+    ~Encoders() {
+      for (pid_t& p : pids)
+        if (p > 0) kill(p, SIGTERM), wait_program(p), p = -1;
+      std::error_code ec;
+      for (const auto& f : tmps) fs::remove(f, ec);
+      if (!done)
+        for (const auto& f : logs) fs::remove(f, ec);
+      fs::remove_all(seq, ec);
+    }
+  } enc{base + ".seq", std::vector<pid_t>(exts.size(), -1), {}, {}};
+  for (const auto& ext : exts) enc.tmps.push_back(tmp_of(ext)), enc.logs.push_back(log_of(ext));
+  const bool staged = !ffmpeg.empty() && stage_sequence(pngs, enc.seq, base);
   auto start = [&](const std::string& ext) {
-    return spawn_program(ffmpeg, ffmpeg_args(ext, (seq / "%06d.png").string(), fps, tmp_of(ext)), log_of(ext));
+    return spawn_program(ffmpeg, ffmpeg_args(ext, (enc.seq / "%06d.png").string(), fps, tmp_of(ext)), log_of(ext));
   };
-  // With more than one job ffmpeg's two encodings run beside VTK's, which takes as long as
-  // both of them (measured on a 2-core AMD EPYC: .ogv 2.3 s, .mp4 0.7 s, .gif 0.9 s for 45
+  // With more than one job ffmpeg's two encodings run beside VTK's, which takes longer than
+  // both together (measured on a 2-core AMD EPYC: .ogv 2.3 s, .mp4 0.7 s, .gif 0.9 s for 45
   // frames of 1280x720): the three in about the .ogv's time instead of their sum.
-  std::vector<pid_t> pids(exts.size(), -1);
   if (staged && jobs > 1)
-    for (std::size_t k = 0; k < exts.size(); ++k) pids[k] = start(exts[k]);
-  try {
-    write_ogv(pngs, base, fps);
-  } catch (...) {
-    for (pid_t p : pids) wait_program(p);  // no encoder left running on a folder we remove
-    fs::remove_all(seq);
-    throw;
-  }
+    for (std::size_t k = 0; k < exts.size(); ++k) enc.pids[k] = start(exts[k]);
+  write_ogv(pngs, base, fps);
   out.push_back(base + ".ogv");
   if (!staged) return out;
   for (std::size_t k = 0; k < exts.size(); ++k) {
     const std::string& ext = exts[k];
-    const int rc = jobs > 1 ? wait_program(pids[k]) : wait_program(start(ext));
+    if (jobs <= 1) enc.pids[k] = start(ext);
+    const int rc = wait_program(enc.pids[k]);
+    enc.pids[k] = -1;
     const std::string tmp = tmp_of(ext), dst = base + "." + ext;
-    if (rc == 0 && fs::exists(tmp)) {
-      fs::rename(tmp, dst);
-      fs::remove(log_of(ext));
+    std::error_code ec;
+    if (rc == 0 && fs::exists(tmp, ec)) fs::rename(tmp, dst, ec);
+    if (rc == 0 && !ec && fs::exists(dst)) {
+      fs::remove(log_of(ext), ec);
       out.push_back(dst);
     } else {
-      fs::remove(tmp);
-      log::warn("ffmpeg could not write '{}' (its messages: {})", dst, log_of(ext));
+      log::warn("ffmpeg could not write '{}' (exit {}{}; its messages: {})", dst, rc,
+                ec ? ", " + ec.message() : std::string(), log_of(ext));
     }
   }
-  fs::remove_all(seq);
+  enc.done = true;
   return out;
 }
 
@@ -131,7 +149,7 @@ std::vector<std::vector<std::string>> write_animations(const std::vector<Animati
   // anew in each, ffmpeg runs as its own process. With two jobs on two cores, VTK's .ogv of
   // one view runs beside another's (each beside its ffmpeg encodings).
   auto work = [&]() {
-    for (std::size_t i; (i = next++) < todo.size();) {
+    for (std::size_t i = next++; i < todo.size(); i = next++) {
       try {
         files[i] = write_animation(todo[i].pngs, todo[i].base, fps, jobs);
       } catch (...) {
@@ -141,7 +159,10 @@ std::vector<std::vector<std::string>> write_animations(const std::vector<Animati
   };
   const std::size_t threads = std::min<std::size_t>(todo.size(), static_cast<std::size_t>(std::max(1, jobs)));
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  try {
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {  // no more threads: those started and this one do the rest
+  }
   work();
   for (auto& t : pool) t.join();
   for (const auto& e : errors)
