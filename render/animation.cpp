@@ -100,7 +100,11 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
     bool done = false;
     ~Encoders() {
       for (pid_t& p : pids)
-        if (p > 0) kill(p, SIGTERM), wait_program(p), p = -1;
+        if (p > 0) {
+          kill(p, SIGTERM);
+          wait_program(p);
+          p = -1;
+        }
       std::error_code ec;
       for (const auto& f : tmps) fs::remove(f, ec);
       if (!done)
@@ -128,8 +132,9 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
     enc.pids[k] = -1;
     const std::string tmp = tmp_of(ext), dst = base + "." + ext;
     std::error_code ec;
-    if (rc == 0 && fs::exists(tmp, ec)) fs::rename(tmp, dst, ec);
-    if (rc == 0 && !ec && fs::exists(dst)) {
+    bool ok = rc == 0 && fs::exists(tmp, ec);  // not dst: an older render may have left one
+    if (ok) fs::rename(tmp, dst, ec), ok = !ec;
+    if (ok) {
       fs::remove(log_of(ext), ec);
       out.push_back(dst);
     } else {
