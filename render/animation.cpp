@@ -8,6 +8,7 @@
 #include <vtkPNGReader.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <exception>
 #include <filesystem>
@@ -79,6 +80,34 @@ std::vector<std::string> ffmpeg_args(const std::string& ext, const std::string& 
   return args;
 }
 
+// ffmpeg's two encodings of `base` and their files: each child is waited for once (its pid
+// then -1). On the way out the frame links and temporary files go; on an early one (an
+// exception, `done` unset) the children still running are stopped first and their logs go
+// too, so no encoder goes on writing from a folder that is being removed.
+struct Encoders {
+  static constexpr std::array<const char*, 2> exts = {"mp4", "gif"};
+  std::string base;
+  fs::path seq = base + ".seq";
+  std::array<pid_t, 2> pids = {-1, -1};
+  bool done = false;
+  std::string tmp_file(const std::string& ext) const { return base + ".tmp." + ext; }
+  std::string log_file(const std::string& ext) const { return base + "." + ext + ".log"; }
+  ~Encoders() {
+    for (pid_t& p : pids)
+      if (p > 0) {
+        kill(p, SIGTERM);
+        wait_program(p);
+        p = -1;
+      }
+    std::error_code ec;
+    for (const std::string ext : exts) {
+      fs::remove(tmp_file(ext), ec);
+      if (!done) fs::remove(log_file(ext), ec);
+    }
+    fs::remove_all(seq, ec);
+  }
+};
+
 }  // namespace
 
 std::vector<std::string> write_animation(const std::vector<std::string>& pngs, const std::string& base, int fps,
@@ -86,60 +115,35 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
   DSPDEM_CHECK(!pngs.empty(), "no frames for animation '{}'", base);
   std::vector<std::string> out;
   const std::string ffmpeg = find_on_path("ffmpeg");
-  const std::vector<std::string> exts = {"mp4", "gif"};
-  auto tmp_of = [&](const std::string& ext) { return base + ".tmp." + ext; };
-  auto log_of = [&](const std::string& ext) { return base + "." + ext + ".log"; };
-  // ffmpeg's encodings and their files: each child is waited for once (its pid then -1). On
-  // the way out the frame links and temporary files go; on an early one (an exception) the
-  // children still running are stopped first and their logs go too, so no encoder goes on
-  // writing from a folder that is being removed.
-  struct Encoders {
-    fs::path seq;
-    std::vector<pid_t> pids;
-    std::vector<std::string> tmps, logs;
-    bool done = false;
-    ~Encoders() {
-      for (pid_t& p : pids)
-        if (p > 0) {
-          kill(p, SIGTERM);
-          wait_program(p);
-          p = -1;
-        }
-      std::error_code ec;
-      for (const auto& f : tmps) fs::remove(f, ec);
-      if (!done)
-        for (const auto& f : logs) fs::remove(f, ec);
-      fs::remove_all(seq, ec);
-    }
-  } enc{base + ".seq", std::vector<pid_t>(exts.size(), -1), {}, {}};
-  for (const auto& ext : exts) enc.tmps.push_back(tmp_of(ext)), enc.logs.push_back(log_of(ext));
+  Encoders enc{base};
   const bool staged = !ffmpeg.empty() && stage_sequence(pngs, enc.seq, base);
   auto start = [&](const std::string& ext) {
-    return spawn_program(ffmpeg, ffmpeg_args(ext, (enc.seq / "%06d.png").string(), fps, tmp_of(ext)), log_of(ext));
+    return spawn_program(ffmpeg, ffmpeg_args(ext, (enc.seq / "%06d.png").string(), fps, enc.tmp_file(ext)),
+                         enc.log_file(ext));
   };
   // With more than one job ffmpeg's two encodings run beside VTK's, which takes longer than
   // both together (measured on a 2-core AMD EPYC: .ogv 2.3 s, .mp4 0.7 s, .gif 0.9 s for 45
   // frames of 1280x720): the three in about the .ogv's time instead of their sum.
   if (staged && jobs > 1)
-    for (std::size_t k = 0; k < exts.size(); ++k) enc.pids[k] = start(exts[k]);
+    for (std::size_t k = 0; k < enc.exts.size(); ++k) enc.pids[k] = start(enc.exts[k]);
   write_ogv(pngs, base, fps);
   out.push_back(base + ".ogv");
   if (!staged) return out;
-  for (std::size_t k = 0; k < exts.size(); ++k) {
-    const std::string& ext = exts[k];
+  for (std::size_t k = 0; k < enc.exts.size(); ++k) {
+    const std::string ext = enc.exts[k];
     if (jobs <= 1) enc.pids[k] = start(ext);
     const int rc = wait_program(enc.pids[k]);
     enc.pids[k] = -1;
-    const std::string tmp = tmp_of(ext), dst = base + "." + ext;
+    const std::string tmp = enc.tmp_file(ext), dst = base + "." + ext;
     std::error_code ec;
     bool ok = rc == 0 && fs::exists(tmp, ec);  // not dst: an older render may have left one
     if (ok) fs::rename(tmp, dst, ec), ok = !ec;
     if (ok) {
-      fs::remove(log_of(ext), ec);
+      fs::remove(enc.log_file(ext), ec);
       out.push_back(dst);
     } else {
       log::warn("ffmpeg could not write '{}' (exit {}{}; its messages: {})", dst, rc,
-                ec ? ", " + ec.message() : std::string(), log_of(ext));
+                ec ? ", " + ec.message() : std::string(), enc.log_file(ext));
     }
   }
   enc.done = true;
