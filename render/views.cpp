@@ -22,7 +22,6 @@
 #include <vtkProperty2D.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
-#include <vtkStaticCleanPolyData.h>
 #include <vtkStaticPointLocator.h>
 #include <vtkTableBasedClipDataSet.h>
 #include <vtkTextActor.h>
@@ -38,6 +37,7 @@
 
 #include "core/error.hpp"
 #include "render/colormap.hpp"
+#include "render/envelope.hpp"
 #include "render/offscreen.hpp"
 
 namespace dspdem::render {
@@ -410,31 +410,9 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
   if (o.view == "cracks") {
     // Joints split every element from its neighbours, so the surface holds every element
     // face twice; stacked translucent layers would hide the cracks. Keep only faces that
-    // are not matched by a coincident face: the outer envelope and the opened cracks.
-    vtkNew<vtkStaticCleanPolyData> clean;
-    clean->SetInputConnection(surf->GetOutputPort());
-    clean->SetTolerance(1e-4);  // of the bounds diagonal: joint openings before failure are smaller
-    clean->Update();
-    vtkPolyData* pd = clean->GetOutput();
-    std::map<std::vector<vtkIdType>, int> count;
-    vtkNew<vtkIdList> ids;
-    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) {
-      pd->GetCellPoints(c, ids);
-      std::vector<vtkIdType> k(ids->begin(), ids->end());
-      std::sort(k.begin(), k.end());
-      ++count[k];
-    }
-    vtkNew<vtkCellArray> keep;
-    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) {
-      pd->GetCellPoints(c, ids);
-      std::vector<vtkIdType> k(ids->begin(), ids->end());
-      std::sort(k.begin(), k.end());
-      if (count[k] == 1) keep->InsertNextCell(ids);
-    }
-    vtkNew<vtkPolyData> envelope;
-    envelope->SetPoints(pd->GetPoints());
-    envelope->SetPolys(keep);
-    s.mapper->SetInputData(envelope);
+    // are not matched by a coincident face: the outer envelope and the opened cracks. Points
+    // within 1e-4 of the diagonal are one: joint openings before failure are smaller.
+    s.mapper->SetInputData(unmatched_faces(surf->GetOutput(), 1e-4));
   } else {
     s.mapper->SetInputConnection(surf->GetOutputPort());
   }
