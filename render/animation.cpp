@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/subprocess.hpp"
+#include "render/ogg_serial.hpp"
 
 namespace dspdem::render {
 
@@ -44,6 +45,7 @@ void write_ogv(const std::vector<std::string>& pngs, const std::string& base, in
   }
   w->End();
   DSPDEM_CHECK(w->GetError() == 0 && fs::exists(tmp), "could not write animation '{}'", tmp);
+  set_ogg_serial(tmp);  // VTK's serial comes from the clock: the same frames, the same file
   fs::rename(tmp, base + ".ogv");
 }
 
