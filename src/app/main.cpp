@@ -123,6 +123,10 @@ int run_main(int argc, char** argv) {
   rep->add_option("-j,--jobs", rpa.jobs,
                   "Runs of a sweep or study at once, each a process with -t 1 (default: one per core)")
       ->check(CLI::Range(1, 256));
+  rep->add_flag("--resume", rpa.resume,
+                "A sweep (the sphere impact): keep the runs an earlier report left in the output folder when they "
+                "are the same runs (same resolved case, same dspdem build); continue interrupted ones from their "
+                "checkpoints; run the rest");
   rep->add_flag("--no-stress-check", rpa.no_stress_check,
                 "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
 

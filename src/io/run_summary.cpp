@@ -52,6 +52,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   j["case_file"] = s.case_file;
   j["status"] = s.status;
   j["message"] = s.message;
+  j["build"] = s.build;
   j["steps"] = s.steps;
   j["dt"] = num(s.dt);
   j["dt_start"] = num(s.dt_start);
@@ -99,6 +100,7 @@ RunSummary read_run_summary(const std::string& path) {
   get(j, "case_file", s.case_file, path);
   get(j, "status", s.status, path);
   get(j, "message", s.message, path);
+  if (j.contains("build")) get(j, "build", s.build, path);  // not in older run folders
   get(j, "steps", s.steps, path);
   get(j, "dt", s.dt, path);
   s.dt_start = s.dt;

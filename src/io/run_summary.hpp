@@ -31,6 +31,7 @@ struct RunSummary {
   std::string case_name, case_file;
   std::string status;   ///< "completed", "failed" or "interrupted"
   std::string message;  ///< why it failed, or why it ended before [time] end
+  std::string build;    ///< the dspdem that ran it (executable_id: version, commit, compiler, file CRC)
   long steps = 0;
   /// dt: the step at the end (extrinsic insertion lowers it as joints open; dt_start the
   /// first); dt_critical and its limiter: the critical step then.

@@ -16,6 +16,10 @@ struct ReportArgs {
   std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)
   int realisations = 1;  ///< runs per speed of a sweep, each with the mesh turned another way (the sphere impact)
   int jobs = 0;          ///< runs of a sweep or study in parallel processes (0: one per core)
+  /// A sweep's runs that an earlier report left in the output folder are kept when they are
+  /// the same runs (the case as resolved now, the same dspdem build): finished ones as they
+  /// are, interrupted ones continued from their checkpoints. The rest run as usual.
+  bool resume = false;
 };
 
 }  // namespace dspdem::report

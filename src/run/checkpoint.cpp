@@ -65,6 +65,16 @@ std::string checkpoint_build_id() {
   return DSPDEM_BUILD_ID;
 }
 
+std::string executable_id() {
+  static const std::string id = [] {
+    std::ifstream f("/proc/self/exe", std::ios::binary);
+    const std::string exe((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    return exe.empty() ? checkpoint_build_id() + " exe unknown"
+                       : fmt::format("{} exe {:08x}", checkpoint_build_id(), crc_of(exe.data(), exe.size()));
+  }();
+  return id;
+}
+
 void write_checkpoint(const std::string& path, const CheckpointHeader& h, const StateArchive& body, bool into_place) {
   StateArchive head;
   CheckpointHeader hc = h;

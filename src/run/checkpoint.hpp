@@ -48,6 +48,11 @@ std::string checkpoint_piece(const std::string& path, int rank);
 /// This build's identity, as written into checkpoints.
 std::string checkpoint_build_id();
 
+/// This executable: checkpoint_build_id and the CRC-32 of the executable's own file
+/// (/proc/self/exe). The commit in the build id is the one CMake configured the build at, so a
+/// rebuild of changed code can keep it; the file's CRC changes. Written into summary.json.
+std::string executable_id();
+
 /// Writes header then body (the archive's bytes) to path atomically: to path.tmp, flushed
 /// to disk, then renamed over path; with into_place = false the rename is left to
 /// move_checkpoint_into_place (a distributed run renames every process's file only once all

@@ -492,6 +492,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (my_rank != 0) return;
     RunSummary s;
     s.case_name = c.name, s.case_file = c.path, s.status = status, s.message = message;
+    s.build = executable_id();
     s.steps = it.steps(), s.dt = it.dt(), s.dt_start = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
     s.dt_limiting_element = static_cast<long>(crit.element >= 0 ? fem.elem_tag[crit.element] : 0);
     s.t_end = it.time(), s.wall_s = ls.wall_before + wall.seconds(), s.threads = omp_get_max_threads();

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <gmsh.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -15,6 +17,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 #include "io/run_summary.hpp"
 #include "mesh/gmsh_reader.hpp"
@@ -541,6 +544,80 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   const Result disc = report("brazilian_disc", "--realisations 2");
   EXPECT_EQ(disc.code, 2) << disc.out;
   EXPECT_NE(disc.out.find("scene 'brazilian_disc' has none"), std::string::npos) << disc.out;
+}
+
+TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
+  // A sweep stopped by Ctrl-C (SIGINT to its process group) while its second speed runs;
+  // --resume keeps the first speed's finished run, continues the second from its checkpoint
+  // (bitwise as a sweep never stopped), and with another override starts every run again.
+  const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml";
+  const std::string opts =
+      "--speeds 2.5,7.5 -j 1 --set mesh.sphere_plate.size=0.04 --set time.end=1e-3 --set output.frame_interval=1e-4";
+  const fs::path rep = dir_ / "rep", v25 = rep / "speeds" / "v2.5", v75 = rep / "speeds" / "v7.5";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);  // its own group, as a shell gives a foreground job: the runs are in it too
+    execl("/bin/sh", "sh", "-c",
+          fmt::format("exec {} -q report {} --no-render --out {} {} > {} 2>&1", DSPDEM_BIN, file, rep.string(), opts,
+                      (dir_ / "stopped.log").string())
+              .c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ASSERT_GT(pid, 0);
+  setpgid(pid, pid);
+  // Until the second speed's run has written two frames into its staging folder (at most
+  // 120 s; the folders come and go meanwhile, hence the error codes).
+  bool running = false;
+  for (int k = 0; k < 2400 && !running; ++k) {
+    std::error_code ec;
+    for (fs::directory_iterator it(v75, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->path().filename().string().rfind(".staging-", 0) != 0) continue;
+      const std::string pvd = slurp(it->path() / "run.pvd");
+      int n = 0;
+      for (auto q = pvd.find("<DataSet"); q != std::string::npos; q = pvd.find("<DataSet", q + 1)) ++n;
+      running = running || n >= 2;
+    }
+    if (!running) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  kill(-pid, running ? SIGINT : SIGKILL);
+  waitpid(pid, nullptr, 0);
+  for (int k = 0; k < 2400 && kill(-pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(running) << "the second speed never ran: " << slurp(dir_ / "stopped.log");
+  ASSERT_TRUE(fs::exists(v25 / "summary.json"));
+  ASSERT_TRUE(fs::exists(v75 / "interrupted_run" / "checkpoint.bin"));
+  ASSERT_FALSE(fs::exists(v75 / "summary.json"));
+  const std::string first = slurp(v25 / "summary.json");
+  const auto first_time = fs::last_write_time(v25 / "summary.json");
+
+  const Result resumed = run("report " + file + " --no-render --out " + rep.string() + " " + opts + " --resume");
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("--resume: 1 run(s) kept, 1 continued, 0 started"), std::string::npos) << resumed.out;
+  EXPECT_EQ(slurp(v25 / "summary.json"), first);
+  EXPECT_EQ(fs::last_write_time(v25 / "summary.json"), first_time);
+  EXPECT_TRUE(fs::exists(rep / "report.md"));
+
+  // The same sweep never stopped: the continued run ends with the same bits.
+  const Result whole = report("sphere_impact", opts, "whole");
+  ASSERT_EQ(whole.code, 0) << whole.out;
+  for (const char* f : {"series.csv", "fragments.csv", "case.resolved.toml"})
+    EXPECT_EQ(slurp(v75 / f), slurp(dir_ / "whole" / "speeds" / "v7.5" / f)) << f;
+  const auto a = dspdem::read_run_summary((v75 / "summary.json").string());
+  const auto b = dspdem::read_run_summary((dir_ / "whole" / "speeds" / "v7.5" / "summary.json").string());
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.energy.balance_error, b.energy.balance_error);
+  EXPECT_EQ(a.largest_fragment_masses, b.largest_fragment_masses);
+
+  // Another override makes other runs: none is kept.
+  const Result changed = run("report " + file + " --no-render --out " + rep.string() + " " + opts +
+                             " --set output.frame_interval=2e-4 --resume");
+  ASSERT_EQ(changed.code, 0) << changed.out;
+  EXPECT_NE(changed.out.find("--resume: 0 run(s) kept, 0 continued, 2 started"), std::string::npos) << changed.out;
+  // --resume belongs to a sweep, and does not go with --from-run.
+  EXPECT_EQ(report("brazilian_disc", "--resume").code, 2);
+  const Result both = report("sphere_impact", "--resume --from-run " + rep.string(), "both");
+  EXPECT_EQ(both.code, 2) << both.out;
+  EXPECT_NE(both.out.find("--resume and --from-run"), std::string::npos) << both.out;
 }
 
 TEST_F(Cli, ReportStudyOfARunThatNeverLoadsStillWritesTheReport) {

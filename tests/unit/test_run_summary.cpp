@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   RunSummary s;
   s.case_name = "disc \"quoted\"", s.case_file = "/a/b.toml", s.status = "failed", s.message = "line1\nline2";
+  s.build = "0.1.0 abc GNU 12.2.0 Release exe 0123abcd";
   s.steps = 123456789012, s.dt = 3.0303e-8, s.dt_start = 4.1e-8, s.dt_critical = 3.367e-8, s.dt_limiter = "joint";
   s.dt_limiting_element = 42, s.t_end = 2.5e-3, s.wall_s = 12.5, s.threads = 2, s.processes = 4;
   s.nodes = 52328, s.elements = 13082, s.frames = 31, s.joints = 24779, s.broken_joints = 17;
@@ -29,6 +30,7 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   const RunSummary r = read_run_summary(p.string());
   EXPECT_EQ(r.case_name, s.case_name);
   EXPECT_EQ(r.message, s.message);
+  EXPECT_EQ(r.build, s.build);
   EXPECT_EQ(r.steps, s.steps);
   EXPECT_EQ(r.dt, s.dt);  // 17 significant digits: exact
   EXPECT_EQ(r.dt_start, s.dt_start);

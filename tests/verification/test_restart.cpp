@@ -48,7 +48,8 @@ std::string slurp(const fs::path& p) {
 }
 
 // Every output of a run folder byte for byte, except the summary's wall clock and thread
-// count (a restarted run adds up its parts' wall times).
+// count (a restarted run adds up its parts' wall times) and the executable that ran it (the
+// test's own, in-process, or dspdem).
 void expect_same_outputs(const fs::path& a, const fs::path& b) {
   for (const char* f : {"series.csv", "fragments.csv", "run.pvd", "joints.pvd", "case.resolved.toml"})
     EXPECT_TRUE(slurp(a / f) == slurp(b / f)) << f << " differs between " << a << " and " << b;
@@ -60,7 +61,7 @@ void expect_same_outputs(const fs::path& a, const fs::path& b) {
   for (const auto& f : fa) EXPECT_TRUE(slurp(a / "frames" / f) == slurp(b / "frames" / f)) << "frame " << f;
   auto summary = [](const fs::path& p) {
     auto j = nlohmann::json::parse(slurp(p / "summary.json"));
-    for (const char* k : {"wall_s", "element_steps_per_s", "threads"}) j.erase(k);
+    for (const char* k : {"wall_s", "element_steps_per_s", "threads", "build"}) j.erase(k);
     return j;
   };
   EXPECT_EQ(summary(a), summary(b));

@@ -4,16 +4,20 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
+#include "core/archive.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
+#include "io/run_summary.hpp"
 #include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/onsets.hpp"
 #include "report/proportion.hpp"
 #include "report/run_data.hpp"
+#include "run/checkpoint.hpp"
 #include "run/montage.hpp"
 #include "run/process_pool.hpp"
 #include "run/render_run.hpp"
@@ -55,26 +59,73 @@ struct Planned {
   int orientation = 0;  // its mesh's mesh.sphere_plate.orientation
 };
 
+// --resume: whether the run folder holds this very run from an earlier report, and how far
+// it got. It is the same run when it was made from the case as resolved now (every default
+// filled in, every override applied) by this very dspdem executable (another would give other
+// bits): its summary.json says so, the finished run's or the interrupted one's
+// (interrupted_run/, beside its checkpoint). A run killed outright left no summary: it starts
+// again.
+enum class Earlier { None, Finished, Interrupted };
+Earlier earlier_run(const std::string& dir, const std::string& resolved) {
+  const fs::path d(dir);
+  auto same = [&](const fs::path& run, const char* status) {
+    if (!fs::exists(run / "summary.json")) return false;
+    const RunSummary s = read_run_summary((run / "summary.json").string());
+    std::ifstream f(run / "case.resolved.toml", std::ios::binary);
+    const std::string ran((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    return s.status == status && s.build == executable_id() && ran == resolved;
+  };
+  try {
+    if (same(d, "completed")) return Earlier::Finished;
+    if (!same(d / "interrupted_run", "interrupted")) return Earlier::None;
+    StateArchive body;
+    const CheckpointHeader h = read_checkpoint(find_checkpoint(dir), body);  // checks its build and CRC
+    if (h.resolved_toml == resolved) return Earlier::Interrupted;
+  } catch (const Error&) {
+    // An unreadable summary or checkpoint: the run starts again.
+  }
+  return Earlier::None;
+}
+
 // Each planned run is read in-process first (a bad override fails here, with its message,
 // before any process starts), then run as its own `dspdem -t 1 run` process.
-std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Planned>& plan, int jobs) {
+std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Planned>& plan, int jobs, bool resume) {
   std::vector<Job> list;
-  for (const auto& p : plan) {
+  std::vector<std::size_t> listed;  // plan index of each job
+  int kept = 0, continued = 0;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const Planned& p = plan[i];
     const CaseConfig v = reread_with(c, p.sets);
-    (void)v;
+    const Earlier e = resume ? earlier_run(p.dir, v.resolved_toml) : Earlier::None;
+    if (e == Earlier::Finished) {
+      ++kept;
+      log::info("sphere impact: {}: kept the finished run in {}", p.name, p.dir);
+      continue;
+    }
     Job j;
-    j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--out", p.dir};
-    for (const auto& s : c.overrides) j.args.insert(j.args.end(), {"--set", s});
-    for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
+    if (e == Earlier::Interrupted) {
+      ++continued;
+      log::info("sphere impact: {}: continued from the checkpoint in {}", p.name, p.dir);
+      j.args = {"-q", "-t", "1", "run", "--restart", p.dir, "--no-progress"};
+    } else {
+      j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--out", p.dir};
+      for (const auto& s : c.overrides) j.args.insert(j.args.end(), {"--set", s});
+      for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
+    }
     j.log = p.dir + ".log";
     list.push_back(j);
+    listed.push_back(i);
   }
-  log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
+  if (resume)
+    log::info("sphere impact: --resume: {} run(s) kept, {} continued, {} started", kept, continued,
+              list.size() - static_cast<std::size_t>(continued));
+  if (!list.empty()) log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
   const auto status = run_processes(list, jobs);
   std::vector<std::string> err(plan.size());
-  for (std::size_t i = 0; i < plan.size(); ++i)
-    if (status[i] != 0) {
-      err[i] = fmt::format("exit status {} (see {})", status[i], list[i].log);
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (status[k] != 0) {
+      const std::size_t i = listed[k];
+      err[i] = fmt::format("exit status {} (see {})", status[k], list[k].log);
       log::warn("sphere impact: run {} failed: {}", plan[i].name, err[i]);
     }
   return err;
@@ -335,7 +386,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
   std::vector<std::string> errors(plan.size());
   if (a.from_run.empty()) {
-    errors = run_planned(c, plan, jobs);
+    errors = run_planned(c, plan, jobs, a.resume);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
       if ((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json")) continue;
@@ -352,7 +403,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
-      const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs);
+      const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs, false);
       std::copy(e.begin(), e.end(), errors.begin() + static_cast<long>(n_sweep));
     }
   }
