@@ -14,7 +14,8 @@ extern char** environ;
 
 namespace dspdem {
 
-pid_t spawn_program(const std::string& program, const std::vector<std::string>& args, const std::string& log) {
+pid_t spawn_program(const std::string& program, const std::vector<std::string>& args, const std::string& log,
+                    bool own_group) {
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   // No stdin: a child that reads the terminal (ffmpeg does) would stop a background job.
@@ -38,8 +39,15 @@ pid_t spawn_program(const std::string& program, const std::vector<std::string>& 
     if (v.rfind("OMPI_", 0) != 0 && v.rfind("PMIX_", 0) != 0 && v.rfind("PMI_", 0) != 0) env.push_back(*e);
   }
   env.push_back(nullptr);
+  posix_spawnattr_t at;
+  posix_spawnattr_init(&at);
+  if (own_group) {
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&at, 0);  // a new group, led by the child
+  }
   pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, program.c_str(), &fa, nullptr, argv.data(), env.data());
+  const int rc = posix_spawnp(&pid, program.c_str(), &fa, &at, argv.data(), env.data());
+  posix_spawnattr_destroy(&at);
   posix_spawn_file_actions_destroy(&fa);
   return rc == 0 ? pid : -1;
 }

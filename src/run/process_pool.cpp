@@ -1,8 +1,13 @@
 #include "run/process_pool.hpp"
 
+#include <fmt/format.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <map>
 
 #include "core/error.hpp"
@@ -12,7 +17,29 @@
 namespace dspdem {
 
 namespace {
-pid_t start(const Job& j) { return spawn_program("/proc/self/exe", j.args, j.log); }
+pid_t start(const Job& j) { return spawn_program("/proc/self/exe", j.args, j.log, true); }
+
+volatile std::sig_atomic_t g_signal = 0;
+extern "C" void on_stop(int sig) { g_signal = sig; }
+
+// SIGINT and SIGTERM only set g_signal while the pool runs; the caller's handlers come back
+// after it, also when it throws.
+struct StopSignals {
+  struct sigaction old_int {
+  }, old_term{};
+  StopSignals() {
+    g_signal = 0;
+    struct sigaction act {};
+    act.sa_handler = on_stop;
+    sigemptyset(&act.sa_mask);
+    sigaction(SIGINT, &act, &old_int);
+    sigaction(SIGTERM, &act, &old_term);
+  }
+  ~StopSignals() {
+    sigaction(SIGINT, &old_int, nullptr);
+    sigaction(SIGTERM, &old_term, nullptr);
+  }
+};
 }  // namespace
 
 std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
@@ -20,8 +47,11 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
   std::vector<int> status(list.size(), -1);
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0;
-  while (next < list.size() || !running.empty()) {
-    while (next < list.size() && static_cast<int>(running.size()) < jobs) {
+  StopSignals signals;
+  bool passed_on = false;
+  std::size_t stopped = 0;
+  while ((next < list.size() && g_signal == 0) || !running.empty()) {
+    while (g_signal == 0 && next < list.size() && static_cast<int>(running.size()) < jobs) {
       const pid_t pid = start(list[next]);
       if (pid < 0)
         log::warn("could not start job {} (log {})", next, list[next].log);
@@ -29,15 +59,31 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
         running[pid] = next;
       ++next;
     }
+    if (g_signal != 0 && !passed_on) {
+      for (const auto& [pid, i] : running) kill(pid, SIGTERM);
+      stopped = running.size();
+      passed_on = true;
+    }
     if (running.empty()) continue;
+    // Polled, so that a signal between the check above and the wait is seen within 50 ms
+    // rather than when the next job happens to end.
     int st = 0;
-    const pid_t pid = waitpid(-1, &st, 0);
+    const pid_t pid = waitpid(-1, &st, WNOHANG);
+    if (pid == 0 || (pid < 0 && errno == EINTR)) {
+      usleep(50000);
+      continue;
+    }
     if (pid < 0) break;  // no child left (should not happen: we track them all)
     const auto it = running.find(pid);
     if (it == running.end()) continue;  // a child of someone else's (render workers wait for their own)
     status[it->second] = WIFEXITED(st) ? WEXITSTATUS(st) : WIFSIGNALED(st) ? 128 + WTERMSIG(st) : -1;
     running.erase(it);
   }
+  if (g_signal != 0)
+    throw Interrupted(
+        fmt::format("{}: {} job(s) stopped, {} not started, {} finished before",
+                    g_signal == SIGINT ? "SIGINT" : "SIGTERM", stopped, list.size() - next, next - stopped),
+        0, 0.0);
   return status;
 }
 

@@ -547,9 +547,11 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
 }
 
 TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
-  // A sweep stopped by Ctrl-C (SIGINT to its process group) while its second speed runs;
-  // --resume keeps the first speed's finished run, continues the second from its checkpoint
-  // (bitwise as a sweep never stopped), and with another override starts every run again.
+  // A sweep stopped by Ctrl-C (SIGINT to its process group) while its second speed runs: the
+  // report passes one SIGTERM on to that run (in a group of its own, it does not get the
+  // SIGINT too, which as a second signal would stop it without its checkpoint) and exits with
+  // 5. --resume then keeps the first speed's finished run, continues the second from its
+  // checkpoint (bitwise as a sweep never stopped), and with another override starts both again.
   const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml";
   const std::string opts =
       "--speeds 2.5,7.5 -j 1 --set mesh.sphere_plate.size=0.04 --set time.end=1e-3 --set output.frame_interval=1e-4";
@@ -581,9 +583,15 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
     if (!running) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   kill(-pid, running ? SIGINT : SIGKILL);
-  waitpid(pid, nullptr, 0);
-  for (int k = 0; k < 2400 && kill(-pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  int st = 0;
+  waitpid(pid, &st, 0);
   ASSERT_TRUE(running) << "the second speed never ran: " << slurp(dir_ / "stopped.log");
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 5) << slurp(dir_ / "stopped.log");
+  EXPECT_NE(slurp(dir_ / "stopped.log").find("SIGINT: 1 job(s) stopped, 0 not started, 1 finished before"),
+            std::string::npos)
+      << slurp(dir_ / "stopped.log");
+  EXPECT_NE(slurp(dir_ / "stopped.log").find("with --resume"), std::string::npos);
   ASSERT_TRUE(fs::exists(v25 / "summary.json"));
   ASSERT_TRUE(fs::exists(v75 / "interrupted_run" / "checkpoint.bin"));
   ASSERT_FALSE(fs::exists(v75 / "summary.json"));
