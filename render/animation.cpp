@@ -45,7 +45,11 @@ void write_ogv(const std::vector<std::string>& pngs, const std::string& base, in
   }
   w->End();
   DSPDEM_CHECK(w->GetError() == 0 && fs::exists(tmp), "could not write animation '{}'", tmp);
-  set_ogg_serial(tmp);  // VTK's serial comes from the clock: the same frames, the same file
+  try {
+    set_ogg_serial(tmp);  // VTK's serial comes from the clock: the same frames, the same file
+  } catch (const Error& e) {
+    log::warn("{}: kept VTK's own stream serial (the file plays, but differs from render to render)", e.what());
+  }
   fs::rename(tmp, base + ".ogv");
 }
 

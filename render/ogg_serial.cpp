@@ -51,7 +51,12 @@ void set_ogg_serial(const std::string& path, std::uint32_t serial) {
     std::filesystem::remove(tmp, ec);
     DSPDEM_CHECK(false, "could not write '{}'", tmp);
   }
-  std::filesystem::rename(tmp, path);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    fail("could not replace '{}' by its re-serialled copy", path);
+  }
 }
 
 }  // namespace dspdem::render

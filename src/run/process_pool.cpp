@@ -19,25 +19,27 @@ namespace dspdem {
 namespace {
 pid_t start(const Job& j) { return spawn_program("/proc/self/exe", j.args, j.log, true); }
 
-volatile std::sig_atomic_t g_signal = 0;
-extern "C" void on_stop(int sig) { g_signal = sig; }
+volatile std::sig_atomic_t g_signal = 0, g_signals = 0;
+extern "C" void on_stop(int sig) {
+  g_signal = sig;
+  g_signals = g_signals + 1;
+}
 
-// SIGINT and SIGTERM only set g_signal while the pool runs; the caller's handlers come back
+// SIGINT, SIGTERM and SIGHUP only count while the pool runs; the caller's handlers come back
 // after it, also when it throws.
 struct StopSignals {
-  struct sigaction old_int {
-  }, old_term{};
+  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction old[3] = {};
   StopSignals() {
     g_signal = 0;
+    g_signals = 0;
     struct sigaction act {};
     act.sa_handler = on_stop;
     sigemptyset(&act.sa_mask);
-    sigaction(SIGINT, &act, &old_int);
-    sigaction(SIGTERM, &act, &old_term);
+    for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &act, &old[k]);
   }
   ~StopSignals() {
-    sigaction(SIGINT, &old_int, nullptr);
-    sigaction(SIGTERM, &old_term, nullptr);
+    for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &old[k], nullptr);
   }
 };
 }  // namespace
@@ -48,7 +50,7 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0;
   StopSignals signals;
-  bool passed_on = false;
+  int passed_on = 0;  // signals passed on so far
   std::size_t stopped = 0;
   while ((next < list.size() && g_signal == 0) || !running.empty()) {
     while (g_signal == 0 && next < list.size() && static_cast<int>(running.size()) < jobs) {
@@ -59,10 +61,13 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
         running[pid] = next;
       ++next;
     }
-    if (g_signal != 0 && !passed_on) {
-      for (const auto& [pid, i] : running) kill(pid, SIGTERM);
-      stopped = running.size();
-      passed_on = true;
+    // Each signal passed on as one SIGTERM to each running job's group (the job and whatever
+    // it started, a report's render workers say): a dspdem run writes its checkpoint at the
+    // first and exits at once at the second, as when it is run alone.
+    if (g_signals > passed_on) {
+      if (passed_on == 0) stopped = running.size();
+      for (const auto& [pid, i] : running) kill(-pid, SIGTERM);
+      passed_on = g_signals;
     }
     if (running.empty()) continue;
     // Polled, so that a signal between the check above and the wait is seen within 50 ms
@@ -80,10 +85,12 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
     running.erase(it);
   }
   if (g_signal != 0)
-    throw Interrupted(
-        fmt::format("{}: {} job(s) stopped, {} not started, {} finished before",
-                    g_signal == SIGINT ? "SIGINT" : "SIGTERM", stopped, list.size() - next, next - stopped),
-        0, 0.0);
+    throw Interrupted(fmt::format("{}: {} job(s) stopped, {} not started",
+                                  g_signal == SIGINT    ? "SIGINT"
+                                  : g_signal == SIGTERM ? "SIGTERM"
+                                                        : "SIGHUP",
+                                  stopped, list.size() - next),
+                      0, 0.0);
   return status;
 }
 

@@ -15,10 +15,12 @@ struct Job {
 
 /// Starts the jobs in order, keeping at most `jobs` (>= 1) running; returns each one's exit
 /// status (the code, or 128 + the signal that ended it; -1 if it could not be started).
-/// Each job runs in a process group of its own. SIGINT or SIGTERM to this process meanwhile
-/// is passed on as one SIGTERM to each job running (a dspdem run then writes its checkpoint),
-/// no further job is started, and once the running ones have ended Interrupted is thrown,
-/// saying how many were stopped and how many never started.
+/// Each job runs in a process group of its own. Each SIGINT, SIGTERM or SIGHUP to this process
+/// meanwhile is passed on as one SIGTERM to each running job's group (a dspdem run writes its
+/// checkpoint at the first, once its set-up is done, and exits at once at the second), no
+/// further job is started, and once the running ones have ended Interrupted is thrown, saying
+/// how many were stopped and how many never started. A SIGKILL of this process leaves them
+/// running.
 std::vector<int> run_processes(const std::vector<Job>& list, int jobs);
 
 }  // namespace dspdem

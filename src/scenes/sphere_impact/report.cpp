@@ -59,12 +59,13 @@ struct Planned {
   int orientation = 0;  // its mesh's mesh.sphere_plate.orientation
 };
 
-// --resume: whether the run folder holds this very run from an earlier report, and how far
-// it got. It is the same run when it was made from the case as resolved now (every default
-// filled in, every override applied) by this very dspdem executable (another would give other
-// bits): its summary.json says so, the finished run's or the interrupted one's
-// (interrupted_run/, beside its checkpoint). A run killed outright left no summary: it starts
-// again.
+// --resume: whether the run folder holds this run from an earlier report, and how far it got.
+// It is taken for the same run when its summary.json names this dspdem executable (its build
+// id and its file's CRC; not the shared libraries nor a mesh file the case names) and its case,
+// as it ran, is the case as it resolves now (every default filled in, every override applied;
+// same_case leaves out the first comment, which names the case file as it was given). A run
+// is continued only from the checkpoint its own interruption left (interrupted_run/, with its
+// summary); a run killed outright left no summary there and starts again.
 enum class Earlier { None, Finished, Interrupted };
 Earlier earlier_run(const std::string& dir, const std::string& resolved) {
   const fs::path d(dir);
@@ -73,16 +74,19 @@ Earlier earlier_run(const std::string& dir, const std::string& resolved) {
     const RunSummary s = read_run_summary((run / "summary.json").string());
     std::ifstream f(run / "case.resolved.toml", std::ios::binary);
     const std::string ran((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    return s.status == status && s.build == executable_id() && ran == resolved;
+    return s.status == status && s.build == executable_id() && same_case(ran, resolved);
   };
   try {
     if (same(d, "completed")) return Earlier::Finished;
     if (!same(d / "interrupted_run", "interrupted")) return Earlier::None;
+    // `run --restart DIR` takes the newest checkpoint in DIR: it must be this one.
+    const std::string ckpt = find_checkpoint(dir);
+    if (fs::path(ckpt) != d / "interrupted_run" / "checkpoint.bin") return Earlier::None;
     StateArchive body;
-    const CheckpointHeader h = read_checkpoint(find_checkpoint(dir), body);  // checks its build and CRC
-    if (h.resolved_toml == resolved) return Earlier::Interrupted;
-  } catch (const Error&) {
-    // An unreadable summary or checkpoint: the run starts again.
+    const CheckpointHeader h = read_checkpoint(ckpt, body);  // checks its build and CRC
+    if (same_case(h.resolved_toml, resolved)) return Earlier::Interrupted;
+  } catch (const std::exception&) {
+    // An unreadable summary, folder or checkpoint: the run starts again.
   }
   return Earlier::None;
 }
@@ -124,8 +128,8 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
   try {
     status = run_processes(list, jobs);
   } catch (const Interrupted& e) {
-    throw Interrupted(fmt::format("{}; each stopped run kept its checkpoint: the same command with --resume keeps "
-                                  "the finished runs and continues the stopped ones",
+    throw Interrupted(fmt::format("{}; a run stopped after its set-up keeps its checkpoint: the same command with "
+                                  "--resume keeps the finished runs and continues those",
                                   e.what()),
                       e.step, e.time);
   }
