@@ -23,18 +23,24 @@ vtkSmartPointer<vtkPolyData> unmatched_faces(vtkPolyData* surface, double tolera
   clean->SetTolerance(tolerance);
   clean->Update();
   vtkPolyData* pd = clean->GetOutput();
+  // Each face's points, sorted, once: the key of the faces it coincides with.
+  const vtkIdType n = pd->GetNumberOfCells();
+  std::vector<std::vector<vtkIdType>> keys(static_cast<std::size_t>(n));
   std::map<std::vector<vtkIdType>, int> count;
   vtkNew<vtkIdList> ids;
-  auto key = [&](vtkIdType c) {
+  for (vtkIdType c = 0; c < n; ++c) {
     pd->GetCellPoints(c, ids);
-    std::vector<vtkIdType> k(ids->begin(), ids->end());
+    auto& k = keys[static_cast<std::size_t>(c)];
+    k.assign(ids->begin(), ids->end());
     std::sort(k.begin(), k.end());
-    return k;
-  };
-  for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) ++count[key(c)];
+    ++count[k];
+  }
   vtkNew<vtkCellArray> keep;
-  for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
-    if (count[key(c)] == 1) keep->InsertNextCell(ids);  // key() left c's points in ids
+  for (vtkIdType c = 0; c < n; ++c)
+    if (count[keys[static_cast<std::size_t>(c)]] == 1) {
+      pd->GetCellPoints(c, ids);  // in the face's own order: its orientation
+      keep->InsertNextCell(ids);
+    }
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->SetPoints(pd->GetPoints());
   out->SetPolys(keep);

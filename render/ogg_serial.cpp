@@ -49,7 +49,7 @@ void set_ogg_serial(const std::string& path, std::uint32_t serial) {
   if (!o.good()) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
-    DSPDEM_CHECK(false, "could not write '{}'", tmp);
+    fail("could not write '{}'", tmp);
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
