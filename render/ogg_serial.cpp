@@ -5,18 +5,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <system_error>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 
 namespace dspdem::render {
 
 void set_ogg_serial(const std::string& path, std::uint32_t serial) {
-  std::ifstream in(path, std::ios::binary);
-  DSPDEM_CHECK(in.good(), "could not read Ogg file '{}'", path);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
+  const std::string bytes = read_file(path, "Ogg file");
   ogg_sync_state sync;
   ogg_sync_init(&sync);
   char* buf = ogg_sync_buffer(&sync, static_cast<long>(bytes.size()));

@@ -9,11 +9,10 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 
 namespace dspdem::render {
 
@@ -22,10 +21,7 @@ namespace fs = std::filesystem;
 std::vector<FrameRef> read_series(const std::string& run_dir, const std::string& collection) {
   const fs::path pvd = fs::path(run_dir) / collection;
   DSPDEM_CHECK(fs::exists(pvd), "'{}' not found: is '{}' the output folder of a dspdem run?", pvd.string(), run_dir);
-  std::ifstream f(pvd);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = read_file(pvd.string(), "collection");
   std::vector<FrameRef> frames;
   const std::regex ds("<DataSet[^>]*timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), ds); it != std::sregex_iterator(); ++it) {

@@ -5,11 +5,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "core/log.hpp"
 #include "mesh/msh_check.hpp"
 
@@ -210,11 +209,7 @@ Mesh read_gmsh(const std::string& path, const std::string& save_as) {
   if (ext == ".msh") {
     // gmsh trusts the file (a missing node crashes it): the text is checked first, and
     // its faults are named by line.
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    DSPDEM_CHECK(in.good() || in.eof(), "mesh file '{}' cannot be read", path);
-    check_msh_text(path, text.str());
+    check_msh_text(path, read_file(path, "mesh file"));
   }
   GmshSession session;
   try {

@@ -3,11 +3,10 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "io/staging.hpp"
 
 namespace dspdem::report {
@@ -33,13 +32,12 @@ void write_headline(const Headline& h, const std::string& dir) {
 }
 
 Headline read_headline(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) fail("cannot read '{}': no such file (a report written by this version of dspdem has one)", path);
-  std::stringstream ss;
-  ss << f.rdbuf();
+  if (!std::filesystem::exists(path))
+    fail("cannot read '{}': no such file (a report written by this version of dspdem has one)", path);
+  const std::string text = read_file(path, "headline");
   Headline h;
   try {
-    const auto j = nlohmann::json::parse(ss.str());
+    const auto j = nlohmann::json::parse(text);
     h.scene = j.at("scene").get<std::string>();
     h.title = j.at("title").get<std::string>();
     h.summary = j.at("summary").get<std::string>();

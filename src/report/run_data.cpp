@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "render/plot.hpp"
 
 namespace dspdem::report {
@@ -36,11 +35,7 @@ RunData RunData::open(const std::string& dir) {
   r.series = Series((d / "series.csv").string());
   r.frames = render::read_series(dir);
   if (fs::exists(d / "joints.pvd")) r.joint_frames = render::read_series(dir, "joints.pvd");
-  if (std::ifstream f(d / "case.resolved.toml"); f) {
-    std::stringstream ss;
-    ss << f.rdbuf();
-    r.resolved_case = ss.str();
-  }
+  if (auto text = read_file_if((d / "case.resolved.toml").string())) r.resolved_case = std::move(*text);
   return r;
 }
 

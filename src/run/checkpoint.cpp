@@ -7,10 +7,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 
 namespace dspdem {
 
@@ -28,17 +29,9 @@ std::uint32_t crc_of(const char* p, std::size_t n) {
   return static_cast<std::uint32_t>(c);
 }
 
-// Reads a whole file; Error naming it if it cannot be read.
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  DSPDEM_CHECK(f.good(), "cannot read checkpoint '{}'", path);
-  std::string s((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  return s;
-}
-
 // The header alone, checked for magic and CRC (body follows in the returned archive).
 CheckpointHeader open_checked(const std::string& path, StateArchive& body) {
-  std::string s = slurp(path);
+  std::string s = read_file(path, "checkpoint");
   DSPDEM_CHECK(s.size() >= kMagic.size() + 4 && s.compare(0, kMagic.size(), kMagic) == 0,
                "'{}' is not a dspdem checkpoint (no '{}' at its start)", path, kMagic.substr(0, kMagic.size() - 1));
   std::uint32_t stored;
@@ -67,10 +60,17 @@ std::string checkpoint_build_id() {
 
 std::string executable_id() {
   static const std::string id = [] {
+    // In blocks: the executable is some megabytes.
     std::ifstream f("/proc/self/exe", std::ios::binary);
-    const std::string exe((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    return exe.empty() ? checkpoint_build_id() + " exe unknown"
-                       : fmt::format("{} exe {:08x}", checkpoint_build_id(), crc_of(exe.data(), exe.size()));
+    std::vector<char> block(1 << 16);
+    uLong c = crc32(0L, Z_NULL, 0);
+    std::size_t n = 0;
+    while (f.read(block.data(), static_cast<std::streamsize>(block.size())) || f.gcount() > 0) {
+      c = crc32(c, reinterpret_cast<const Bytef*>(block.data()), static_cast<uInt>(f.gcount()));
+      n += static_cast<std::size_t>(f.gcount());
+    }
+    return n == 0 || f.bad() ? checkpoint_build_id() + " exe unknown"
+                             : fmt::format("{} exe {:08x}", checkpoint_build_id(), static_cast<std::uint32_t>(c));
   }();
   return id;
 }

@@ -5,10 +5,10 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
+#include "core/file.hpp"
 #include "render/ogg_serial.hpp"
 
 namespace fs = std::filesystem;
@@ -16,10 +16,7 @@ using dspdem::render::kOgvSerial;
 using dspdem::render::set_ogg_serial;
 
 namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
+std::string slurp(const fs::path& p) { return dspdem::read_file(p); }
 
 // Pages of one stream per serial, each holding `packets` packets of a few hundred bytes.
 std::string ogg_bytes(const std::vector<int>& serials, int packets) {

@@ -15,9 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "core/file.hpp"
 #include "report/run_data.hpp"
 #include "scenes/packing/analysis.hpp"
 #include "support/cli.hpp"
@@ -30,12 +29,8 @@ namespace {
 const std::string kCase = std::string(DSPDEM_SOURCE_DIR) + "/cases/packing.toml";
 const std::string kSmall = " --set mesh.packing.count=200";
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+// "" for a file that is not there: the comparisons then name it.
+std::string slurp(const fs::path& p) { return dspdem::read_file_if(p).value_or(""); }
 }  // namespace
 
 TEST(Packing, ParticlesComeToRestInTheBoxWithTheLedgerClosed) {

@@ -19,10 +19,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "io/case_config.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_case.hpp"
@@ -40,12 +40,8 @@ const std::vector<std::string> kSets = {"contact.enabled=true", "time.end=3e-4",
                                         "boundary.1.ramp=2e-5", "output.frame_interval=5e-5"};
 const std::string kCase = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+// "" for a file that is not there: the comparisons then name it.
+std::string slurp(const fs::path& p) { return dspdem::read_file_if(p).value_or(""); }
 
 // Every output of a run folder byte for byte, except the summary's wall clock and thread
 // count (a restarted run adds up its parts' wall times) and the executable that ran it (the

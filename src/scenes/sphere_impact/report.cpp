@@ -4,11 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <thread>
 
 #include "core/archive.hpp"
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "io/run_summary.hpp"
@@ -72,9 +72,8 @@ Earlier earlier_run(const std::string& dir, const std::string& resolved) {
   auto same = [&](const fs::path& run, const char* status) {
     if (!fs::exists(run / "summary.json")) return false;
     const RunSummary s = read_run_summary((run / "summary.json").string());
-    std::ifstream f(run / "case.resolved.toml", std::ios::binary);
-    const std::string ran((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    return s.status == status && s.build == executable_id() && same_case(ran, resolved);
+    const auto ran = read_file_if((run / "case.resolved.toml").string());
+    return ran && s.status == status && s.build == executable_id() && same_case(*ran, resolved);
   };
   try {
     if (same(d, "completed")) return Earlier::Finished;
