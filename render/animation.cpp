@@ -125,7 +125,7 @@ std::vector<std::string> write_animation(const std::vector<std::string>& pngs, c
   const bool staged = !ffmpeg.empty() && stage_sequence(pngs, enc.seq, base);
   auto start = [&](const std::string& ext) {
     return spawn_program(ffmpeg, ffmpeg_args(ext, (enc.seq / "%06d.png").string(), fps, enc.tmp_file(ext)),
-                         enc.log_file(ext));
+                         {.log = enc.log_file(ext)});
   };
   // With more than one job ffmpeg's two encodings run beside VTK's, which takes longer than
   // both together (measured on a 2-core AMD EPYC: .ogv 2.3 s, .mp4 0.7 s, .gif 0.9 s for 45

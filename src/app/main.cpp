@@ -13,6 +13,7 @@
 #include "app/report_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/subprocess.hpp"
 #include "io/case_config.hpp"
 #include "par/mpi_world.hpp"
 #include "render/image_compare.hpp"
@@ -54,7 +55,7 @@ int run_main(int argc, char** argv) {
   auto* ckpt_opt =
       run->add_option("--checkpoint-every", checkpoint_every,
                       "Write DIR/checkpoint.bin every T of simulated time (atomically, over the last one); "
-                      "SIGINT/SIGTERM write one anyway. Default with --restart: the interrupted run's")
+                      "SIGINT/SIGTERM/SIGHUP write one anyway. Default with --restart: the interrupted run's")
           ->check(CLI::NonNegativeNumber)
           ->type_name("T");
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
@@ -272,6 +273,7 @@ int run_main(int argc, char** argv) {
 // them all, since the others would wait for it at the next exchange. An interruption is
 // agreed by all at the same step (run_case), so they end together and normally.
 int main(int argc, char** argv) {
+  stop_with_parent();  // a sweep's job: a SIGTERM if the report dies, even by SIGKILL
   par::init(&argc, &argv);
   const int code = run_main(argc, argv);
   if (code != 0 && code != kExitInterrupted && par::size() > 1) par::abort(code);

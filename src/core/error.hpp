@@ -24,7 +24,7 @@ class NumericalError : public Error {
   double time;
 };
 
-/// A run stopped by SIGINT/SIGTERM: numerical state intact, the user asked to stop. Whatever
+/// A run stopped by SIGINT/SIGTERM/SIGHUP: numerical state intact, the user asked to stop. Whatever
 /// runs several cases (a study) stops too instead of starting the next one.
 class Interrupted : public NumericalError {
  public:

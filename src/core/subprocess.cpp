@@ -1,21 +1,28 @@
 #include "core/subprocess.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <string>
 #include <string_view>
 
 extern char** environ;
 
 namespace dspdem {
 
-pid_t spawn_program(const std::string& program, const std::vector<std::string>& args, const std::string& log,
-                    bool own_group) {
+namespace {
+constexpr const char* kParentVariable = "DSPDEM_STOP_WITH_PARENT";
+}
+
+pid_t spawn_program(const std::string& program, const std::vector<std::string>& args, const SpawnOptions& o) {
+  const std::string& log = o.log;
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   // No stdin: a child that reads the terminal (ffmpeg does) would stop a background job.
@@ -23,7 +30,8 @@ pid_t spawn_program(const std::string& program, const std::vector<std::string>& 
   if (!log.empty()) {
     std::error_code ec;  // a log folder that cannot be made shows up as the open failing
     std::filesystem::create_directories(std::filesystem::absolute(log).parent_path(), ec);
-    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(),
+                                     O_WRONLY | O_CREAT | (o.append_log ? O_APPEND : O_TRUNC), 0644);
     posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
   }
   std::vector<std::string> all = {program};
@@ -36,12 +44,16 @@ pid_t spawn_program(const std::string& program, const std::vector<std::string>& 
   std::vector<char*> env;
   for (char** e = environ; *e; ++e) {
     const std::string_view v(*e);
-    if (v.rfind("OMPI_", 0) != 0 && v.rfind("PMIX_", 0) != 0 && v.rfind("PMI_", 0) != 0) env.push_back(*e);
+    if (v.rfind("OMPI_", 0) != 0 && v.rfind("PMIX_", 0) != 0 && v.rfind("PMI_", 0) != 0 &&
+        v.rfind(kParentVariable, 0) != 0)
+      env.push_back(*e);
   }
+  std::string parent = std::string(kParentVariable) + "=" + std::to_string(getpid());
+  if (o.own_group) env.push_back(parent.data());
   env.push_back(nullptr);
   posix_spawnattr_t at;
   posix_spawnattr_init(&at);
-  if (own_group) {
+  if (o.own_group) {
     posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);
     posix_spawnattr_setpgroup(&at, 0);  // a new group, led by the child
   }
@@ -60,7 +72,17 @@ int wait_program(pid_t pid) {
 }
 
 int run_program(const std::string& program, const std::vector<std::string>& args, const std::string& log) {
-  return wait_program(spawn_program(program, args, log));
+  return wait_program(spawn_program(program, args, {.log = log}));
+}
+
+void stop_with_parent() {
+  const char* v = std::getenv(kParentVariable);
+  if (v == nullptr) return;
+  const long parent = std::strtol(v, nullptr, 10);
+  unsetenv(kParentVariable);
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+  // Its death before the line above sent nothing; we have been handed on to another parent.
+  if (static_cast<long>(getppid()) != parent) kill(getpid(), SIGTERM);
 }
 
 std::string find_on_path(const std::string& name) {

@@ -1,4 +1,4 @@
-// Checkpoint files of a run (`dspdem run --checkpoint-every T`, SIGINT/SIGTERM, `--restart`).
+// Checkpoint files of a run (`dspdem run --checkpoint-every T`, a stop signal, `--restart`).
 //
 // One file, <run folder>/checkpoint.bin: a magic line, a header (which build and which case
 // wrote it, and where the run was), the state (core/archive.hpp), and a CRC-32 of all of it.

@@ -12,12 +12,15 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/signals.hpp"
 #include "core/subprocess.hpp"
 
 namespace dspdem {
 
 namespace {
-pid_t start(const Job& j) { return spawn_program("/proc/self/exe", j.args, j.log, true); }
+pid_t start(const Job& j) {
+  return spawn_program("/proc/self/exe", j.args, {.log = j.log, .append_log = j.append_log, .own_group = true});
+}
 
 volatile std::sig_atomic_t g_signal = 0, g_signals = 0;
 extern "C" void on_stop(int sig) {
@@ -25,23 +28,6 @@ extern "C" void on_stop(int sig) {
   g_signals = g_signals + 1;
 }
 
-// SIGINT, SIGTERM and SIGHUP only count while the pool runs; the caller's handlers come back
-// after it, also when it throws.
-struct StopSignals {
-  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
-  struct sigaction old[3] = {};
-  StopSignals() {
-    g_signal = 0;
-    g_signals = 0;
-    struct sigaction act {};
-    act.sa_handler = on_stop;
-    sigemptyset(&act.sa_mask);
-    for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &act, &old[k]);
-  }
-  ~StopSignals() {
-    for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &old[k], nullptr);
-  }
-};
 }  // namespace
 
 std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
@@ -49,7 +35,10 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
   std::vector<int> status(list.size(), -1);
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0;
-  StopSignals signals;
+  // SIGINT, SIGTERM and SIGHUP count only while the pool runs.
+  g_signal = 0;
+  g_signals = 0;
+  ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_stop);
   int passed_on = 0;  // signals passed on so far
   std::size_t stopped = 0;
   while ((next < list.size() && g_signal == 0) || !running.empty()) {
@@ -84,6 +73,9 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
     status[it->second] = WIFEXITED(st) ? WEXITSTATUS(st) : WIFSIGNALED(st) ? 128 + WTERMSIG(st) : -1;
     running.erase(it);
   }
+  // The caller's handlers back before the last look at the flag: a signal that came after
+  // the loop's last look still stops the caller (exit 5), rather than being lost.
+  signals.restore();
   if (g_signal != 0)
     throw Interrupted(fmt::format("{}: {} job(s) stopped, {} not started",
                                   g_signal == SIGINT    ? "SIGINT"

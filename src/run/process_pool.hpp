@@ -11,6 +11,7 @@ namespace dspdem {
 struct Job {
   std::vector<std::string> args;  ///< arguments after the program (this same dspdem binary)
   std::string log;                ///< file for the process's stdout and stderr
+  bool append_log = false;        ///< add to `log` (a run continued from its checkpoint)
 };
 
 /// Starts the jobs in order, keeping at most `jobs` (>= 1) running; returns each one's exit
@@ -19,8 +20,8 @@ struct Job {
 /// meanwhile is passed on as one SIGTERM to each running job's group (a dspdem run writes its
 /// checkpoint at the first, once its set-up is done, and exits at once at the second), no
 /// further job is started, and once the running ones have ended Interrupted is thrown, saying
-/// how many were stopped and how many never started. A SIGKILL of this process leaves them
-/// running.
+/// how many were stopped and how many never started. If this process dies, a SIGKILL
+/// included, each job gets a SIGTERM (stop_with_parent), so none is left running on.
 std::vector<int> run_processes(const std::vector<Job>& list, int jobs);
 
 }  // namespace dspdem

@@ -104,7 +104,7 @@ void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, 
                                      fmt::format("{}x{}", o.width, o.height)};
     if (o.edges) args.push_back("--edges");
     for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
-    const pid_t pid = spawn_program("/proc/self/exe", args, "");  // its messages on our stderr
+    const pid_t pid = spawn_program("/proc/self/exe", args);  // its messages on our stderr
     if (pid > 0)
       pids.push_back(pid);
     else

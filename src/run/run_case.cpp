@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/signals.hpp"
 #include "core/timer.hpp"
 #include "fem/stable_dt.hpp"
 #include "io/model_builder.hpp"
@@ -183,15 +184,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // From the start: a signal during the set-up (meshing can take minutes) then stops the run
   // after its first step, with a checkpoint, instead of killing it half-written.
   g_interrupted = 0;
-  struct sigaction act = {}, old_int = {}, old_term = {};
-  act.sa_handler = on_signal;
-  sigemptyset(&act.sa_mask);
-  sigaction(SIGINT, &act, &old_int);
-  sigaction(SIGTERM, &act, &old_term);
-  struct Restore {
-    struct sigaction a, b;
-    ~Restore() { sigaction(SIGINT, &a, nullptr), sigaction(SIGTERM, &b, nullptr); }
-  } restore{old_int, old_term};
+  ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_signal);
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
   Mesh mesh = load_case_mesh(c);
   // Elements and nodes in a spatial order before anything numbers them (joints, contact,
@@ -518,8 +511,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   };
 
   // Again before the loop: the set-up's libraries (gmsh) may have put in their own.
-  sigaction(SIGINT, &act, nullptr);
-  sigaction(SIGTERM, &act, nullptr);
+  signals.install();
   const bool tty_progress = opt.progress;
   std::function<Real()> stop_value;
   if (!c.stop_series.empty()) stop_value = series_column(c, model, it);

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/file.hpp"
 #include "io/run_summary.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "report/run_data.hpp"
@@ -34,11 +35,39 @@ Result run(const std::string& args) {
   return dspdem::testsupport::shell(args.rfind("env ", 0) == 0 ? args : std::string(DSPDEM_BIN) + " " + args);
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
+// "" for a file that is not there (yet): the checks then name it.
+std::string slurp(const fs::path& p) { return dspdem::read_file_if(p).value_or(""); }
+
+// `cmd` through sh in a process group of its own, as a shell starts a foreground job, with
+// the stop signals at their defaults whatever this test was started with (a script's
+// background job has SIGINT ignored, and an ignored signal stays ignored in dspdem).
+pid_t start_job(const std::string& cmd) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) signal(sig, SIG_DFL);
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  if (pid > 0) setpgid(pid, pid);
+  return pid;
+}
+
+// Whether a run of the sweep's speed folder `speed` has written `frames` frames into its
+// staging folder (at most 120 s; the folders come and go meanwhile, hence the error codes).
+bool wait_for_frames(const fs::path& speed, int frames) {
+  for (int k = 0; k < 2400; ++k) {
+    std::error_code ec;
+    for (fs::directory_iterator it(speed, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->path().filename().string().rfind(".staging-", 0) != 0) continue;
+      const std::string pvd = slurp(it->path() / "run.pvd");
+      int n = 0;
+      for (auto q = pvd.find("<DataSet"); q != std::string::npos; q = pvd.find("<DataSet", q + 1)) ++n;
+      if (n >= frames) return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
 }
 
 std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -560,28 +589,9 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
   const fs::path rep = dir_ / "rep", v25 = rep / "speeds" / "v2.5", v75 = rep / "speeds" / "v7.5";
   const std::string cmd = fmt::format("exec {} -q report {} --no-render --out {} {} > {} 2>&1", DSPDEM_BIN, file,
                                       rep.string(), opts, (dir_ / "stopped.log").string());
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);  // its own group, as a shell gives a foreground job
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t pid = start_job(cmd);
   ASSERT_GT(pid, 0);
-  setpgid(pid, pid);
-  // Until the second speed's run has written two frames into its staging folder (at most
-  // 120 s; the folders come and go meanwhile, hence the error codes).
-  bool running = false;
-  for (int k = 0; k < 2400 && !running; ++k) {
-    std::error_code ec;
-    for (fs::directory_iterator it(v75, ec), end; !ec && it != end; it.increment(ec)) {
-      if (it->path().filename().string().rfind(".staging-", 0) != 0) continue;
-      const std::string pvd = slurp(it->path() / "run.pvd");
-      int n = 0;
-      for (auto q = pvd.find("<DataSet"); q != std::string::npos; q = pvd.find("<DataSet", q + 1)) ++n;
-      running = running || n >= 2;
-    }
-    if (!running) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  const bool running = wait_for_frames(v75, 2);
   kill(-pid, SIGINT);  // either way: the report then stops its run too, and nothing is left running
   int st = 0;
   waitpid(pid, &st, 0);
@@ -603,6 +613,12 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
   EXPECT_EQ(slurp(v25 / "summary.json"), first);
   EXPECT_EQ(fs::last_write_time(v25 / "summary.json"), first_time);
   EXPECT_FALSE(fs::exists(v75 / "interrupted_run"));  // a finished restart clears it
+  // Its log holds both parts: where it stopped, and the continued part after it.
+  const std::string log = slurp(rep / "speeds" / "v7.5.log");
+  const auto stop_at = log.find("interrupted at step"), went_on = log.find("--resume: continued from its checkpoint");
+  EXPECT_NE(stop_at, std::string::npos) << log;
+  EXPECT_NE(went_on, std::string::npos) << log;
+  EXPECT_LT(stop_at, went_on) << log;
   EXPECT_TRUE(fs::exists(rep / "report.md"));
 
   // The same sweep never stopped: the continued run ends with the same bits.
@@ -635,6 +651,37 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
   const Result both = report("sphere_impact", "--resume --from-run " + rep.string(), "both");
   EXPECT_EQ(both.code, 2) << both.out;
   EXPECT_NE(both.out.find("--resume and --from-run"), std::string::npos) << both.out;
+}
+
+TEST_F(Cli, ASweepGoesOnThroughAnIgnoredHangUpAndStopsItsRunsWhenKilled) {
+  // Started as `nohup` starts it (SIGHUP ignored), a sweep goes on through a hang-up. Killed
+  // outright (SIGKILL, which it cannot catch), its run gets a SIGTERM from the kernel: it
+  // keeps its checkpoint and stops, instead of running on with no report to wait for it.
+  const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml";
+  const std::string opts =
+      "--speeds 7.5 -j 1 --set mesh.sphere_plate.size=0.04 --set time.end=2e-3 --set output.frame_interval=2e-4";
+  const fs::path rep = dir_ / "hup", v75 = rep / "speeds" / "v7.5";
+  const pid_t pid = start_job(fmt::format("trap '' HUP; exec {} -q report {} --no-render --out {} {} > {} 2>&1",
+                                          DSPDEM_BIN, file, rep.string(), opts, (dir_ / "hup.log").string()));
+  ASSERT_GT(pid, 0);
+  const bool running = wait_for_frames(v75, 2);
+  kill(-pid, SIGHUP);  // the report's group: the run, in a group of its own, does not get it
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  int st = 0;
+  const pid_t ended = waitpid(pid, &st, WNOHANG);
+  kill(-pid, SIGKILL);
+  waitpid(pid, &st, 0);
+  ASSERT_TRUE(running) << "the run never started: " << slurp(dir_ / "hup.log");
+  EXPECT_EQ(ended, 0) << "the report stopped at the ignored hang-up: " << slurp(dir_ / "hup.log");
+  // The run writes its checkpoint and summary, and moves its folder, before it exits.
+  bool kept = false;
+  for (int k = 0; k < 1200 && !kept; ++k) {
+    kept = fs::exists(v75 / "interrupted_run" / "summary.json");
+    if (!kept) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(kept) << "the run did not stop with its report: " << slurp(rep / "speeds" / "v7.5.log");
+  EXPECT_TRUE(fs::exists(v75 / "interrupted_run" / "checkpoint.bin"));
+  EXPECT_NE(slurp(rep / "speeds" / "v7.5.log").find("interrupted at step"), std::string::npos);
 }
 
 TEST_F(Cli, ReportStudyOfARunThatNeverLoadsStillWritesTheReport) {

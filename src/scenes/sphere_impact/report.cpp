@@ -116,6 +116,11 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
       for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
     }
     j.log = p.dir + ".log";
+    if (e == Earlier::Interrupted) {
+      // After the interrupted part's messages, which say where it stopped.
+      j.append_log = true;
+      std::ofstream(j.log, std::ios::app) << "\n--- dspdem report --resume: continued from its checkpoint ---\n\n";
+    }
     list.push_back(j);
     listed.push_back(i);
   }
