@@ -42,6 +42,9 @@ std::string last_line(const std::string& path) {
 }  // namespace
 
 int figures_command(const FiguresArgs& a) {
+  DSPDEM_CHECK(!a.resume || a.from_runs.empty(),
+               "figures: --resume and --from-runs: --from-runs runs nothing; --resume keeps or continues the runs "
+               "in --out and runs the rest");
   Timer total;
   std::vector<Item> items;
   if (a.cases.empty()) {
@@ -63,7 +66,8 @@ int figures_command(const FiguresArgs& a) {
              : a.study ? "full (the shipped cases as they are, each with its speed-against-error study)"
                        : "full (the shipped cases as they are, without the studies)";
   info.made_by = "dspdem figures" + std::string(a.quick ? " --quick" : "") + (a.study ? "" : " --no-study") +
-                 (a.from_runs.empty() ? "" : " --from-runs " + a.from_runs) + " --out " + a.out;
+                 (a.resume ? " --resume" : "") + (a.from_runs.empty() ? "" : " --from-runs " + a.from_runs) +
+                 " --out " + a.out;
   for (const auto& c : a.cases) info.made_by += " " + c;
 
   std::vector<std::string> dirs;
@@ -82,9 +86,19 @@ int figures_command(const FiguresArgs& a) {
     args.insert(args.end(), {"report", it.case_file, "--out", dir});
     if (a.quick) args.insert(args.end(), it.quick_args.begin(), it.quick_args.end());
     if (!a.quick && a.study) args.push_back("--study");  // the speed-against-error tables
+    if (a.resume) args.push_back("--resume");
     log::info("figures: {} ({}{})", it.scene, it.case_file, a.quick ? ", quick" : "");
     Timer t;
-    const int rc = run_processes({Job{args, log}}, 1).front();
+    int rc = 0;
+    try {
+      // With --resume the log goes on after the stopped report's messages.
+      rc = run_processes({Job{args, log, a.resume}}, 1).front();
+    } catch (const Interrupted& e) {
+      throw Interrupted(fmt::format("{} (the report of {}); the same command with --resume keeps the runs that "
+                                    "finished and continues the stopped one",
+                                    e.what(), it.scene),
+                        e.step, e.time);
+    }
     if (rc != 0) {
       info.failed.emplace_back(it.scene, fmt::format("exit {}: {} (log: logs/{}.log)", rc, last_line(log), it.scene));
       log::warn("figures: the report of {} failed with exit {}; its log: {}", it.scene, rc, log);

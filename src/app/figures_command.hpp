@@ -12,6 +12,7 @@ struct FiguresArgs {
   bool study = true;      ///< full set: each report with its speed-against-error study
   std::string from_runs;  ///< reuse the report folders FROM/<scene> made earlier; run nothing
   int threads = 0;        ///< passed to each report process (0: its default)
+  bool resume = false;    ///< each report with --resume: the runs a stopped figures left are kept or continued
 };
 
 int figures_command(const FiguresArgs& a);

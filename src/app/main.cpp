@@ -125,9 +125,9 @@ int run_main(int argc, char** argv) {
                   "Runs of a sweep or study at once, each a process with -t 1 (default: one per core)")
       ->check(CLI::Range(1, 256));
   rep->add_flag("--resume", rpa.resume,
-                "A sweep (the sphere impact): keep the runs an earlier report left in the output folder when they "
-                "are the same runs (same resolved case, same dspdem build); continue interrupted ones from their "
-                "checkpoints; run the rest");
+                "Keep the runs (the report's run, its study, a sweep) an earlier report left in the output folder "
+                "when they are the same runs (same resolved case, same dspdem build); continue interrupted ones "
+                "from their checkpoints; run the rest");
   rep->add_flag("--no-stress-check", rpa.no_stress_check,
                 "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
 
@@ -145,6 +145,9 @@ int run_main(int argc, char** argv) {
                   "Reuse the report folders FROM/<scene> made earlier (by figures or by report --out); run nothing")
       ->check(CLI::ExistingDirectory)
       ->type_name("FROM");
+  fig->add_flag("--resume", fga.resume,
+                "Each report with --resume: the runs a stopped figures (or report --out DIR/<scene>) left are kept "
+                "when finished, continued from their checkpoints when stopped");
 
   auto* imgdiff =
       app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");

@@ -21,14 +21,20 @@ int report_command(const report::ReportArgs& a) {
     }
   }
   const scenes::Scene& scene = scenes::of_case(c);
-  DSPDEM_CHECK(
-      scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1 && !a.resume),
-      "{}: --speeds, --study-speeds, --realisations and --resume belong to a velocity sweep; scene '{}' has none",
-      c.path, scene.name);
+  DSPDEM_CHECK(scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1),
+               "{}: --speeds, --study-speeds and --realisations belong to a velocity sweep; scene '{}' has none",
+               c.path, scene.name);
   DSPDEM_CHECK(!a.resume || a.from_run.empty(),
                "--resume and --from-run: --from-run analyses an earlier report's runs without running any; --resume "
                "keeps those of this report's folder that are still this report's runs and runs the rest");
-  return scene.report(c, a);
+  try {
+    return scene.report(c, a);
+  } catch (const Interrupted& e) {
+    const std::string what = e.what();
+    if (what.find("--resume") != std::string::npos) throw;  // the sweep says it already
+    throw Interrupted(what + "; the same report with --resume keeps the runs that finished and continues this one",
+                      e.step, e.time);
+  }
 }
 
 }  // namespace dspdem

@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "run/run_case.hpp"
+#include "report/resume.hpp"
 
 namespace dspdem::report {
 
@@ -15,9 +15,7 @@ ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   d.run_dir = a.from_run.empty() ? (fs::path(d.dir) / "run").string() : a.from_run;
   fs::create_directories(d.dir);
   if (a.from_run.empty()) {
-    RunOptions ro;
-    ro.out_dir = d.run_dir;
-    run_case(c, ro);
+    run_or_resume(c, d.run_dir, a.resume);
   } else {
     DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
                  "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);

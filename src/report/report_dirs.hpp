@@ -12,8 +12,9 @@ struct ReportDirs {
   std::string dir, run_dir;
 };
 
-/// Makes DIR, runs the case into DIR/run unless --from-run names a finished run (which
-/// must hold a summary.json: Error otherwise), and returns both folders.
+/// Makes DIR, runs the case into DIR/run (with --resume, keeps or continues the same run an
+/// earlier report left there) unless --from-run names a finished run (which must hold a
+/// summary.json: Error otherwise), and returns both folders.
 ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a);
 
 }  // namespace dspdem::report

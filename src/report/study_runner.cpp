@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "run/run_case.hpp"
+#include "report/resume.hpp"
 
 namespace dspdem::report {
 
@@ -32,11 +32,9 @@ std::vector<VariantOutcome> run_variants(const std::vector<Variant>& variants, c
   return out;
 }
 
-CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir) {
+CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir, bool resume) {
   const CaseConfig c = reread_with(base, v.sets);
-  RunOptions o;
-  o.out_dir = run_dir;
-  run_case(c, o);
+  run_or_resume(c, run_dir, resume);
   return c;
 }
 

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -471,6 +472,21 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
   for (std::string l; std::getline(csv, l);) ++lines;
   EXPECT_EQ(lines, 1 + 16);
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "images" / "plots" / "study.png"));
+
+  // Again with --resume: every run is the same finished run (the report's, the stress
+  // check's and the study's fifteen), kept as it is; the tables are written anew, the same.
+  std::map<fs::path, fs::file_time_type> ran;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "rep"))
+    if (e.path().filename() == "summary.json") ran[e.path()] = e.last_write_time();
+  EXPECT_EQ(ran.size(), 17u);
+  const std::string table = slurp(dir_ / "rep" / "study" / "study.csv");
+  const Result again = report("brazilian_disc",
+                              "--study --set mesh.brazilian_disc.size=0.02 --set materials.rock.joint_penalty=30"
+                              " --set time.end=2e-4 --set output.frame_interval=2e-5"
+                              " --set walls.0.velocity=[0,-0.2,0] --set walls.1.velocity=[0,0.2,0] --resume");
+  ASSERT_EQ(again.code, 0) << again.out;
+  for (const auto& [p, t] : ran) EXPECT_EQ(fs::last_write_time(p), t) << p << " was run again";
+  EXPECT_EQ(slurp(dir_ / "rep" / "study" / "study.csv"), table);
 }
 
 TEST_F(Cli, ReportStudyOfTheGalvezBeamRunsEveryVariant) {
@@ -646,11 +662,49 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
                              " --set output.frame_interval=4e-4 --resume");
   ASSERT_EQ(changed.code, 0) << changed.out;
   EXPECT_NE(changed.out.find("--resume: 0 run(s) kept, 0 continued, 2 started"), std::string::npos) << changed.out;
-  // --resume belongs to a sweep, and does not go with --from-run.
-  EXPECT_EQ(report("brazilian_disc", "--resume").code, 2);
+  // --resume does not go with --from-run.
   const Result both = report("sphere_impact", "--resume --from-run " + rep.string(), "both");
   EXPECT_EQ(both.code, 2) << both.out;
   EXPECT_NE(both.out.find("--resume and --from-run"), std::string::npos) << both.out;
+}
+
+TEST_F(Cli, AReportStoppedInItsOwnRunResumesIt) {
+  // A scene's report runs its case in its own process (the disc, at its quick size). Stopped
+  // by Ctrl-C, it keeps the run's checkpoint and says how to go on; --resume continues the run
+  // in-process to the bits of a plain run of the same case, and a further --resume keeps it.
+  const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
+  const std::string sets = "--set mesh.brazilian_disc.size=0.02";
+  const std::string opts = "--no-render --no-stress-check " + sets;
+  const fs::path rep = dir_ / "disc", run_dir = rep / "run";
+  const pid_t pid = start_job(fmt::format("exec {} -q report {} --out {} {} > {} 2>&1", DSPDEM_BIN, file, rep.string(),
+                                          opts, (dir_ / "disc.log").string()));
+  ASSERT_GT(pid, 0);
+  const bool running = wait_for_frames(run_dir, 2);
+  kill(-pid, SIGINT);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  const std::string stopped = slurp(dir_ / "disc.log");
+  ASSERT_TRUE(running) << "the run never wrote its frames: " << stopped;
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 5) << stopped;
+  EXPECT_NE(stopped.find("the same report with --resume"), std::string::npos) << stopped;
+  ASSERT_TRUE(fs::exists(run_dir / "interrupted_run" / "checkpoint.bin")) << stopped;
+
+  const std::string cmd = "report " + file + " --out " + rep.string() + " " + opts + " --resume";
+  const Result resumed = run(cmd);
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("--resume: continuing the run in " + run_dir.string()), std::string::npos) << resumed.out;
+  EXPECT_FALSE(fs::exists(run_dir / "interrupted_run"));
+  EXPECT_TRUE(fs::exists(rep / "report.md"));
+  const Result plain = run("-q run " + file + " " + sets + " --out " + (dir_ / "plain").string());
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  for (const char* f : {"series.csv", "fragments.csv"}) EXPECT_EQ(slurp(run_dir / f), slurp(dir_ / "plain" / f)) << f;
+
+  const auto first = fs::last_write_time(run_dir / "summary.json");
+  const Result kept = run(cmd);
+  ASSERT_EQ(kept.code, 0) << kept.out;
+  EXPECT_NE(kept.out.find("--resume: kept the finished run in " + run_dir.string()), std::string::npos) << kept.out;
+  EXPECT_EQ(fs::last_write_time(run_dir / "summary.json"), first);
 }
 
 TEST_F(Cli, ASweepGoesOnThroughAnIgnoredHangUpAndStopsItsRunsWhenKilled) {

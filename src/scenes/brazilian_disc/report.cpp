@@ -61,7 +61,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   if (checked) {
     try {
       check_case = stress_check_case(c, r.t_profile);
-      check = run_stress_check(check_case, r.P_profile, check_dir.string());
+      check = run_stress_check(check_case, r.P_profile, check_dir.string(), a.resume);
     } catch (const std::exception& e) {
       checked = false;
       check_note = fmt::format("Stress check failed: {}", e.what());
@@ -89,7 +89,8 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
                                    1e-3 * check.P_profile)};
     render::plot_csv((check_dir / "profile.csv").string(), s, (img / "plots" / "profile_check.png").string());
   }
-  const std::string study_md = a.study ? run_study(c, r, checked ? &check : nullptr, dir, img.string()) : std::string();
+  const std::string study_md =
+      a.study ? run_study(c, r, checked ? &check : nullptr, dir, img.string(), a.resume) : std::string();
 
   // report.md
   report::Document doc(dir, run_dir);

@@ -2,7 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "run/run_case.hpp"
+#include "report/resume.hpp"
 #include "scenes/brazilian_disc/loading.hpp"
 
 namespace dspdem {
@@ -43,12 +43,10 @@ CaseConfig stress_check_case(const CaseConfig& scene, Real t_target) {
   return reread_with(scene, sets);
 }
 
-DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir) {
+DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir, bool resume) {
   log::info("stress check: no joints, mesh {:.1f} mm, {:.1f} mm at the loads, plates 4x faster, to {:.3f} ms",
             1e3 * c.mesh_num.at("size"), 1e3 * c.mesh_num.at("load_size"), 1e3 * c.t_end);
-  RunOptions o;
-  o.out_dir = dir;
-  run_case(c, o);
+  report::run_or_resume(c, dir, resume);
   return analyse_disc_run(c, dir, true, P_target);
 }
 

@@ -21,7 +21,8 @@ namespace dspdem {
 CaseConfig stress_check_case(const CaseConfig& scene, Real t_target);
 
 /// Runs the check's case `c` under `dir` and analyses it at the scene's profile load
-/// `P_target` (writing profile.csv and profile_analytic.csv there).
-DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir);
+/// `P_target` (writing profile.csv and profile_analytic.csv there). `resume`:
+/// report::run_or_resume.
+DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir, bool resume = false);
 
 }  // namespace dspdem

@@ -12,8 +12,8 @@ namespace dspdem {
 /// Runs every variant of `base` under `dir`/study/<variant> (the reference row reuses
 /// `reference`, the analysed run of `base`; the elastic row reuses `check`, the report's
 /// stress check, when given), writes study.csv there and plots/study.png under `image_dir`;
-/// returns the markdown table and the recommendation.
+/// returns the markdown table and the recommendation. `resume`: report::run_or_resume.
 std::string run_study(const CaseConfig& base, const DiscResult& reference, const DiscResult* check,
-                      const std::string& dir, const std::string& image_dir);
+                      const std::string& dir, const std::string& image_dir, bool resume);
 
 }  // namespace dspdem

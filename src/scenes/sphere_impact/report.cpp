@@ -16,6 +16,7 @@
 #include "report/document.hpp"
 #include "report/onsets.hpp"
 #include "report/proportion.hpp"
+#include "report/resume.hpp"
 #include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
 #include "run/montage.hpp"
@@ -28,6 +29,8 @@ namespace dspdem {
 
 namespace {
 namespace fs = std::filesystem;
+using report::Earlier;
+using report::earlier_run;
 
 // The sweep; the paper shows 5, 7.5 and 20 m/s.
 const std::vector<double> kDefaultSpeeds = {2.5, 5.0, 7.5, 10.0, 20.0, 30.0, 50.0};
@@ -58,37 +61,6 @@ struct Planned {
   double speed = 0;
   int orientation = 0;  // its mesh's mesh.sphere_plate.orientation
 };
-
-// --resume: whether the run folder holds this run from an earlier report, and how far it got.
-// It is taken for the same run when its summary.json names this dspdem executable (its build
-// id and its file's CRC; not the shared libraries nor a mesh file the case names) and its case,
-// as it ran, is the case as it resolves now (every default filled in, every override applied;
-// same_case leaves out the first comment, which names the case file as it was given). A run
-// is continued only from the checkpoint its own interruption left (interrupted_run/, with its
-// summary); a run killed outright left no summary there and starts again.
-enum class Earlier { None, Finished, Interrupted };
-Earlier earlier_run(const std::string& dir, const std::string& resolved) {
-  const fs::path d(dir);
-  auto same = [&](const fs::path& run, const char* status) {
-    if (!fs::exists(run / "summary.json")) return false;
-    const RunSummary s = read_run_summary((run / "summary.json").string());
-    const auto ran = read_file_if((run / "case.resolved.toml").string());
-    return ran && s.status == status && s.build == executable_id() && same_case(*ran, resolved);
-  };
-  try {
-    if (same(d, "completed")) return Earlier::Finished;
-    if (!same(d / "interrupted_run", "interrupted")) return Earlier::None;
-    // `run --restart DIR` takes the newest checkpoint in DIR: it must be this one.
-    const std::string ckpt = find_checkpoint(dir);
-    if (fs::path(ckpt) != d / "interrupted_run" / "checkpoint.bin") return Earlier::None;
-    StateArchive body;
-    const CheckpointHeader h = read_checkpoint(ckpt, body);  // checks its build and CRC
-    if (same_case(h.resolved_toml, resolved)) return Earlier::Interrupted;
-  } catch (const std::exception&) {
-    // An unreadable summary, folder or checkpoint: the run starts again.
-  }
-  return Earlier::None;
-}
 
 // Each planned run is read in-process first (a bad override fails here, with its message,
 // before any process starts), then run as its own `dspdem -t 1 run` process.

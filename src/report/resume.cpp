@@ -1,0 +1,56 @@
+#include "report/resume.hpp"
+
+#include <filesystem>
+
+#include "core/archive.hpp"
+#include "core/file.hpp"
+#include "core/log.hpp"
+#include "io/run_summary.hpp"
+#include "run/checkpoint.hpp"
+#include "run/run_case.hpp"
+
+namespace dspdem::report {
+
+namespace fs = std::filesystem;
+
+Earlier earlier_run(const std::string& dir, const std::string& resolved) {
+  const fs::path d(dir);
+  auto same = [&](const fs::path& run, const char* status) {
+    if (!fs::exists(run / "summary.json")) return false;
+    const RunSummary s = read_run_summary((run / "summary.json").string());
+    const auto ran = read_file_if((run / "case.resolved.toml").string());
+    return ran && s.status == status && s.build == executable_id() && same_case(*ran, resolved);
+  };
+  try {
+    if (same(d, "completed")) return Earlier::Finished;
+    if (!same(d / "interrupted_run", "interrupted")) return Earlier::None;
+    // `run --restart DIR` takes the newest checkpoint in DIR: it must be this one.
+    const std::string ckpt = find_checkpoint(dir);
+    if (fs::path(ckpt) != d / "interrupted_run" / "checkpoint.bin") return Earlier::None;
+    StateArchive body;
+    const CheckpointHeader h = read_checkpoint(ckpt, body);  // checks its build and CRC
+    if (same_case(h.resolved_toml, resolved)) return Earlier::Interrupted;
+  } catch (const std::exception&) {
+    // An unreadable summary, folder or checkpoint: the run starts again.
+  }
+  return Earlier::None;
+}
+
+Earlier run_or_resume(const CaseConfig& c, const std::string& dir, bool resume) {
+  const Earlier e = resume ? earlier_run(dir, c.resolved_toml) : Earlier::None;
+  if (e == Earlier::Finished) {
+    log::info("--resume: kept the finished run in {}", dir);
+    return e;
+  }
+  RunOptions o;
+  o.out_dir = dir;
+  o.sets = c.overrides;
+  if (e == Earlier::Interrupted) {
+    o.restart_file = (fs::path(dir) / "interrupted_run" / "checkpoint.bin").string();
+    log::info("--resume: continuing the run in {} from its checkpoint", dir);
+  }
+  run_case(c, o);
+  return e;
+}
+
+}  // namespace dspdem::report
