@@ -44,6 +44,7 @@ int run_main(int argc, char** argv) {
   bool progress = false, no_progress = false;
   std::string restart_dir;
   double checkpoint_every = 0;
+  double checkpoint_wall = kCheckpointWallDefault;
   auto* run_case_opt = run->add_option("case", case_file, "Case file (TOML); none with --restart");
   run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
   auto* run_set_opt =
@@ -58,6 +59,12 @@ int run_main(int argc, char** argv) {
                       "SIGINT/SIGTERM/SIGHUP write one anyway. Default with --restart: the interrupted run's")
           ->check(CLI::NonNegativeNumber)
           ->type_name("T");
+  run->add_option("--checkpoint-wall", checkpoint_wall,
+                  "Also write one every S seconds of wall time, so that a run killed outright (SIGKILL, out of "
+                  "memory) loses at most that much: run --restart DIR goes on from it. One process only; 0: never")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("S");
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
 
@@ -233,6 +240,7 @@ int run_main(int argc, char** argv) {
     if (*run) {
       RunOptions opt;
       opt.checkpoint_every = checkpoint_every;
+      opt.checkpoint_wall = checkpoint_wall;
       if (!restart_dir.empty()) {
         // The case and overrides come from the checkpoint; run_case checks that the case
         // still reads as it did then.

@@ -45,6 +45,7 @@ Earlier run_or_resume(const CaseConfig& c, const std::string& dir, bool resume) 
   RunOptions o;
   o.out_dir = dir;
   o.sets = c.overrides;
+  o.checkpoint_wall = kCheckpointWallDefault;
   if (e == Earlier::Interrupted) {
     o.restart_file = (fs::path(dir) / "interrupted_run" / "checkpoint.bin").string();
     log::info("--resume: continuing the run in {} from its checkpoint", dir);

@@ -522,7 +522,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       series.row(it, model);
     }
     Timer loop;
-    double last_report = 0;
+    double last_report = 0, next_wall_checkpoint = opt.checkpoint_wall;
     for (long s = s0; s < ls.n_steps; ++s) {
       it.step();
       if (extrinsic && extrinsic->check(model, it) > 0 && adaptive_dt) {
@@ -580,6 +580,10 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       if (opt.checkpoint_every > 0 && t >= ls.next_checkpoint - 1e-12 * c.t_end) {
         while (ls.next_checkpoint <= t + 1e-12 * c.t_end) ls.next_checkpoint += opt.checkpoint_every;
         write_ckpt();
+        next_wall_checkpoint = loop.seconds() + opt.checkpoint_wall;
+      } else if (opt.checkpoint_wall > 0 && !distributed && loop.seconds() >= next_wall_checkpoint) {
+        write_ckpt();  // reads the state only: the run's results are the same with or without
+        next_wall_checkpoint = loop.seconds() + opt.checkpoint_wall;
       }
       if (tty_progress && loop.seconds() - last_report > 0.5) {
         last_report = loop.seconds();

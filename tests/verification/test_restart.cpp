@@ -299,6 +299,43 @@ TEST_F(Restart, SigtermLeavesAValidCollectionAndARestartableCheckpoint) {
   EXPECT_NE(none.out.find("no such run folder"), std::string::npos) << none.out;
 }
 
+// Killed outright (SIGKILL: no handler runs, nothing is tidied), a run loses only what came
+// after its last checkpoint by wall time: `--restart` finds it in the killed run's staging
+// folder and ends the run as the uninterrupted one, and the staging folder goes.
+TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
+  const fs::path dir = root_ / "killed";
+  std::vector<std::string> args = {DSPDEM_BIN,          "-q", "-t", "2", "run", kCase, "--out", dir.string(),
+                                   "--checkpoint-wall", "0.2"};
+  for (const auto& s : kSets) args.insert(args.end(), {"--set", s});
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(DSPDEM_BIN, argv.data());
+    _exit(127);
+  }
+  ASSERT_GT(pid, 0);
+  const fs::path staging = dir / fmt::format(".staging-{}", pid);
+  bool written = false;
+  for (int k = 0; k < 2400 && !written; ++k) {
+    written = fs::exists(staging / "checkpoint.bin");
+    if (!written) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  kill(pid, SIGKILL);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  ASSERT_TRUE(written) << "no checkpoint by wall time in " << staging;
+  ASSERT_TRUE(WIFSIGNALED(st)) << "the run ended before it was killed: make it longer";
+  StateArchive body;
+  const CheckpointHeader h = read_checkpoint(find_checkpoint(dir.string()), body);
+  EXPECT_GT(h.steps, 0);
+  const auto res = testsupport::shell(fmt::format("{} -q -t 1 run --restart {}", DSPDEM_BIN, dir.string()));
+  ASSERT_EQ(res.code, 0) << res.out;
+  expect_same_outputs(full_, dir);
+  EXPECT_FALSE(fs::exists(staging));
+}
+
 }  // namespace
 
 // A run started as `dspdem run cases/x.toml` records the case by its absolute path, and the
