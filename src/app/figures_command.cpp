@@ -92,6 +92,8 @@ int figures_command(const FiguresArgs& a) {
     int rc = 0;
     try {
       // With --resume the log goes on after the stopped report's messages.
+      if (a.resume && fs::exists(log))
+        std::ofstream(log, std::ios::app) << "\n--- dspdem figures --resume: the report again ---\n\n";
       rc = run_processes({Job{args, log, a.resume}}, 1).front();
     } catch (const Interrupted& e) {
       throw Interrupted(fmt::format("{} (the report of {}); the same command with --resume keeps the runs that "

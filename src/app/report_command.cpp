@@ -30,9 +30,10 @@ int report_command(const report::ReportArgs& a) {
   try {
     return scene.report(c, a);
   } catch (const Interrupted& e) {
-    const std::string what = e.what();
-    if (what.find("--resume") != std::string::npos) throw;  // the sweep says it already
-    throw Interrupted(what + "; the same report with --resume keeps the runs that finished and continues this one",
+    // A run stopped after its set-up keeps its checkpoint (one still in it, or a sweep's job
+    // not started, starts again).
+    throw Interrupted(std::string(e.what()) +
+                          "; the same report with --resume keeps the runs that finished and continues the stopped ones",
                       e.step, e.time);
   }
 }

@@ -11,15 +11,22 @@
 namespace dspdem {
 
 namespace {
-// errno's reason when the stream failed, "" when it read the whole file.
+// The reason it cannot be read, or nullopt once `out` holds the whole file. Regular files
+// only: a FIFO or a device would block or never end.
 std::optional<std::string> read(const std::string& path, std::string& out) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return std::string("it is a folder");
+  const auto st = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(st)) return std::string("it is a folder");
+  if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    return std::string("it is not a regular file");
   errno = 0;
   std::ifstream f(path, std::ios::binary);
   if (!f) return std::string(errno != 0 ? std::strerror(errno) : "it cannot be opened");
-  out.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-  if (f.bad()) return std::string(errno != 0 ? std::strerror(errno) : "a read failed");
+  try {
+    out.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {  // libstdc++'s filebuf throws on a read error
+    return std::string(errno != 0 ? std::strerror(errno) : e.what());
+  }
   return std::nullopt;
 }
 }  // namespace

@@ -9,6 +9,7 @@ ScopedSignals::ScopedSignals(std::initializer_list<int> signals, void (*handler)
 }
 
 void ScopedSignals::install() {
+  if (!held_) return;
   struct sigaction act {};
   act.sa_handler = handler_;
   sigemptyset(&act.sa_mask);

@@ -19,7 +19,8 @@ class ScopedSignals {
   ScopedSignals(const ScopedSignals&) = delete;
   ScopedSignals& operator=(const ScopedSignals&) = delete;
 
-  /// Puts the handler on again, where a library (gmsh) may have put in its own since.
+  /// Puts the handler on again, where a library (gmsh) may have put in its own since;
+  /// nothing after restore().
   void install();
   /// Puts the earlier actions back (once; the destructor then does nothing). A signal that
   /// comes after this goes to them: whoever checks its handler's flag does so afterwards.

@@ -1,7 +1,10 @@
 #include "io/staging.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -18,7 +21,15 @@ Staging::Staging(const std::string& out_dir, long id, bool owner) : out_(out_dir
   std::error_code ec;
   fs::create_directories(out_, ec);
   DSPDEM_CHECK(!ec && fs::is_directory(out_), "output directory '{}' cannot be created: {}", out_, ec.message());
-  fs::remove_all(stage_, ec);
+  // A folder of this name is a killed run's whose pid this process has been given again (pids
+  // repeat, in a container started anew): its checkpoint may be what this run restarts from,
+  // so it is moved aside, not emptied.
+  if (fs::exists(stage_, ec)) {
+    for (aside_ = 1; fs::exists(stage_ + "." + std::to_string(aside_), ec); ++aside_) {
+    }
+    fs::rename(stage_, stage_ + "." + std::to_string(aside_), ec);
+    DSPDEM_CHECK(!ec, "cannot move the earlier staging folder '{}' aside: {}", stage_, ec.message());
+  }
   fs::create_directories(stage_, ec);
   DSPDEM_CHECK(!ec, "cannot create staging folder '{}': {}", stage_, ec.message());
 }
@@ -43,9 +54,18 @@ void Staging::commit() {
   }
   for (const auto& p : old) fs::remove_all(p);
   fs::remove_all(stage_);
-  // A successful run supersedes an earlier failure's or interruption's partial outputs.
+  // A successful run supersedes an earlier failure's or interruption's partial outputs, and
+  // the staging folders of earlier runs that were killed (their process gone).
   fs::remove_all(fs::path(out_) / "failed_run");
   fs::remove_all(fs::path(out_) / "interrupted_run");
+  std::error_code ec;
+  for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(".staging-", 0) != 0) continue;
+    const long pid = std::strtol(name.c_str() + 9, nullptr, 10);
+    const bool mine = pid == static_cast<long>(getpid());  // moved aside by this run
+    if (pid > 0 && (mine || (kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH))) fs::remove_all(it->path(), ec);
+  }
   done_ = true;
 }
 

@@ -27,11 +27,15 @@ class Staging {
   std::string keep_failed() { return keep_as("failed_run"); }
   /// Renames the staging folder to DIR/<name> (replacing an older one); returns its path.
   std::string keep_as(const std::string& name);
+  /// 0, or k when a folder of this staging folder's name was there already (a killed run's
+  /// of the same pid) and was moved aside to `<its path>.<k>`.
+  long moved_aside() const { return aside_; }
 
  private:
   std::string out_, stage_;
   bool done_ = false;
   bool owner_ = true;
+  long aside_ = 0;
 };
 
 /// Writes `text` to `path` through a temporary file and a rename.

@@ -132,13 +132,14 @@ std::string find_checkpoint(const std::string& run_dir) {
     if (e.is_directory() && e.path().filename().string().rfind(".staging-", 0) == 0)
       cands.push_back(e.path() / "checkpoint.bin");
   std::string best, errors;
-  long best_steps = -1;
+  fs::file_time_type best_time = fs::file_time_type::min();
   for (const auto& p : cands) {
     if (!fs::is_regular_file(p)) continue;
     try {
       StateArchive body;
-      const CheckpointHeader h = open_checked(p.string(), body);
-      if (h.steps > best_steps) best_steps = h.steps, best = p.string();
+      open_checked(p.string(), body);
+      const auto t = fs::last_write_time(p);
+      if (best.empty() || t > best_time) best_time = t, best = p.string();
     } catch (const Error& e) {
       errors += fmt::format("\n  {}", e.what());  // a damaged one does not hide a good one
     }

@@ -65,8 +65,10 @@ void move_checkpoint_into_place(const std::string& path);
 /// `body` positioned at the state.
 CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body);
 
-/// The newest checkpoint (most steps) a run folder holds: its own checkpoint.bin, an
-/// interrupted run's (interrupted_run/) or a killed run's (.staging-*/). Error if none.
+/// The newest checkpoint (the last written) a run folder holds: its own checkpoint.bin, an
+/// interrupted run's (interrupted_run/) or a killed run's (.staging-*/). Error if none. The
+/// last written, not the furthest: a killed run's staging folder can outlive it, and a
+/// later run of the folder, of another case perhaps, is the one to go on with.
 std::string find_checkpoint(const std::string& run_dir);
 
 /// The first line where two case texts differ, for messages ("" if equal).

@@ -23,7 +23,11 @@ pid_t start(const Job& j) {
 }
 
 volatile std::sig_atomic_t g_signal = 0, g_signals = 0;
+// A hang-up after the first signal is not passed on again: a closing terminal's job gets
+// one from the kernel and one from its shell, and a second SIGTERM would stop the runs before
+// their checkpoints.
 extern "C" void on_stop(int sig) {
+  if (sig == SIGHUP && g_signals > 0) return;
   g_signal = sig;
   g_signals = g_signals + 1;
 }

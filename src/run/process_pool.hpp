@@ -17,11 +17,14 @@ struct Job {
 /// Starts the jobs in order, keeping at most `jobs` (>= 1) running; returns each one's exit
 /// status (the code, or 128 + the signal that ended it; -1 if it could not be started).
 /// Each job runs in a process group of its own. Each SIGINT, SIGTERM or SIGHUP to this process
-/// meanwhile is passed on as one SIGTERM to each running job's group (a dspdem run writes its
-/// checkpoint at the first, once its set-up is done, and exits at once at the second), no
-/// further job is started, and once the running ones have ended Interrupted is thrown, saying
-/// how many were stopped and how many never started. If this process dies, a SIGKILL
-/// included, each job gets a SIGTERM (stop_with_parent), so none is left running on.
+/// meanwhile (one this process was started with ignored stays ignored; a hang-up after the
+/// first signal does not count again) is passed on as one SIGTERM to each running job's group
+/// (a dspdem run writes its checkpoint at the first, once its set-up is done, and exits at once
+/// at the second), no further job is started, and once the running ones have ended Interrupted
+/// is thrown, saying how many were stopped and how many never started. If this process dies, a
+/// SIGKILL included, each job (not what the job started in turn) gets a SIGTERM
+/// (stop_with_parent). The kernel sends that when the thread that started the job ends: call
+/// this from a thread that outlives the jobs (the main thread does).
 std::vector<int> run_processes(const std::vector<Job>& list, int jobs);
 
 }  // namespace dspdem

@@ -42,9 +42,11 @@ namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0;
 // The first signal asks for a stop at the end of the step (checkpoint, outputs closed); a
 // second one exits at once. Every output file is written to a temporary name and renamed,
-// so what is on disk then is whole: the last checkpoint, frames and collections so far.
-extern "C" void on_signal(int) {
-  if (g_interrupted) _exit(kExitInterrupted);
+// so what is on disk then is whole: the last checkpoint, frames and collections so far. A
+// hang-up is not a second signal: a closing terminal's job gets one from the kernel and one
+// from its shell, and must still write its checkpoint.
+extern "C" void on_signal(int sig) {
+  if (g_interrupted && sig != SIGHUP) _exit(kExitInterrupted);
   g_interrupted = 1;
 }
 
@@ -307,6 +309,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
   par::barrier();  // the folder made before anyone writes into it
   const fs::path sdir(stage.path());
+  // Restarting from a killed run's staging folder of this very name: it was moved aside.
+  std::string restart_file = opt.restart_file;
+  if (const long aside = par::broadcast(stage.moved_aside());
+      aside > 0 && !restart_file.empty() &&
+      fs::weakly_canonical(fs::path(restart_file).parent_path()) == fs::weakly_canonical(sdir))
+    restart_file = (fs::path(stage.path() + "." + std::to_string(aside)) / fs::path(restart_file).filename()).string();
   const std::string frames_dir = (sdir / "frames").string();
   fs::create_directories(frames_dir);
   if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), c.resolved_toml);
@@ -360,11 +368,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     else
       ar(opened);
   };
-  if (!opt.restart_file.empty()) {
+  if (!restart_file.empty()) {
     StateArchive body;
-    const std::string mine = checkpoint_piece(opt.restart_file, my_rank);
+    const std::string mine = checkpoint_piece(restart_file, my_rank);
     DSPDEM_CHECK(my_rank == 0 || fs::exists(mine), "restart: no '{}' beside '{}' for process {} of {}", mine,
-                 opt.restart_file, my_rank, n_ranks);
+                 restart_file, my_rank, n_ranks);
     const CheckpointHeader h = read_checkpoint(mine, body);
     DSPDEM_CHECK(h.processes == n_ranks && h.rank == my_rank,
                  "restart: checkpoint '{}' is process {}'s of a run on {} process(es); restart it on as many ({})",
@@ -377,36 +385,35 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     DSPDEM_CHECK(std::all_of(steps.begin(), steps.end(), [&](long n) { return n == steps[0]; }),
                  "restart: the processes' checkpoint files in {} are of different steps ({}): the run was stopped "
                  "while they were written; no restart from these",
-                 fs::path(opt.restart_file).parent_path().string(), fmt::join(steps, "/"));
+                 fs::path(restart_file).parent_path().string(), fmt::join(steps, "/"));
     DSPDEM_CHECK(same_case(h.resolved_toml, c.resolved_toml),
                  "restart: checkpoint '{}' was written for case {} as it was then; it has changed since ({}): run it "
                  "again, or restore the case",
-                 opt.restart_file, h.case_path, first_difference(h.resolved_toml, c.resolved_toml));
+                 restart_file, h.case_path, first_difference(h.resolved_toml, c.resolved_toml));
     DSPDEM_CHECK(h.nodes == whole_nodes && h.elements == whole_elements && h.joints == whole_joints && h.dt == dt,
                  "restart: checkpoint '{}' is of a model with {} nodes, {} elements, {} joints and dt {:.17g}; the "
                  "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
-                 opt.restart_file, h.nodes, h.elements, h.joints, h.dt, whole_nodes, whole_elements, whole_joints, dt);
+                 restart_file, h.nodes, h.elements, h.joints, h.dt, whole_nodes, whole_elements, whole_joints, dt);
     persist(body);
-    DSPDEM_CHECK(body.remaining() == 0, "checkpoint '{}': {} bytes left after the state (corrupt file)",
-                 opt.restart_file, body.remaining());
-    if (my_rank == 0) restore_outputs(fs::path(opt.restart_file).parent_path(), sdir, ls);
+    DSPDEM_CHECK(body.remaining() == 0, "checkpoint '{}': {} bytes left after the state (corrupt file)", restart_file,
+                 body.remaining());
+    if (my_rank == 0) restore_outputs(fs::path(restart_file).parent_path(), sdir, ls);
     par::barrier();  // the frames so far in place before anyone adds to them
     if (!distributed) frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
 #if DSPDEM_HAVE_MPI
     if (distributed) frag = par::find_fragments(model, *halo, elem_mass, it.x().data()).fr;  // for the summary
 #endif
-    log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", opt.restart_file, it.steps(),
-              it.time(), ls.frames.size());
+    log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", restart_file, it.steps(), it.time(),
+              ls.frames.size());
   }
   // Every process computes each row (its reductions are collective); process 0 writes it.
-  Series series(my_rank == 0 ? (sdir / "series.csv").string() : "/dev/null", model, !opt.restart_file.empty());
+  Series series(my_rank == 0 ? (sdir / "series.csv").string() : "/dev/null", model, !restart_file.empty());
   // fragments.csv: per frame the count and the largest pieces (mass, size, where), so that
   // any scene's report can follow the break-up without reading the frames back.
-  std::ofstream frag_csv(
-      my_rank == 0 ? sdir / "fragments.csv" : fs::path("/dev/null"),
-      opt.restart_file.empty() ? std::ios::out | std::ios::binary : std::ios::app | std::ios::binary);
+  std::ofstream frag_csv(my_rank == 0 ? sdir / "fragments.csv" : fs::path("/dev/null"),
+                         restart_file.empty() ? std::ios::out | std::ios::binary : std::ios::app | std::ios::binary);
   DSPDEM_CHECK(frag_csv.good(), "cannot write '{}'", (sdir / "fragments.csv").string());
-  if (opt.restart_file.empty())
+  if (restart_file.empty())
     frag_csv << "frame,time,count,rank,id,mass,elements,x,y,z\n";  // id: the frames' fragment field
   constexpr std::size_t kFragmentRows = 20;
   auto& frames = ls.frames;
@@ -517,7 +524,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   if (!c.stop_series.empty()) stop_value = series_column(c, model, it);
   const long s0 = it.steps();  // 0, or where a restart begins
   try {
-    if (opt.restart_file.empty()) {
+    if (restart_file.empty()) {
       write_frame();
       series.row(it, model);
     }
@@ -635,8 +642,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   stage.commit();
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.
-  if (!opt.restart_file.empty()) {
-    const fs::path src = fs::path(opt.restart_file).parent_path();
+  if (!restart_file.empty()) {
+    const fs::path src = fs::path(restart_file).parent_path();
     const std::string name = src.filename().string();
     if (name.rfind(".staging-", 0) == 0 || name == "interrupted_run") fs::remove_all(src);
   }

@@ -10,8 +10,8 @@ namespace dspdem {
 struct RunOptions {
   std::string out_dir;
   bool progress = false;  ///< progress line on stderr
-  /// Simulated time between checkpoints (DIR/checkpoint.bin while the run goes on); 0: only
-  /// when a signal stops the run.
+  /// Simulated time between checkpoints (DIR/checkpoint.bin while the run goes on); 0: none
+  /// by simulated time (one when a signal stops the run, and by checkpoint_wall).
   double checkpoint_every = 0;
   /// Also one every this many seconds of wall time (one process only: the processes of a
   /// distributed run would not agree on the step); 0: never. What a run killed outright (SIGKILL,
@@ -30,13 +30,13 @@ struct RunOptions {
 /// 74 ms each, 20 of them adding 1.5 s to a 3.8 s run on a 2-core AMD EPYC).
 constexpr double kCheckpointWallDefault = 600;
 
-/// Exit status of `dspdem run` stopped by SIGINT/SIGTERM (after its checkpoint).
+/// Exit status of `dspdem run` stopped by SIGINT, SIGTERM or SIGHUP (after its checkpoint).
 constexpr int kExitInterrupted = 5;
 
 /// Runs the case and writes DIR/{run.pvd, frames/, series.csv, summary.json,
 /// case.resolved.toml}. Returns 0 on success. Throws Error for bad input; on numerical
 /// trouble writes the partial results to DIR/failed_run and throws NumericalError. Stopped
-/// by SIGINT/SIGTERM it writes a checkpoint at the end of the step, keeps the outputs so far
+/// by SIGINT, SIGTERM or SIGHUP it writes a checkpoint at the end of the step, keeps the outputs so far
 /// in DIR/interrupted_run and throws Interrupted; a second signal exits at once.
 int run_case(const CaseConfig& c, const RunOptions& opt);
 

@@ -720,12 +720,15 @@ TEST_F(Cli, ASweepGoesOnThroughAnIgnoredHangUpAndStopsItsRunsWhenKilled) {
   ASSERT_GT(pid, 0);
   const bool running = wait_for_frames(v75, 2);
   kill(-pid, SIGHUP);  // the report's group: the run, in a group of its own, does not get it
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // Had the report taken the hang-up, it would have stopped its run, whose staging folder
+  // would then be gone: the run writing a further frame shows it went on.
+  const bool went_on = running && wait_for_frames(v75, 3);
   int st = 0;
   const pid_t ended = waitpid(pid, &st, WNOHANG);
   kill(-pid, SIGKILL);
   waitpid(pid, &st, 0);
   ASSERT_TRUE(running) << "the run never started: " << slurp(dir_ / "hup.log");
+  EXPECT_TRUE(went_on) << "the run stopped at the ignored hang-up: " << slurp(dir_ / "hup.log");
   EXPECT_EQ(ended, 0) << "the report stopped at the ignored hang-up: " << slurp(dir_ / "hup.log");
   // The run writes its checkpoint and summary, and moves its folder, before it exits.
   bool kept = false;

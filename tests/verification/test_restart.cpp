@@ -63,6 +63,21 @@ void expect_same_outputs(const fs::path& a, const fs::path& b) {
   EXPECT_EQ(summary(a), summary(b));
 }
 
+// `args` (DSPDEM_BIN first) as a process of its own, its stop signals at their defaults
+// whatever ctest was started with (an ignored signal stays ignored in dspdem).
+pid_t spawn_dspdem(std::vector<std::string> args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) signal(sig, SIG_DFL);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(DSPDEM_BIN, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
 class Restart : public ::testing::Test {
  protected:
   static fs::path root_, full_;
@@ -158,6 +173,31 @@ TEST_F(Restart, AnExtrinsicRunWhoseStepFallsRestartsBitwise) {
   expect_same_outputs(full, dir);
 }
 
+// A killed run's staging folder carries its pid. Pids repeat (a container started anew hands
+// them out in the same order), so the restart can get the killed run's pid: its own staging
+// folder then has the name of the one it restarts from, which must be moved aside, not
+// emptied. Staged here in this process: the interrupted run's folder renamed as a killed
+// run's of this pid. A finished run also clears the staging folders of killed runs.
+TEST_F(Restart, ARestartGivenTheKilledRunsPidKeepsItsCheckpoint) {
+  const fs::path dir = root_ / "same_pid";
+  const CaseConfig c = read_case(kCase, kSets);
+  RunOptions opt;
+  opt.out_dir = dir.string();
+  opt.sets = kSets;
+  opt.interrupt_at_step = 3000;
+  EXPECT_THROW(run_case(c, opt), Interrupted);
+  const fs::path killed = dir / fmt::format(".staging-{}", getpid());
+  fs::rename(dir / "interrupted_run", killed);
+  fs::create_directories(dir / ".staging-999999999");  // a killed run's of a pid no process has
+  opt.restart_file = find_checkpoint(dir.string());
+  ASSERT_EQ(fs::path(opt.restart_file), killed / "checkpoint.bin");
+  opt.interrupt_at_step = -1;
+  EXPECT_EQ(run_case(c, opt), 0);
+  expect_same_outputs(full_, dir);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_NE(e.path().filename().string().rfind(".staging-", 0), 0u) << e.path() << " is left";
+}
+
 TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   const fs::path dir = root_ / "refuse";
   RunOptions opt;
@@ -220,19 +260,7 @@ TEST_F(Restart, SigtermLeavesAValidCollectionAndARestartableCheckpoint) {
   const fs::path dir = root_ / "sigterm";
   std::vector<std::string> args = {DSPDEM_BIN, "-q", "-t", "2", "run", kCase, "--out", dir.string()};
   for (const auto& s : kSets) args.insert(args.end(), {"--set", s});
-  auto spawn = [&]() {
-    const pid_t pid = fork();
-    if (pid == 0) {
-      // At their defaults, whatever ctest was started with: an ignored signal stays ignored.
-      for (int sig : {SIGINT, SIGTERM}) signal(sig, SIG_DFL);
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execv(DSPDEM_BIN, argv.data());
-      _exit(127);
-    }
-    return pid;
-  };
+  auto spawn = [&]() { return spawn_dspdem(args); };
   // Waits until the running job's collection lists `frames` frames (at most 120 s); if it
   // does not, the job is killed (a failed test must not leave it running).
   auto wait_frames = [&](pid_t pid, int frames) {
@@ -307,14 +335,7 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
   std::vector<std::string> args = {DSPDEM_BIN,          "-q", "-t", "2", "run", kCase, "--out", dir.string(),
                                    "--checkpoint-wall", "0.2"};
   for (const auto& s : kSets) args.insert(args.end(), {"--set", s});
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(DSPDEM_BIN, argv.data());
-    _exit(127);
-  }
+  const pid_t pid = spawn_dspdem(args);
   ASSERT_GT(pid, 0);
   const fs::path staging = dir / fmt::format(".staging-{}", pid);
   bool written = false;

@@ -62,6 +62,8 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
     try {
       check_case = stress_check_case(c, r.t_profile);
       check = run_stress_check(check_case, r.P_profile, check_dir.string(), a.resume);
+    } catch (const Interrupted&) {
+      throw;  // the user stopped the report: not a failed check, and no study after it
     } catch (const std::exception& e) {
       checked = false;
       check_note = fmt::format("Stress check failed: {}", e.what());

@@ -100,15 +100,8 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
     log::info("sphere impact: --resume: {} run(s) kept, {} continued, {} started", kept, continued,
               list.size() - static_cast<std::size_t>(continued));
   if (!list.empty()) log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
-  std::vector<int> status;
-  try {
-    status = run_processes(list, jobs);
-  } catch (const Interrupted& e) {
-    throw Interrupted(fmt::format("{}; a run stopped after its set-up keeps its checkpoint: the same command with "
-                                  "--resume keeps the finished runs and continues those",
-                                  e.what()),
-                      e.step, e.time);
-  }
+  // Stopped by a signal, Interrupted goes up to report_command, which says how to go on.
+  const std::vector<int> status = run_processes(list, jobs);
   std::vector<std::string> err(plan.size());
   for (std::size_t k = 0; k < list.size(); ++k)
     if (status[k] != 0) {
