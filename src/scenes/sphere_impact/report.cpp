@@ -78,20 +78,18 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
       continue;
     }
     Job j;
+    j.log = p.dir + ".log";
     if (e == Earlier::Interrupted) {
       ++continued;
       log::info("sphere impact: {}: continued from the checkpoint in {}", p.name, p.dir);
       j.args = {"-q", "-t", "1", "run", "--restart", p.dir, "--no-progress"};
+      // After the interrupted part's messages, which say where it stopped.
+      j.append_log = true;
+      std::ofstream(j.log, std::ios::app) << "\n--- dspdem report --resume: continued from its checkpoint ---\n\n";
     } else {
       j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--out", p.dir};
       for (const auto& s : c.overrides) j.args.insert(j.args.end(), {"--set", s});
       for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
-    }
-    j.log = p.dir + ".log";
-    if (e == Earlier::Interrupted) {
-      // After the interrupted part's messages, which say where it stopped.
-      j.append_log = true;
-      std::ofstream(j.log, std::ios::app) << "\n--- dspdem report --resume: continued from its checkpoint ---\n\n";
     }
     list.push_back(j);
     listed.push_back(i);
