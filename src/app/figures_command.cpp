@@ -87,6 +87,7 @@ int figures_command(const FiguresArgs& a) {
     if (a.quick) args.insert(args.end(), it.quick_args.begin(), it.quick_args.end());
     if (!a.quick && a.study) args.push_back("--study");  // the speed-against-error tables
     if (a.resume) args.push_back("--resume");
+    if (!a.checkpoint_wall.empty()) args.insert(args.end(), {"--checkpoint-wall", a.checkpoint_wall});
     log::info("figures: {} ({}{})", it.scene, it.case_file, a.quick ? ", quick" : "");
     Timer t;
     int rc = 0;

@@ -59,12 +59,14 @@ int run_main(int argc, char** argv) {
                       "SIGINT/SIGTERM/SIGHUP write one anyway. Default with --restart: the interrupted run's")
           ->check(CLI::NonNegativeNumber)
           ->type_name("T");
-  run->add_option("--checkpoint-wall", checkpoint_wall,
-                  "Also write one every S seconds of wall time, so that a run killed outright (SIGKILL, out of "
-                  "memory) loses at most that much: run --restart DIR goes on from it. One process only; 0: never")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->type_name("S");
+  auto* wall_opt =
+      run->add_option("--checkpoint-wall", checkpoint_wall,
+                      "Also write one every S seconds of wall time, so that a run killed outright (SIGKILL, out of "
+                      "memory) loses at most that much: run --restart DIR goes on from it. One process only; 0: "
+                      "never. Default with --restart: the interrupted run's")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber)
+          ->type_name("S");
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
 
@@ -131,10 +133,16 @@ int run_main(int argc, char** argv) {
   rep->add_option("-j,--jobs", rpa.jobs,
                   "Runs of a sweep or study at once, each a process with -t 1 (default: one per core)")
       ->check(CLI::Range(1, 256));
-  rep->add_flag("--resume", rpa.resume,
+  rep->add_flag("--resume", rpa.runs.resume,
                 "Keep the runs (the report's run, its study, a sweep) an earlier report left in the output folder "
-                "when they are the same runs (same resolved case, same dspdem build); continue interrupted ones "
-                "from their checkpoints; run the rest");
+                "when they are the same runs (same resolved case, same dspdem build); continue interrupted or killed "
+                "ones from their checkpoints; run the rest");
+  rep->add_option("--checkpoint-wall", rpa.runs.checkpoint_wall,
+                  "Each run's checkpoints by wall time, as run --checkpoint-wall: a run killed outright goes on from "
+                  "its last with --resume. 0: never")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("S");
   rep->add_flag("--no-stress-check", rpa.no_stress_check,
                 "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
 
@@ -155,6 +163,9 @@ int run_main(int argc, char** argv) {
   fig->add_flag("--resume", fga.resume,
                 "Each report with --resume: the runs a stopped figures (or report --out DIR/<scene>) left are kept "
                 "when finished, continued from their checkpoints when stopped");
+  fig->add_option("--checkpoint-wall", fga.checkpoint_wall, "Each report with --checkpoint-wall S")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("S");
 
   auto* imgdiff =
       app.add_subcommand("imgdiff", "Compare two PNG images; exit 1 when they differ by more than the threshold");
@@ -249,10 +260,16 @@ int run_main(int argc, char** argv) {
         const CheckpointHeader h = read_checkpoint(opt.restart_file, body);
         case_file = h.case_path, sets = h.sets;
         if (ckpt_opt->count() == 0) opt.checkpoint_every = h.checkpoint_every;
+        if (wall_opt->count() == 0) opt.checkpoint_wall = h.checkpoint_wall;
         if (out_dir.empty()) out_dir = restart_dir;
         log::info("dspdem run --restart: {} (step {}, t = {:.6g} s)", opt.restart_file, h.steps, h.time);
       }
       DSPDEM_CHECK(!case_file.empty(), "run: give a case file, or --restart RUN_DIR");
+      if (par::size() > 1 && wall_opt->count() > 0 && checkpoint_wall > 0)
+        log::warn(
+            "--checkpoint-wall {} is not used in a distributed run (mpirun -n {}): its processes would not agree on "
+            "the step; --checkpoint-every T writes checkpoints by simulated time",
+            checkpoint_wall, par::size());
       const CaseConfig c = read_case(case_file, sets);
       opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;

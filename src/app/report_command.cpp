@@ -24,7 +24,7 @@ int report_command(const report::ReportArgs& a) {
   DSPDEM_CHECK(scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1),
                "{}: --speeds, --study-speeds and --realisations belong to a velocity sweep; scene '{}' has none",
                c.path, scene.name);
-  DSPDEM_CHECK(!a.resume || a.from_run.empty(),
+  DSPDEM_CHECK(!a.runs.resume || a.from_run.empty(),
                "--resume and --from-run: --from-run analyses an earlier report's runs without running any; --resume "
                "keeps those of this report's folder that are still this report's runs and runs the rest");
   try {

@@ -13,6 +13,20 @@
 namespace dspdem {
 namespace fs = std::filesystem;
 
+namespace {
+// The pid in a staging folder's name; 0 for another folder.
+long staging_pid(const fs::path& dir) {
+  const std::string name = dir.filename().string();
+  if (name.rfind(".staging-", 0) != 0) return 0;
+  return std::strtol(name.c_str() + 9, nullptr, 10);
+}
+}  // namespace
+
+bool left_by_killed_run(const std::string& dir) {
+  const long pid = staging_pid(fs::path(dir));
+  return pid > 0 && pid != static_cast<long>(getpid()) && kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
 Staging::Staging(const std::string& out_dir) : Staging(out_dir, static_cast<long>(getpid()), true) {}
 
 Staging::Staging(const std::string& out_dir, long id, bool owner) : out_(out_dir), owner_(owner) {
@@ -60,11 +74,8 @@ void Staging::commit() {
   fs::remove_all(fs::path(out_) / "interrupted_run");
   std::error_code ec;
   for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.rfind(".staging-", 0) != 0) continue;
-    const long pid = std::strtol(name.c_str() + 9, nullptr, 10);
-    const bool mine = pid == static_cast<long>(getpid());  // moved aside by this run
-    if (pid > 0 && (mine || (kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH))) fs::remove_all(it->path(), ec);
+    const bool mine = staging_pid(it->path()) == static_cast<long>(getpid());  // moved aside by this run
+    if (mine || left_by_killed_run(it->path().string())) fs::remove_all(it->path(), ec);
   }
   done_ = true;
 }

@@ -38,6 +38,11 @@ class Staging {
   long aside_ = 0;
 };
 
+/// Whether `dir` is the staging folder of a run whose process is gone: a run killed outright
+/// (`.staging-<pid>`, or such a folder moved aside, `.staging-<pid>.<k>`). A live run's, or
+/// this process's own, is not.
+bool left_by_killed_run(const std::string& dir);
+
 /// Writes `text` to `path` through a temporary file and a rename.
 void write_file_atomic(const std::string& path, const std::string& text);
 

@@ -3,7 +3,19 @@
 #include <string>
 #include <vector>
 
+#include "run/run_case.hpp"
+
 namespace dspdem::report {
+
+/// How a report makes the runs it makes in its own process or as processes of a sweep.
+struct RunPolicy {
+  /// A run that an earlier report left in its folder is kept when it is the same run (the case
+  /// as resolved now, the same dspdem executable) and finished, continued from its checkpoint
+  /// when a signal stopped it or it was killed outright; the rest run as usual.
+  bool resume = false;
+  /// Their checkpoints by wall time (RunOptions::checkpoint_wall) [s]; 0: never.
+  double checkpoint_wall = kCheckpointWallDefault;
+};
 
 struct ReportArgs {
   std::string case_file, out_dir;
@@ -16,10 +28,7 @@ struct ReportArgs {
   std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)
   int realisations = 1;  ///< runs per speed of a sweep, each with the mesh turned another way (the sphere impact)
   int jobs = 0;          ///< runs of a sweep or study in parallel processes (0: one per core)
-  /// A sweep's runs that an earlier report left in the output folder are kept when they are
-  /// the same runs (the case as resolved now, the same dspdem build): finished ones as they
-  /// are, interrupted ones continued from their checkpoints. The rest run as usual.
-  bool resume = false;
+  RunPolicy runs;        ///< --resume and --checkpoint-wall
 };
 
 }  // namespace dspdem::report

@@ -15,7 +15,7 @@ ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   d.run_dir = a.from_run.empty() ? (fs::path(d.dir) / "run").string() : a.from_run;
   fs::create_directories(d.dir);
   if (a.from_run.empty()) {
-    run_or_resume(c, d.run_dir, a.resume);
+    run_or_resume(c, d.run_dir, a.runs);
   } else {
     DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
                  "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);

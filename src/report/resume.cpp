@@ -6,6 +6,7 @@
 #include "core/file.hpp"
 #include "core/log.hpp"
 #include "io/run_summary.hpp"
+#include "io/staging.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_case.hpp"
 
@@ -23,21 +24,25 @@ Earlier earlier_run(const std::string& dir, const std::string& resolved) {
   };
   try {
     if (same(d, "completed")) return Earlier::Finished;
-    if (!same(d / "interrupted_run", "interrupted")) return Earlier::None;
-    // `run --restart DIR` takes the newest checkpoint in DIR: it must be this one.
-    const std::string ckpt = find_checkpoint(dir);
-    if (fs::path(ckpt) != d / "interrupted_run" / "checkpoint.bin") return Earlier::None;
+    // `run --restart DIR` takes the newest checkpoint in DIR: it must be this run's.
+    const fs::path ckpt = find_checkpoint(dir);
+    const fs::path from = ckpt.parent_path();
+    if (from == d / "interrupted_run") {
+      if (!same(from, "interrupted")) return Earlier::None;
+    } else if (!left_by_killed_run(from.string())) {
+      return Earlier::None;  // a live run's (another report's, at work in this folder) or none
+    }
     StateArchive body;
-    const CheckpointHeader h = read_checkpoint(ckpt, body);  // checks its build and CRC
-    if (same_case(h.resolved_toml, resolved)) return Earlier::Interrupted;
+    const CheckpointHeader h = read_checkpoint(ckpt.string(), body);  // checks its build and CRC
+    if (h.executable == executable_id() && same_case(h.resolved_toml, resolved)) return Earlier::Interrupted;
   } catch (const std::exception&) {
     // An unreadable summary, folder or checkpoint: the run starts again.
   }
   return Earlier::None;
 }
 
-Earlier run_or_resume(const CaseConfig& c, const std::string& dir, bool resume) {
-  const Earlier e = resume ? earlier_run(dir, c.resolved_toml) : Earlier::None;
+Earlier run_or_resume(const CaseConfig& c, const std::string& dir, const RunPolicy& runs) {
+  const Earlier e = runs.resume ? earlier_run(dir, c.resolved_toml) : Earlier::None;
   if (e == Earlier::Finished) {
     log::info("--resume: kept the finished run in {}", dir);
     return e;
@@ -45,10 +50,10 @@ Earlier run_or_resume(const CaseConfig& c, const std::string& dir, bool resume) 
   RunOptions o;
   o.out_dir = dir;
   o.sets = c.overrides;
-  o.checkpoint_wall = kCheckpointWallDefault;
+  o.checkpoint_wall = runs.checkpoint_wall;
   if (e == Earlier::Interrupted) {
-    o.restart_file = (fs::path(dir) / "interrupted_run" / "checkpoint.bin").string();
-    log::info("--resume: continuing the run in {} from its checkpoint", dir);
+    o.restart_file = find_checkpoint(dir);  // the one earlier_run judged
+    log::info("--resume: continuing the run in {} from its checkpoint {}", dir, o.restart_file);
   }
   run_case(c, o);
   return e;

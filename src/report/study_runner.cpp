@@ -32,9 +32,10 @@ std::vector<VariantOutcome> run_variants(const std::vector<Variant>& variants, c
   return out;
 }
 
-CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir, bool resume) {
+CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir,
+                            const RunPolicy& runs) {
   const CaseConfig c = reread_with(base, v.sets);
-  run_or_resume(c, run_dir, resume);
+  run_or_resume(c, run_dir, runs);
   return c;
 }
 

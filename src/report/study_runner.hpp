@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/case_config.hpp"
+#include "report/report_args.hpp"
 
 namespace dspdem::report {
 
@@ -28,10 +29,10 @@ struct VariantOutcome {
 std::vector<VariantOutcome> run_variants(const std::vector<Variant>& variants, const std::string& dir,
                                          const std::function<void(std::size_t, const std::string&)>& run);
 
-/// The base case re-read with the variant's overrides and run into `run_dir` (with `resume`,
-/// the same run an earlier report left there kept or continued: run_or_resume); returns the
-/// case as run (its case.resolved.toml is in the folder).
-CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir, bool resume);
+/// The base case re-read with the variant's overrides and run into `run_dir` as `runs` says
+/// (run_or_resume); returns the case as run (its case.resolved.toml is in the folder).
+CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir,
+                            const RunPolicy& runs);
 
 /// The overrides of a study's extrinsic-insertion row (issue 20): every fracturing body of
 /// `base` extrinsic (the crack front cut, time.insertion_front's default), checked every 10

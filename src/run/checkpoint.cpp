@@ -40,6 +40,12 @@ CheckpointHeader open_checked(const std::string& path, StateArchive& body) {
   DSPDEM_CHECK(crc == stored, "checkpoint '{}' is corrupt or was cut short (CRC-32 {:08x}, stored {:08x})", path, crc,
                stored);
   body = StateArchive(s.substr(kMagic.size(), s.size() - 4 - kMagic.size()), path);
+  // The format first: another format's header has other fields, which would not read as these.
+  int format = 0;
+  StateArchive peek = body;
+  peek(format);
+  DSPDEM_CHECK(format == CheckpointHeader{}.format, "checkpoint '{}' has format {}; this dspdem reads format {}", path,
+               format, CheckpointHeader{}.format);
   CheckpointHeader h;
   body(h);
   return h;
@@ -114,8 +120,6 @@ void move_checkpoint_into_place(const std::string& path) {
 
 CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body) {
   CheckpointHeader h = open_checked(path, body);
-  DSPDEM_CHECK(h.format == CheckpointHeader{}.format, "checkpoint '{}' has format {}; this dspdem reads format {}",
-               path, h.format, CheckpointHeader{}.format);
   // Another build may round differently or store its state differently: no bitwise restart.
   DSPDEM_CHECK(h.build == checkpoint_build_id(),
                "checkpoint '{}' was written by another build of dspdem ({}); this one is {}: restart it with that "

@@ -20,11 +20,15 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  // 8: the contacts' pairs first found overlapping (7: no previous fragment ids in the
-  // contacts' state; 6: no largest slip in the joints' states; 5: the contacts' spring
-  // energies; 4: the integrator's step; 3: processes and rank; 2: the deepest contact)
-  int format = 8;
-  std::string build;              ///< dspdem version, commit, compiler and build type
+  // 9: the executable and the wall-time interval (8: the contacts' pairs first found
+  // overlapping; 7: no previous fragment ids in the contacts' state; 6: no largest slip in the
+  // joints' states; 5: the contacts' spring energies; 4: the integrator's step; 3: processes
+  // and rank; 2: the deepest contact)
+  int format = 9;
+  std::string build;  ///< dspdem version, commit, compiler and build type
+  /// executable_id() of what wrote it: `report --resume` continues a killed run's checkpoint
+  /// only if this executable wrote it, as it keeps a finished run only if its summary says so.
+  std::string executable;
   std::string case_path;          ///< absolute path of the case file
   std::vector<std::string> sets;  ///< the run's --set overrides
   std::string resolved_toml;      ///< the case with every default filled in, as run
@@ -33,12 +37,13 @@ struct CheckpointHeader {
   long steps = 0;  ///< where the run was
   Real time = 0;
   Real checkpoint_every = 0;    ///< the run's interval [s] (0: signals only)
+  double checkpoint_wall = 0;   ///< and by wall time [s] (0: never); a restart keeps both
   int processes = 1, rank = 0;  ///< a distributed run's: how many wrote, and which one this is
 
   template <class Ar>
   void persist(Ar& ar) {
-    ar(format, build, case_path, sets, resolved_toml, nodes, elements, joints, dt, steps, time, checkpoint_every,
-       processes, rank);
+    ar(format, build, executable, case_path, sets, resolved_toml, nodes, elements, joints, dt, steps, time,
+       checkpoint_every, checkpoint_wall, processes, rank);
   }
 };
 

@@ -350,10 +350,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
 
   CheckpointHeader head;
   head.build = checkpoint_build_id();
+  head.executable = executable_id();
   head.case_path = fs::absolute(c.path).lexically_normal().string();
   head.sets = opt.sets, head.resolved_toml = c.resolved_toml;
   head.nodes = whole_nodes, head.elements = whole_elements, head.joints = whole_joints;
-  head.dt = dt, head.checkpoint_every = opt.checkpoint_every;
+  head.dt = dt, head.checkpoint_every = opt.checkpoint_every, head.checkpoint_wall = opt.checkpoint_wall;
   head.processes = n_ranks, head.rank = my_rank;
   // The same list saves and loads (core/archive.hpp).
   auto persist = [&](StateArchive& ar) {

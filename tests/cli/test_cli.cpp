@@ -54,6 +54,14 @@ pid_t start_job(const std::string& cmd) {
   return pid;
 }
 
+// Sends `sig` to the job's process group and waits for the job: its wait status.
+int stop_job(pid_t pid, int sig) {
+  kill(-pid, sig);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  return st;
+}
+
 // Whether a run of the sweep's speed folder `speed` has written `frames` frames into its
 // staging folder (at most 120 s; the folders come and go meanwhile, hence the error codes).
 bool wait_for_frames(const fs::path& speed, int frames) {
@@ -608,9 +616,8 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
   const pid_t pid = start_job(cmd);
   ASSERT_GT(pid, 0);
   const bool running = wait_for_frames(v75, 2);
-  kill(-pid, SIGINT);  // either way: the report then stops its run too, and nothing is left running
-  int st = 0;
-  waitpid(pid, &st, 0);
+  // Either way: the report then stops its run too, and nothing is left running.
+  const int st = stop_job(pid, SIGINT);
   const std::string stopped = slurp(dir_ / "stopped.log");
   ASSERT_TRUE(running) << "the second speed never ran: " << stopped;
   ASSERT_TRUE(WIFEXITED(st));
@@ -668,10 +675,11 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
   EXPECT_NE(both.out.find("--resume and --from-run"), std::string::npos) << both.out;
 }
 
-TEST_F(Cli, AReportStoppedInItsOwnRunResumesIt) {
+TEST_F(Cli, AReportStoppedOrKilledInItsOwnRunResumesIt) {
   // A scene's report runs its case in its own process (the disc, at its quick size). Stopped
   // by Ctrl-C, it keeps the run's checkpoint and says how to go on; --resume continues the run
   // in-process to the bits of a plain run of the same case, and a further --resume keeps it.
+  // Killed outright, --resume goes on from the run's last checkpoint by wall time.
   const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
   const std::string sets = "--set mesh.brazilian_disc.size=0.02";
   const std::string opts = "--no-render --no-stress-check " + sets;
@@ -680,9 +688,7 @@ TEST_F(Cli, AReportStoppedInItsOwnRunResumesIt) {
                                           opts, (dir_ / "disc.log").string()));
   ASSERT_GT(pid, 0);
   const bool running = wait_for_frames(run_dir, 2);
-  kill(-pid, SIGINT);
-  int st = 0;
-  waitpid(pid, &st, 0);
+  const int st = stop_job(pid, SIGINT);
   const std::string stopped = slurp(dir_ / "disc.log");
   ASSERT_TRUE(running) << "the run never wrote its frames: " << stopped;
   ASSERT_TRUE(WIFEXITED(st));
@@ -705,6 +711,31 @@ TEST_F(Cli, AReportStoppedInItsOwnRunResumesIt) {
   ASSERT_EQ(kept.code, 0) << kept.out;
   EXPECT_NE(kept.out.find("--resume: kept the finished run in " + run_dir.string()), std::string::npos) << kept.out;
   EXPECT_EQ(fs::last_write_time(run_dir / "summary.json"), first);
+
+  // Killed outright (SIGKILL: no handler runs, no summary is written), with a checkpoint every
+  // 0.2 s of wall time: --resume goes on from the last one, in the killed run's staging folder,
+  // to the same bits, and the staging folder goes.
+  const fs::path rep_k = dir_ / "disc_killed", run_k = rep_k / "run";
+  const pid_t k = start_job(fmt::format("exec {} -q report {} --out {} {} --checkpoint-wall 0.2 > {} 2>&1", DSPDEM_BIN,
+                                        file, rep_k.string(), opts, (dir_ / "killed.log").string()));
+  ASSERT_GT(k, 0);
+  const fs::path staging = run_k / fmt::format(".staging-{}", k);
+  bool written = false;
+  for (int n = 0; n < 1200 && !written; ++n) {
+    written = fs::exists(staging / "checkpoint.bin");
+    if (!written) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const int killed = stop_job(k, SIGKILL);
+  ASSERT_TRUE(written) << "no checkpoint by wall time: " << slurp(dir_ / "killed.log");
+  ASSERT_TRUE(WIFSIGNALED(killed)) << "the report ended before it was killed: " << slurp(dir_ / "killed.log");
+  const Result after_kill = run("report " + file + " --out " + rep_k.string() + " " + opts + " --resume");
+  ASSERT_EQ(after_kill.code, 0) << after_kill.out;
+  EXPECT_NE(after_kill.out.find("--resume: continuing the run in " + run_k.string() + " from its checkpoint " +
+                                (staging / "checkpoint.bin").string()),
+            std::string::npos)
+      << after_kill.out;
+  EXPECT_FALSE(fs::exists(staging));
+  for (const char* f : {"series.csv", "fragments.csv"}) EXPECT_EQ(slurp(run_k / f), slurp(dir_ / "plain" / f)) << f;
 }
 
 TEST_F(Cli, ASweepGoesOnThroughAnIgnoredHangUpAndStopsItsRunsWhenKilled) {
@@ -725,8 +756,7 @@ TEST_F(Cli, ASweepGoesOnThroughAnIgnoredHangUpAndStopsItsRunsWhenKilled) {
   const bool went_on = running && wait_for_frames(v75, 3);
   int st = 0;
   const pid_t ended = waitpid(pid, &st, WNOHANG);
-  kill(-pid, SIGKILL);
-  waitpid(pid, &st, 0);
+  if (ended == 0) stop_job(pid, SIGKILL);
   ASSERT_TRUE(running) << "the run never started: " << slurp(dir_ / "hup.log");
   EXPECT_TRUE(went_on) << "the run stopped at the ignored hang-up: " << slurp(dir_ / "hup.log");
   EXPECT_EQ(ended, 0) << "the report stopped at the ignored hang-up: " << slurp(dir_ / "hup.log");

@@ -24,6 +24,7 @@
 #include "core/error.hpp"
 #include "core/file.hpp"
 #include "io/case_config.hpp"
+#include "report/resume.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_case.hpp"
 #include "support/cli.hpp"
@@ -248,6 +249,17 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("another build"), std::string::npos) << e.what();
   }
+  // Another format (an older dspdem's): refused by its number, not misread.
+  h = CheckpointHeader{};
+  h.format = 8;
+  h.build = checkpoint_build_id();
+  write_checkpoint((dir / "old.bin").string(), h, StateArchive());
+  try {
+    read_checkpoint((dir / "old.bin").string(), body);
+    FAIL() << "a checkpoint of another format was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has format 8"), std::string::npos) << e.what();
+  }
   std::ofstream(dir / "not.bin") << "hello";
   EXPECT_THROW(read_checkpoint((dir / "not.bin").string(), body), Error);
 }
@@ -351,10 +363,51 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
   StateArchive body;
   const CheckpointHeader h = read_checkpoint(find_checkpoint(dir.string()), body);
   EXPECT_GT(h.steps, 0);
+  EXPECT_EQ(h.checkpoint_wall, 0.2);  // what the restart keeps unless given anew
   const auto res = testsupport::shell(fmt::format("{} -q -t 1 run --restart {}", DSPDEM_BIN, dir.string()));
   ASSERT_EQ(res.code, 0) << res.out;
   expect_same_outputs(full_, dir);
   EXPECT_FALSE(fs::exists(staging));
+}
+
+// `report --resume` (report::earlier_run) goes on from a killed run's last checkpoint, in its
+// staging folder, only when the run's process is gone (a live one is another report's, at work
+// in the folder) and the checkpoint is of this executable and this case. Staged in this process,
+// whose runs' checkpoints carry its own executable: an interrupted run's folder renamed as a
+// killed run's.
+// Not of the fixture: it needs no uninterrupted run.
+TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("dspdem_restart_report_{}", getpid());
+  fs::remove_all(dir);
+  const CaseConfig c = read_case(kCase, kSets);
+  RunOptions opt;
+  opt.out_dir = dir.string();
+  opt.sets = kSets;
+  opt.interrupt_at_step = 50;
+  EXPECT_THROW(run_case(c, opt), Interrupted);
+  ASSERT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
+  fs::remove(dir / "interrupted_run" / "summary.json");  // a killed run leaves none
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None);
+
+  const fs::path dead = dir / ".staging-999999999", live = dir / fmt::format(".staging-{}", getppid());
+  fs::rename(dir / "interrupted_run", dead);
+  ASSERT_EQ(kill(999999999, 0), -1) << "a process has pid 999999999";
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
+  EXPECT_EQ(report::earlier_run(dir.string(), read_case(kCase, {"time.end=1e-4"}).resolved_toml), report::Earlier::None)
+      << "another case's checkpoint was taken";
+  fs::rename(dead, live);
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
+      << "a live process's staging folder was taken";
+  fs::rename(live, dead);
+
+  // Another executable's checkpoint (what a rebuild leaves): the same header but its id.
+  StateArchive body;
+  CheckpointHeader h = read_checkpoint((dead / "checkpoint.bin").string(), body);
+  h.executable += " (another)";
+  write_checkpoint((dead / "checkpoint.bin").string(), h, StateArchive());  // earlier_run reads the header
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
+      << "another executable's checkpoint was taken";
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   if (checked) {
     try {
       check_case = stress_check_case(c, r.t_profile);
-      check = run_stress_check(check_case, r.P_profile, check_dir.string(), a.resume);
+      check = run_stress_check(check_case, r.P_profile, check_dir.string(), a.runs);
     } catch (const Interrupted&) {
       throw;  // the user stopped the report: not a failed check, and no study after it
     } catch (const std::exception& e) {
@@ -92,7 +92,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
     render::plot_csv((check_dir / "profile.csv").string(), s, (img / "plots" / "profile_check.png").string());
   }
   const std::string study_md =
-      a.study ? run_study(c, r, checked ? &check : nullptr, dir, img.string(), a.resume) : std::string();
+      a.study ? run_study(c, r, checked ? &check : nullptr, dir, img.string(), a.runs) : std::string();
 
   // report.md
   report::Document doc(dir, run_dir);

@@ -43,10 +43,10 @@ CaseConfig stress_check_case(const CaseConfig& scene, Real t_target) {
   return reread_with(scene, sets);
 }
 
-DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir, bool resume) {
+DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir, const report::RunPolicy& runs) {
   log::info("stress check: no joints, mesh {:.1f} mm, {:.1f} mm at the loads, plates 4x faster, to {:.3f} ms",
             1e3 * c.mesh_num.at("size"), 1e3 * c.mesh_num.at("load_size"), 1e3 * c.t_end);
-  report::run_or_resume(c, dir, resume);
+  report::run_or_resume(c, dir, runs);
   return analyse_disc_run(c, dir, true, P_target);
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/case_config.hpp"
+#include "report/report_args.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
 
 namespace dspdem {
@@ -21,8 +22,9 @@ namespace dspdem {
 CaseConfig stress_check_case(const CaseConfig& scene, Real t_target);
 
 /// Runs the check's case `c` under `dir` and analyses it at the scene's profile load
-/// `P_target` (writing profile.csv and profile_analytic.csv there). `resume`:
+/// `P_target` (writing profile.csv and profile_analytic.csv there). `runs`:
 /// report::run_or_resume.
-DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir, bool resume = false);
+DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir,
+                            const report::RunPolicy& runs = {});
 
 }  // namespace dspdem

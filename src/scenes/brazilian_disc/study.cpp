@@ -213,7 +213,7 @@ std::vector<Variant> study_variants(const CaseConfig& base) {
 }  // namespace
 
 std::string run_study(const CaseConfig& base, const DiscResult& reference, const DiscResult* check,
-                      const std::string& dir, const std::string& image_dir, bool resume) {
+                      const std::string& dir, const std::string& image_dir, const report::RunPolicy& runs) {
   std::string study_md;
   std::vector<Variant> variants = study_variants(base);
   std::vector<report::Variant> generic;
@@ -230,9 +230,9 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
     const Variant& v = variants[i];
     if (v.elastic)  // the stress check's case needs the reference's profile time
       rows[i].second =
-          run_stress_check(stress_check_case(base, reference.t_profile), reference.P_profile, run_dir, resume);
+          run_stress_check(stress_check_case(base, reference.t_profile), reference.P_profile, run_dir, runs);
     else
-      rows[i].second = analyse_disc_run(report::run_variant_case(base, v, run_dir, resume), run_dir, false);
+      rows[i].second = analyse_disc_run(report::run_variant_case(base, v, run_dir, runs), run_dir, false);
   });
   std::vector<std::string> failed;
   for (const auto& o : outcome) failed.push_back(o.error);

@@ -120,7 +120,7 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<GalvezResult> rows(variants.size());
     rows[0] = r;
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
-      rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd, a.resume), rd, false);
+      rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, false);
     });
     for (std::size_t i = 0; i < variants.size(); ++i) {
       const auto& v = variants[i];

@@ -111,7 +111,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<MurrayResult> rows(variants.size());
     rows[0] = r;
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
-      rows[i] = analyse_murray_run(report::run_variant_case(c, variants[i], rd, a.resume), rd, false);
+      rows[i] = analyse_murray_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, false);
     });
     for (std::size_t i = 0; i < variants.size(); ++i) {
       if (!out[i].error.empty()) {

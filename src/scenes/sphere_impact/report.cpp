@@ -64,14 +64,15 @@ struct Planned {
 
 // Each planned run is read in-process first (a bad override fails here, with its message,
 // before any process starts), then run as its own `dspdem -t 1 run` process.
-std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Planned>& plan, int jobs, bool resume) {
+std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Planned>& plan, int jobs,
+                                     const report::RunPolicy& runs) {
   std::vector<Job> list;
   std::vector<std::size_t> listed;  // plan index of each job
   int kept = 0, continued = 0;
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const Planned& p = plan[i];
     const CaseConfig v = reread_with(c, p.sets);
-    const Earlier e = resume ? earlier_run(p.dir, v.resolved_toml) : Earlier::None;
+    const Earlier e = runs.resume ? earlier_run(p.dir, v.resolved_toml) : Earlier::None;
     if (e == Earlier::Finished) {
       ++kept;
       log::info("sphere impact: {}: kept the finished run in {}", p.name, p.dir);
@@ -83,18 +84,20 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
       ++continued;
       log::info("sphere impact: {}: continued from the checkpoint in {}", p.name, p.dir);
       j.args = {"-q", "-t", "1", "run", "--restart", p.dir, "--no-progress"};
+      j.args.insert(j.args.end(), {"--checkpoint-wall", fmt::format("{}", runs.checkpoint_wall)});
       // After the interrupted part's messages, which say where it stopped.
       j.append_log = true;
       std::ofstream(j.log, std::ios::app) << "\n--- dspdem report --resume: continued from its checkpoint ---\n\n";
     } else {
       j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--out", p.dir};
+      j.args.insert(j.args.end(), {"--checkpoint-wall", fmt::format("{}", runs.checkpoint_wall)});
       for (const auto& s : c.overrides) j.args.insert(j.args.end(), {"--set", s});
       for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
     }
     list.push_back(j);
     listed.push_back(i);
   }
-  if (resume)
+  if (runs.resume)
     log::info("sphere impact: --resume: {} run(s) kept, {} continued, {} started", kept, continued,
               list.size() - static_cast<std::size_t>(continued));
   if (!list.empty()) log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
@@ -365,7 +368,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
   std::vector<std::string> errors(plan.size());
   if (a.from_run.empty()) {
-    errors = run_planned(c, plan, jobs, a.resume);
+    errors = run_planned(c, plan, jobs, a.runs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
       if ((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json")) continue;
@@ -382,7 +385,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
-      const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs, false);
+      const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs,
+                                 report::RunPolicy{false, a.runs.checkpoint_wall});
       std::copy(e.begin(), e.end(), errors.begin() + static_cast<long>(n_sweep));
     }
   }
