@@ -679,7 +679,8 @@ TEST_F(Cli, AReportStoppedOrKilledInItsOwnRunResumesIt) {
   // A scene's report runs its case in its own process (the disc, at its quick size). Stopped
   // by Ctrl-C, it keeps the run's checkpoint and says how to go on; --resume continues the run
   // in-process to the bits of a plain run of the same case, and a further --resume keeps it.
-  // Killed outright, --resume goes on from the run's last checkpoint by wall time.
+  // Stopped during its stress check, the report stops. Killed outright, --resume goes on from
+  // the run's last checkpoint by wall time.
   const std::string file = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
   const std::string sets = "--set mesh.brazilian_disc.size=0.02";
   const std::string opts = "--no-render --no-stress-check " + sets;
@@ -711,6 +712,22 @@ TEST_F(Cli, AReportStoppedOrKilledInItsOwnRunResumesIt) {
   ASSERT_EQ(kept.code, 0) << kept.out;
   EXPECT_NE(kept.out.find("--resume: kept the finished run in " + run_dir.string()), std::string::npos) << kept.out;
   EXPECT_EQ(fs::last_write_time(run_dir / "summary.json"), first);
+
+  // Stopped during the stress check (the report's second run, in-process), the report stops
+  // there too, with the hint, instead of taking the stop for a failed check and going on.
+  const auto report_time = fs::last_write_time(rep / "report.md");
+  const pid_t c = start_job(fmt::format("exec {} -q report {} --out {} --no-render {} --resume > {} 2>&1", DSPDEM_BIN,
+                                        file, rep.string(), sets, (dir_ / "check.log").string()));
+  ASSERT_GT(c, 0);
+  const bool checking = wait_for_frames(rep / "stress_check", 1);
+  const int cst = stop_job(c, SIGINT);
+  const std::string check_log = slurp(dir_ / "check.log");
+  ASSERT_TRUE(checking) << "the stress check never wrote a frame: " << check_log;
+  ASSERT_TRUE(WIFEXITED(cst));
+  EXPECT_EQ(WEXITSTATUS(cst), 5) << check_log;
+  EXPECT_NE(check_log.find("the same report with --resume"), std::string::npos) << check_log;
+  EXPECT_TRUE(fs::exists(rep / "stress_check" / "interrupted_run" / "checkpoint.bin")) << check_log;
+  EXPECT_EQ(fs::last_write_time(rep / "report.md"), report_time) << "the report went on after the stop";
 
   // Killed outright (SIGKILL: no handler runs, no summary is written), with a checkpoint every
   // 0.2 s of wall time: --resume goes on from the last one, in the killed run's staging folder,
