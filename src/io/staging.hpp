@@ -2,6 +2,13 @@
 // moves them into place only when the run completes, so a failed or interrupted run never
 // destroys an earlier run's results. A failed run's partial outputs are kept apart in
 // DIR/failed_run/.
+//
+// The process that made a staging folder holds an exclusive flock on its file `.lock` while
+// it runs; the kernel drops it when the process ends, however it ends. Whether a staging
+// folder's run is gone (its checkpoint free to continue, the folder free to clear) is asked of
+// that lock, which is right across PID namespaces (another container writing into the same
+// folder) and after a pid is handed out again; the pid in the folder's name is the answer only
+// where there is no lock file (a file system without flock).
 #pragma once
 #include <string>
 #include <vector>
@@ -32,15 +39,18 @@ class Staging {
   long moved_aside() const { return aside_; }
 
  private:
+  void unlock();  ///< closes the lock file and removes it (the run is over)
+
   std::string out_, stage_;
   bool done_ = false;
   bool owner_ = true;
   long aside_ = 0;
+  int lock_fd_ = -1;
 };
 
 /// Whether `dir` is the staging folder of a run whose process is gone: a run killed outright
-/// (`.staging-<pid>`, or such a folder moved aside, `.staging-<pid>.<k>`). A live run's, or
-/// this process's own, is not.
+/// (`.staging-<pid>`, or such a folder moved aside, `.staging-<pid>.<k>`). A live run's (its
+/// lock held), or this process's own, is not.
 bool left_by_killed_run(const std::string& dir);
 
 /// Writes `text` to `path` through a temporary file and a rename.

@@ -6,8 +6,10 @@
 // so that within 0.3 ms its band cracks through (tens of joints broken, two halves) and the
 // crack faces touch: joint states, failures, contact pairs and their history, candidate
 // rebuilds all change during the run. About 10 s per run on 2 cores.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vtkNew.h>
@@ -24,6 +26,7 @@
 #include "core/error.hpp"
 #include "core/file.hpp"
 #include "io/case_config.hpp"
+#include "io/staging.hpp"
 #include "report/resume.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_case.hpp"
@@ -355,11 +358,15 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
     written = fs::exists(staging / "checkpoint.bin");
     if (!written) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+  const bool judged_live = !left_by_killed_run(staging.string());  // its lock held
   kill(pid, SIGKILL);
   int st = 0;
   waitpid(pid, &st, 0);
   ASSERT_TRUE(written) << "no checkpoint by wall time in " << staging;
   ASSERT_TRUE(WIFSIGNALED(st)) << "the run ended before it was killed: make it longer";
+  EXPECT_TRUE(judged_live) << "a running run's staging folder was judged a killed run's";
+  EXPECT_TRUE(fs::exists(staging / ".lock"));
+  EXPECT_TRUE(left_by_killed_run(staging.string())) << "the kernel let go of its lock";
   StateArchive body;
   const CheckpointHeader h = read_checkpoint(find_checkpoint(dir.string()), body);
   EXPECT_GT(h.steps, 0);
@@ -368,6 +375,7 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
   ASSERT_EQ(res.code, 0) << res.out;
   expect_same_outputs(full_, dir);
   EXPECT_FALSE(fs::exists(staging));
+  EXPECT_FALSE(fs::exists(dir / ".lock"));
 }
 
 // `report --resume` (report::earlier_run) goes on from a killed run's last checkpoint, in its
@@ -399,6 +407,18 @@ TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
   EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
       << "a live process's staging folder was taken";
   fs::rename(live, dead);
+  // A run at work holds its staging folder's lock, which answers before the pid does: a pid no
+  // process here has, as a run in another PID namespace (another container) would show.
+  {
+    const int fd = ::open((dead / ".lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+    EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
+        << "a staging folder whose lock is held was taken";
+    ::close(fd);
+  }
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted)
+      << "the lock let go of, its run is gone";
 
   // Another executable's checkpoint (what a rebuild leaves): the same header but its id.
   StateArchive body;
