@@ -66,8 +66,9 @@ int figures_command(const FiguresArgs& a) {
              : a.study ? "full (the shipped cases as they are, each with its speed-against-error study)"
                        : "full (the shipped cases as they are, without the studies)";
   info.made_by = "dspdem figures" + std::string(a.quick ? " --quick" : "") + (a.study ? "" : " --no-study") +
-                 (a.resume ? " --resume" : "") + (a.from_runs.empty() ? "" : " --from-runs " + a.from_runs) +
-                 " --out " + a.out;
+                 (a.resume ? " --resume" : "") +
+                 (a.checkpoint_wall.empty() ? "" : " --checkpoint-wall " + a.checkpoint_wall) +
+                 (a.from_runs.empty() ? "" : " --from-runs " + a.from_runs) + " --out " + a.out;
   for (const auto& c : a.cases) info.made_by += " " + c;
 
   std::vector<std::string> dirs;

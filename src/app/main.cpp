@@ -162,7 +162,7 @@ int run_main(int argc, char** argv) {
       ->type_name("FROM");
   fig->add_flag("--resume", fga.resume,
                 "Each report with --resume: the runs a stopped figures (or report --out DIR/<scene>) left are kept "
-                "when finished, continued from their checkpoints when stopped");
+                "when finished, continued from their checkpoints when stopped or killed");
   fig->add_option("--checkpoint-wall", fga.checkpoint_wall, "Each report with --checkpoint-wall S")
       ->check(CLI::NonNegativeNumber)
       ->type_name("S");

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
 
 #include "core/error.hpp"
 
@@ -22,22 +24,52 @@ long staging_pid(const fs::path& dir) {
   if (name.rfind(".staging-", 0) != 0) return 0;
   return std::strtol(name.c_str() + 9, nullptr, 10);
 }
+
+// The staging folders whose locks this process holds. Its own are not asked of the lock: where
+// flock is emulated by POSIX locks (NFS) a process sees no conflict with itself, and closing
+// the probe would let go of its own lock.
+std::mutex g_held_mutex;
+std::set<std::string> g_held;
+
+std::string held_key(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(dir, ec);
+  return (ec ? dir : p).lexically_normal().string();
+}
+
+bool held_here(const fs::path& dir) {
+  const std::lock_guard<std::mutex> guard(g_held_mutex);
+  return g_held.count(held_key(dir)) > 0;
+}
+
+enum class Lock { Held, Free, None };  // None: no lock file, or no flock on this file system
+
+Lock lock_state(const fs::path& dir) {
+  const int fd = ::open((dir / ".lock").c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) return Lock::None;
+  const int r = flock(fd, LOCK_EX | LOCK_NB);
+  const int err = errno;
+  ::close(fd);  // lets go of the lock if it was taken here
+  if (r == 0) return Lock::Free;
+  return err == EWOULDBLOCK ? Lock::Held : Lock::None;
+}
 }  // namespace
 
 bool left_by_killed_run(const std::string& dir) {
   const long pid = staging_pid(fs::path(dir));
-  if (pid <= 0 || pid == static_cast<long>(getpid())) return false;
-  const int fd = ::open((fs::path(dir) / ".lock").c_str(), O_RDWR | O_CLOEXEC);
-  if (fd >= 0) {
-    const int r = flock(fd, LOCK_EX | LOCK_NB);
-    const int err = errno;
-    ::close(fd);                           // lets go of the lock if it was taken here
-    if (r == 0) return true;               // nobody holds it: its run is gone
-    if (err == EWOULDBLOCK) return false;  // its run holds it
+  if (pid <= 0 || held_here(dir)) return false;
+  switch (lock_state(dir)) {
+    case Lock::Held:
+      return false;  // its run is at work, in this container or another
+    case Lock::Free:
+      return true;  // the kernel let go of it: its run is gone
+    case Lock::None:
+      break;
   }
-  // No lock file (a file system without flock): by the pid, which another PID namespace or a
-  // pid handed out again can mislead.
-  return kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+  // No lock (a file system without flock): by the pid, which a process of another PID namespace
+  // can mislead. A folder of this process's pid that it does not hold is an earlier process's
+  // (pids repeat, in a container started anew).
+  return pid == static_cast<long>(getpid()) || (kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH);
 }
 
 Staging::Staging(const std::string& out_dir) : Staging(out_dir, static_cast<long>(getpid()), true) {}
@@ -50,38 +82,58 @@ Staging::Staging(const std::string& out_dir, long id, bool owner) : out_(out_dir
   DSPDEM_CHECK(!ec && fs::is_directory(out_), "output directory '{}' cannot be created: {}", out_, ec.message());
   // A folder of this name is a killed run's whose pid this process has been given again (pids
   // repeat, in a container started anew): its checkpoint may be what this run restarts from,
-  // so it is moved aside, not emptied.
+  // so it is moved aside, not emptied. Unless a run at work holds it: a run of the same pid in
+  // another container, writing into the same folder.
   if (fs::exists(stage_, ec)) {
+    DSPDEM_CHECK(lock_state(stage_) != Lock::Held && !held_here(stage_),
+                 "output directory '{}': a run at work holds its staging folder '{}' (a run of the same pid in "
+                 "another container?): give this run another --out",
+                 out_, stage_);
     for (aside_ = 1; fs::exists(stage_ + "." + std::to_string(aside_), ec); ++aside_) {
     }
     fs::rename(stage_, stage_ + "." + std::to_string(aside_), ec);
     DSPDEM_CHECK(!ec, "cannot move the earlier staging folder '{}' aside: {}", stage_, ec.message());
   }
-  fs::create_directories(stage_, ec);
-  DSPDEM_CHECK(!ec, "cannot create staging folder '{}': {}", stage_, ec.message());
-  // Locked under another name, then renamed: no one sees a .lock that is not held. Closed on
-  // exec, so that a process this one starts (a sweep's run) does not hold it on after this one
-  // ends. Where flock fails there is no lock file, and left_by_killed_run goes by the pid.
-  const std::string tmp = stage_ + "/.lock.tmp";
-  lock_fd_ = ::open(tmp.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
-  if (lock_fd_ >= 0 &&
-      (flock(lock_fd_, LOCK_EX | LOCK_NB) != 0 || ::rename(tmp.c_str(), (stage_ + "/.lock").c_str()))) {
+  // Made and locked under a name no one looks at, then renamed into place: no one sees the
+  // staging folder without its lock. The lock file is closed on exec, so that a process this
+  // one starts (a sweep's run) does not hold it on after this one ends. Where flock fails there
+  // is no lock file, and left_by_killed_run goes by the pid.
+  const fs::path fresh = fs::path(out_) / fmt::format(".new-staging-{}", id);
+  fs::remove_all(fresh, ec);  // a leftover of a process of this pid that died right here
+  fs::create_directories(fresh, ec);
+  DSPDEM_CHECK(!ec, "cannot create staging folder '{}': {}", fresh.string(), ec.message());
+  lock_fd_ = ::open((fresh / ".lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+  if (lock_fd_ >= 0 && flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     ::close(lock_fd_);
     lock_fd_ = -1;
-    ::unlink(tmp.c_str());
+    ::unlink((fresh / ".lock").c_str());
+  }
+  fs::rename(fresh, stage_, ec);
+  if (ec) {
+    if (lock_fd_ >= 0) ::close(lock_fd_), lock_fd_ = -1;
+    fs::remove_all(fresh);
+    fail("cannot create staging folder '{}': {}", stage_, ec.message());
+  }
+  if (lock_fd_ >= 0) {
+    const std::lock_guard<std::mutex> guard(g_held_mutex);
+    g_held.insert(held_key(stage_));
   }
 }
 
 Staging::~Staging() {
   if (done_ || !owner_) return;
-  unlock();
+  unlock(stage_);
   std::error_code ec;
   fs::remove_all(stage_, ec);
 }
 
-void Staging::unlock() {
+void Staging::unlock(const std::string& where) {
   if (lock_fd_ < 0) return;
-  ::unlink((stage_ + "/.lock").c_str());
+  {
+    const std::lock_guard<std::mutex> guard(g_held_mutex);
+    g_held.erase(held_key(stage_));
+  }
+  ::unlink((fs::path(where) / ".lock").c_str());
   ::close(lock_fd_);
   lock_fd_ = -1;
 }
@@ -100,7 +152,7 @@ void Staging::commit() {
     fs::rename(entry.path(), dst);
   }
   for (const auto& p : old) fs::remove_all(p);
-  unlock();
+  unlock(stage_);
   fs::remove_all(stage_);
   // A successful run supersedes an earlier failure's or interruption's partial outputs, and
   // the staging folders of earlier runs that were killed (their process gone).
@@ -108,7 +160,7 @@ void Staging::commit() {
   fs::remove_all(fs::path(out_) / "interrupted_run");
   std::error_code ec;
   for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {
-    const bool mine = staging_pid(it->path()) == static_cast<long>(getpid());  // moved aside by this run
+    const bool mine = aside_ > 0 && it->path() == fs::path(stage_ + "." + std::to_string(aside_));  // moved aside
     if (mine || left_by_killed_run(it->path().string())) fs::remove_all(it->path(), ec);
   }
   done_ = true;
@@ -117,9 +169,10 @@ void Staging::commit() {
 std::string Staging::keep_as(const std::string& name) {
   if (!owner_) return stage_;  // only the process that made the folder moves it
   const fs::path dst = fs::path(out_) / name;
-  unlock();
+  // Held until the folder has its new name: until then it holds the newest checkpoint.
   fs::remove_all(dst);
   fs::rename(stage_, dst);
+  unlock(dst.string());
   done_ = true;
   return dst.string();
 }

@@ -39,7 +39,7 @@ class Staging {
   long moved_aside() const { return aside_; }
 
  private:
-  void unlock();  ///< closes the lock file and removes it (the run is over)
+  void unlock(const std::string& where);  ///< lets go of the lock and removes its file, now in `where`
 
   std::string out_, stage_;
   bool done_ = false;

@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/file.hpp"
+#include "io/staging.hpp"
 
 namespace dspdem {
 
@@ -39,13 +41,17 @@ CheckpointHeader open_checked(const std::string& path, StateArchive& body) {
   const std::uint32_t crc = crc_of(s.data(), s.size() - 4);
   DSPDEM_CHECK(crc == stored, "checkpoint '{}' is corrupt or was cut short (CRC-32 {:08x}, stored {:08x})", path, crc,
                stored);
-  body = StateArchive(s.substr(kMagic.size(), s.size() - 4 - kMagic.size()), path);
-  // The format first: another format's header has other fields, which would not read as these.
+  // The format first (the header's first field, an int): another format's header has other
+  // fields, which would not read as these.
   int format = 0;
-  StateArchive peek = body;
-  peek(format);
+  DSPDEM_CHECK(s.size() >= kMagic.size() + sizeof format + 4, "checkpoint '{}' is cut short", path);
+  std::memcpy(&format, s.data() + kMagic.size(), sizeof format);
   DSPDEM_CHECK(format == CheckpointHeader{}.format, "checkpoint '{}' has format {}; this dspdem reads format {}", path,
                format, CheckpointHeader{}.format);
+  // In place, without a second copy of a file that can be the size of the model's state.
+  s.resize(s.size() - 4);
+  s.erase(0, kMagic.size());
+  body = StateArchive(std::move(s), path);
   CheckpointHeader h;
   body(h);
   return h;
@@ -132,8 +138,10 @@ std::string find_checkpoint(const std::string& run_dir) {
   DSPDEM_CHECK(fs::is_directory(run_dir), "--restart {}: no such run folder", run_dir);
   std::vector<fs::path> cands = {fs::path(run_dir) / "checkpoint.bin",
                                  fs::path(run_dir) / "interrupted_run" / "checkpoint.bin"};
+  // A killed run's staging folder, not a live run's: that one is still writing its outputs.
   for (const auto& e : fs::directory_iterator(run_dir))
-    if (e.is_directory() && e.path().filename().string().rfind(".staging-", 0) == 0)
+    if (e.is_directory() && e.path().filename().string().rfind(".staging-", 0) == 0 &&
+        left_by_killed_run(e.path().string()))
       cands.push_back(e.path() / "checkpoint.bin");
   std::string best, errors;
   fs::file_time_type best_time = fs::file_time_type::min();

@@ -420,14 +420,46 @@ TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
   EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted)
       << "the lock let go of, its run is gone";
 
-  // Another executable's checkpoint (what a rebuild leaves): the same header but its id.
+  // Another executable's checkpoint (what a rebuild leaves): the same header but its id. The
+  // header rewritten as it was first (earlier_run reads no further), then with another id.
   StateArchive body;
   CheckpointHeader h = read_checkpoint((dead / "checkpoint.bin").string(), body);
+  write_checkpoint((dead / "checkpoint.bin").string(), h, StateArchive());
+  ASSERT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
   h.executable += " (another)";
-  write_checkpoint((dead / "checkpoint.bin").string(), h, StateArchive());  // earlier_run reads the header
+  write_checkpoint((dead / "checkpoint.bin").string(), h, StateArchive());
   EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
       << "another executable's checkpoint was taken";
   fs::remove_all(dir);
+}
+
+// A staging folder of this process's pid that a run at work holds (its lock held: a run of the
+// same pid in another container, writing into the same folder) is neither moved aside nor
+// emptied: the new run is refused, naming it. Let go of, it is a killed run's, moved aside.
+TEST(RestartStaging, AFolderOfThisPidThatARunAtWorkHoldsIsLeftAlone) {
+  const fs::path out = fs::temp_directory_path() / fmt::format("dspdem_staging_lock_{}", getpid());
+  fs::remove_all(out);
+  const fs::path other = out / fmt::format(".staging-{}", getpid());
+  fs::create_directories(other);
+  std::ofstream(other / "checkpoint.bin") << "theirs";
+  const int fd = ::open((other / ".lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  try {
+    Staging s(out.string());
+    FAIL() << "a staging folder a run at work holds was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a run at work holds"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(slurp(other / "checkpoint.bin"), "theirs");
+  ::close(fd);
+  {
+    Staging s(out.string());
+    EXPECT_EQ(s.moved_aside(), 1);
+    EXPECT_EQ(slurp(fs::path(other.string() + ".1") / "checkpoint.bin"), "theirs");
+    EXPECT_TRUE(fs::exists(fs::path(s.path()) / ".lock"));
+  }
+  fs::remove_all(out);
 }
 
 }  // namespace
