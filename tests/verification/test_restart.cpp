@@ -419,6 +419,13 @@ TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
   }
   EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted)
       << "the lock let go of, its run is gone";
+  // A killed run of this very pid (pids repeat, in a container started anew): its folder is not
+  // this process's, whose folders are those it holds, so it is continued.
+  const fs::path same_pid = dir / fmt::format(".staging-{}", getpid());
+  fs::rename(dead, same_pid);
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted)
+      << "a killed run of this pid was taken for this process's own";
+  fs::rename(same_pid, dead);
 
   // Another executable's checkpoint (what a rebuild leaves): the same header but its id. The
   // header rewritten as it was first (earlier_run reads no further), then with another id.
