@@ -82,6 +82,18 @@ pid_t spawn_dspdem(std::vector<std::string> args) {
   return pid;
 }
 
+// The test's case run into `dir` and stopped as by a SIGTERM during `step`, leaving its
+// checkpoint in dir/interrupted_run; returns the run's options, ready for a restart.
+RunOptions stopped_at(const fs::path& dir, long step) {
+  RunOptions opt;
+  opt.out_dir = dir.string();
+  opt.sets = kSets;
+  opt.interrupt_at_step = step;
+  EXPECT_THROW(run_case(read_case(kCase, kSets), opt), Interrupted);
+  opt.interrupt_at_step = -1;
+  return opt;
+}
+
 class Restart : public ::testing::Test {
  protected:
   static fs::path root_, full_;
@@ -184,19 +196,13 @@ TEST_F(Restart, AnExtrinsicRunWhoseStepFallsRestartsBitwise) {
 // run's of this pid. A finished run also clears the staging folders of killed runs.
 TEST_F(Restart, ARestartGivenTheKilledRunsPidKeepsItsCheckpoint) {
   const fs::path dir = root_ / "same_pid";
-  const CaseConfig c = read_case(kCase, kSets);
-  RunOptions opt;
-  opt.out_dir = dir.string();
-  opt.sets = kSets;
-  opt.interrupt_at_step = 3000;
-  EXPECT_THROW(run_case(c, opt), Interrupted);
+  RunOptions opt = stopped_at(dir, 3000);
   const fs::path killed = dir / fmt::format(".staging-{}", getpid());
   fs::rename(dir / "interrupted_run", killed);
   fs::create_directories(dir / ".staging-999999999");  // a killed run's of a pid no process has
   opt.restart_file = find_checkpoint(dir.string());
   ASSERT_EQ(fs::path(opt.restart_file), killed / "checkpoint.bin");
-  opt.interrupt_at_step = -1;
-  EXPECT_EQ(run_case(c, opt), 0);
+  EXPECT_EQ(run_case(read_case(kCase, kSets), opt), 0);
   expect_same_outputs(full_, dir);
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_NE(e.path().filename().string().rfind(".staging-", 0), 0u) << e.path() << " is left";
@@ -204,17 +210,13 @@ TEST_F(Restart, ARestartGivenTheKilledRunsPidKeepsItsCheckpoint) {
 
 TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   const fs::path dir = root_ / "refuse";
-  RunOptions opt;
-  opt.out_dir = dir.string();
-  opt.sets = kSets;
-  opt.interrupt_at_step = 50;
-  EXPECT_THROW(run_case(read_case(kCase, kSets), opt), Interrupted);
+  RunOptions opt = stopped_at(dir, 50);
   const std::string ck = find_checkpoint(dir.string());
 
   // Another case: the message names the case line that changed.
   std::vector<std::string> other = kSets;
   other.push_back("materials.concrete.tensile_strength=2.9e6");
-  opt.restart_file = ck, opt.interrupt_at_step = -1;
+  opt.restart_file = ck;
   try {
     run_case(read_case(kCase, other), opt);
     FAIL() << "a checkpoint of another case was accepted";
@@ -382,17 +384,12 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
 // staging folder, only when the run's process is gone (a live one is another report's, at work
 // in the folder) and the checkpoint is of this executable and this case. Staged in this process,
 // whose runs' checkpoints carry its own executable: an interrupted run's folder renamed as a
-// killed run's.
-// Not of the fixture: it needs no uninterrupted run.
+// killed run's. Not of the fixture: it needs no uninterrupted run.
 TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("dspdem_restart_report_{}", getpid());
   fs::remove_all(dir);
   const CaseConfig c = read_case(kCase, kSets);
-  RunOptions opt;
-  opt.out_dir = dir.string();
-  opt.sets = kSets;
-  opt.interrupt_at_step = 50;
-  EXPECT_THROW(run_case(c, opt), Interrupted);
+  stopped_at(dir, 50);
   ASSERT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
   fs::remove(dir / "interrupted_run" / "summary.json");  // a killed run leaves none
   EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None);
