@@ -14,7 +14,7 @@ namespace dspdem::report {
 
 namespace fs = std::filesystem;
 
-Earlier earlier_run(const std::string& dir, const std::string& resolved) {
+EarlierRun earlier_run(const std::string& dir, const std::string& resolved) {
   const fs::path d(dir);
   auto same = [&](const fs::path& run, const char* status) {
     if (!fs::exists(run / "summary.json")) return false;
@@ -23,40 +23,41 @@ Earlier earlier_run(const std::string& dir, const std::string& resolved) {
     return ran && s.status == status && s.build == executable_id() && same_case(*ran, resolved);
   };
   try {
-    if (same(d, "completed")) return Earlier::Finished;
+    if (same(d, "completed")) return {Earlier::Finished, {}};
     // `run --restart DIR` takes the newest checkpoint in DIR: it must be this run's.
     const fs::path ckpt = find_checkpoint(dir);
     const fs::path from = ckpt.parent_path();
     if (from == d / "interrupted_run") {
-      if (!same(from, "interrupted")) return Earlier::None;
+      if (!same(from, "interrupted")) return {};
     } else if (!left_by_killed_run(from.string())) {
-      return Earlier::None;  // a live run's (another report's, at work in this folder) or none
+      return {};  // a live run's (another report's, at work in this folder) or none
     }
     StateArchive body;
     const CheckpointHeader h = read_checkpoint(ckpt.string(), body);  // checks its build and CRC
-    if (h.executable == executable_id() && same_case(h.resolved_toml, resolved)) return Earlier::Interrupted;
+    if (h.executable == executable_id() && same_case(h.resolved_toml, resolved))
+      return {Earlier::Interrupted, ckpt.string()};
   } catch (const std::exception&) {
     // An unreadable summary, folder or checkpoint: the run starts again.
   }
-  return Earlier::None;
+  return {};
 }
 
 Earlier run_or_resume(const CaseConfig& c, const std::string& dir, const RunPolicy& runs) {
-  const Earlier e = runs.resume ? earlier_run(dir, c.resolved_toml) : Earlier::None;
-  if (e == Earlier::Finished) {
+  const EarlierRun e = runs.resume ? earlier_run(dir, c.resolved_toml) : EarlierRun{};
+  if (e.state == Earlier::Finished) {
     log::info("--resume: kept the finished run in {}", dir);
-    return e;
+    return e.state;
   }
   RunOptions o;
   o.out_dir = dir;
   o.sets = c.overrides;
   o.checkpoint_wall = runs.checkpoint_wall;
-  if (e == Earlier::Interrupted) {
-    o.restart_file = find_checkpoint(dir);  // the one earlier_run judged
+  if (e.state == Earlier::Interrupted) {
+    o.restart_file = e.checkpoint;
     log::info("--resume: continuing the run in {} from its checkpoint {}", dir, o.restart_file);
   }
   run_case(c, o);
-  return e;
+  return e.state;
 }
 
 }  // namespace dspdem::report

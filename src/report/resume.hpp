@@ -15,6 +15,14 @@ namespace dspdem::report {
 /// outright: `dspdem run --restart DIR` takes the newest checkpoint, find_checkpoint).
 enum class Earlier { None, Finished, Interrupted };
 
+/// What earlier_run found, and for Interrupted the checkpoint it judged to be this run's: the
+/// one to go on from (a second look could find another, should a killed run's folder appear
+/// in between, and would read every candidate again).
+struct EarlierRun {
+  Earlier state = Earlier::None;
+  std::string checkpoint;
+};
+
 /// Whether run folder `dir` holds the run of the case that resolves to `resolved` (its
 /// case.resolved.toml) from an earlier report, and how far it got. It is the same run when
 /// this dspdem executable made it (its build id and its file's CRC, as its summary.json or
@@ -24,7 +32,7 @@ enum class Earlier { None, Finished, Interrupted };
 /// as it was given). It is continued from the newest checkpoint in `dir` when that is the one
 /// its interruption left (interrupted_run/, beside its summary) or the last one a killed run
 /// wrote by wall time (its staging folder, its process gone). Anything unreadable: None.
-Earlier earlier_run(const std::string& dir, const std::string& resolved);
+EarlierRun earlier_run(const std::string& dir, const std::string& resolved);
 
 /// Runs `c` into `dir` in this process (run_case, its overrides recorded in its checkpoints so
 /// that `dspdem run --restart DIR` can continue it, checkpoints by wall time as `runs` says);

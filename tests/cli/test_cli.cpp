@@ -62,6 +62,16 @@ int stop_job(pid_t pid, int sig) {
   return st;
 }
 
+// A report stopped by SIGINT (`st`, its wait status; `log`, its output): it exits 5 and says
+// how to go on.
+::testing::AssertionResult stopped_for_resume(int st, const std::string& log) {
+  if (!WIFEXITED(st)) return ::testing::AssertionFailure() << "it did not exit (wait status " << st << "): " << log;
+  if (WEXITSTATUS(st) != 5) return ::testing::AssertionFailure() << "exit " << WEXITSTATUS(st) << ", not 5: " << log;
+  if (log.find("the same report with --resume") == std::string::npos)
+    return ::testing::AssertionFailure() << "no --resume hint: " << log;
+  return ::testing::AssertionSuccess();
+}
+
 // Whether a run of the sweep's speed folder `speed` has written `frames` frames into its
 // staging folder (at most 120 s; the folders come and go meanwhile, hence the error codes).
 bool wait_for_frames(const fs::path& speed, int frames) {
@@ -620,10 +630,8 @@ TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {
   const int st = stop_job(pid, SIGINT);
   const std::string stopped = slurp(dir_ / "stopped.log");
   ASSERT_TRUE(running) << "the second speed never ran: " << stopped;
-  ASSERT_TRUE(WIFEXITED(st));
-  EXPECT_EQ(WEXITSTATUS(st), 5) << stopped;
+  ASSERT_TRUE(stopped_for_resume(st, stopped));
   EXPECT_NE(stopped.find("SIGINT: 1 job(s) stopped, 0 not started"), std::string::npos) << stopped;
-  EXPECT_NE(stopped.find("with --resume"), std::string::npos) << stopped;
   ASSERT_TRUE(fs::exists(v25 / "summary.json"));
   ASSERT_TRUE(fs::exists(v75 / "interrupted_run" / "checkpoint.bin"));
   ASSERT_FALSE(fs::exists(v75 / "summary.json"));
@@ -692,9 +700,7 @@ TEST_F(Cli, AReportStoppedOrKilledInItsOwnRunResumesIt) {
   const int st = stop_job(pid, SIGINT);
   const std::string stopped = slurp(dir_ / "disc.log");
   ASSERT_TRUE(running) << "the run never wrote its frames: " << stopped;
-  ASSERT_TRUE(WIFEXITED(st));
-  EXPECT_EQ(WEXITSTATUS(st), 5) << stopped;
-  EXPECT_NE(stopped.find("the same report with --resume"), std::string::npos) << stopped;
+  ASSERT_TRUE(stopped_for_resume(st, stopped));
   ASSERT_TRUE(fs::exists(run_dir / "interrupted_run" / "checkpoint.bin")) << stopped;
 
   const std::string cmd = "report " + file + " --out " + rep.string() + " " + opts + " --resume";
@@ -723,9 +729,7 @@ TEST_F(Cli, AReportStoppedOrKilledInItsOwnRunResumesIt) {
   const int cst = stop_job(c, SIGINT);
   const std::string check_log = slurp(dir_ / "check.log");
   ASSERT_TRUE(checking) << "the stress check never wrote a frame: " << check_log;
-  ASSERT_TRUE(WIFEXITED(cst));
-  EXPECT_EQ(WEXITSTATUS(cst), 5) << check_log;
-  EXPECT_NE(check_log.find("the same report with --resume"), std::string::npos) << check_log;
+  ASSERT_TRUE(stopped_for_resume(cst, check_log));
   EXPECT_TRUE(fs::exists(rep / "stress_check" / "interrupted_run" / "checkpoint.bin")) << check_log;
   EXPECT_EQ(fs::last_write_time(rep / "report.md"), report_time) << "the report went on after the stop";
 

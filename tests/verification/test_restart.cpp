@@ -94,6 +94,20 @@ RunOptions stopped_at(const fs::path& dir, long step) {
   return opt;
 }
 
+// A test's own folder in the temporary directory, empty at the start and removed however the
+// test ends (a failed ASSERT returns early).
+struct ScratchDir {
+  fs::path path;
+  explicit ScratchDir(const std::string& name)
+      : path(fs::temp_directory_path() / fmt::format("{}_{}", name, getpid())) {
+    fs::remove_all(path);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 class Restart : public ::testing::Test {
  protected:
   static fs::path root_, full_;
@@ -386,22 +400,27 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
 // whose runs' checkpoints carry its own executable: an interrupted run's folder renamed as a
 // killed run's. Not of the fixture: it needs no uninterrupted run.
 TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("dspdem_restart_report_{}", getpid());
-  fs::remove_all(dir);
+  const ScratchDir scratch("dspdem_restart_report");
+  const fs::path& dir = scratch.path;
   const CaseConfig c = read_case(kCase, kSets);
   stopped_at(dir, 50);
-  ASSERT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
+  const report::EarlierRun stopped = report::earlier_run(dir.string(), c.resolved_toml);
+  ASSERT_EQ(stopped.state, report::Earlier::Interrupted);
+  EXPECT_EQ(stopped.checkpoint, (dir / "interrupted_run" / "checkpoint.bin").string());
   fs::remove(dir / "interrupted_run" / "summary.json");  // a killed run leaves none
-  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None);
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::None);
 
   const fs::path dead = dir / ".staging-999999999", live = dir / fmt::format(".staging-{}", getppid());
   fs::rename(dir / "interrupted_run", dead);
   ASSERT_EQ(kill(999999999, 0), -1) << "a process has pid 999999999";
-  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
-  EXPECT_EQ(report::earlier_run(dir.string(), read_case(kCase, {"time.end=1e-4"}).resolved_toml), report::Earlier::None)
+  const report::EarlierRun killed = report::earlier_run(dir.string(), c.resolved_toml);
+  EXPECT_EQ(killed.state, report::Earlier::Interrupted);
+  EXPECT_EQ(killed.checkpoint, (dead / "checkpoint.bin").string()) << "the run goes on from another checkpoint";
+  EXPECT_EQ(report::earlier_run(dir.string(), read_case(kCase, {"time.end=1e-4"}).resolved_toml).state,
+            report::Earlier::None)
       << "another case's checkpoint was taken";
   fs::rename(dead, live);
-  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::None)
       << "a live process's staging folder was taken";
   fs::rename(live, dead);
   // A run at work holds its staging folder's lock, which answers before the pid does: a pid no
@@ -410,17 +429,17 @@ TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
     const int fd = ::open((dead / ".lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
     ASSERT_GE(fd, 0);
     ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
-    EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
+    EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::None)
         << "a staging folder whose lock is held was taken";
     ::close(fd);
   }
-  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted)
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::Interrupted)
       << "the lock let go of, its run is gone";
   // A killed run of this very pid (pids repeat, in a container started anew): its folder is not
   // this process's, whose folders are those it holds, so it is continued.
   const fs::path same_pid = dir / fmt::format(".staging-{}", getpid());
   fs::rename(dead, same_pid);
-  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted)
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::Interrupted)
       << "a killed run of this pid was taken for this process's own";
   fs::rename(same_pid, dead);
 
@@ -429,20 +448,19 @@ TEST(RestartReport, AReportResumesAKilledRunOnlyWhenItsProcessIsGone) {
   StateArchive body;
   CheckpointHeader h = read_checkpoint((dead / "checkpoint.bin").string(), body);
   write_checkpoint((dead / "checkpoint.bin").string(), h, StateArchive());
-  ASSERT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::Interrupted);
+  ASSERT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::Interrupted);
   h.executable += " (another)";
   write_checkpoint((dead / "checkpoint.bin").string(), h, StateArchive());
-  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml), report::Earlier::None)
+  EXPECT_EQ(report::earlier_run(dir.string(), c.resolved_toml).state, report::Earlier::None)
       << "another executable's checkpoint was taken";
-  fs::remove_all(dir);
 }
 
 // A staging folder of this process's pid that a run at work holds (its lock held: a run of the
 // same pid in another container, writing into the same folder) is neither moved aside nor
 // emptied: the new run is refused, naming it. Let go of, it is a killed run's, moved aside.
 TEST(RestartStaging, AFolderOfThisPidThatARunAtWorkHoldsIsLeftAlone) {
-  const fs::path out = fs::temp_directory_path() / fmt::format("dspdem_staging_lock_{}", getpid());
-  fs::remove_all(out);
+  const ScratchDir scratch("dspdem_staging_lock");
+  const fs::path& out = scratch.path;
   const fs::path other = out / fmt::format(".staging-{}", getpid());
   fs::create_directories(other);
   std::ofstream(other / "checkpoint.bin") << "theirs";
@@ -463,7 +481,6 @@ TEST(RestartStaging, AFolderOfThisPidThatARunAtWorkHoldsIsLeftAlone) {
     EXPECT_EQ(slurp(fs::path(other.string() + ".1") / "checkpoint.bin"), "theirs");
     EXPECT_TRUE(fs::exists(fs::path(s.path()) / ".lock"));
   }
-  fs::remove_all(out);
 }
 
 }  // namespace

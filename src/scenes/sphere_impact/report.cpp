@@ -72,17 +72,19 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const Planned& p = plan[i];
     const CaseConfig v = reread_with(c, p.sets);
-    const Earlier e = runs.resume ? earlier_run(p.dir, v.resolved_toml) : Earlier::None;
-    if (e == Earlier::Finished) {
+    const report::EarlierRun e = runs.resume ? earlier_run(p.dir, v.resolved_toml) : report::EarlierRun{};
+    if (e.state == Earlier::Finished) {
       ++kept;
       log::info("sphere impact: {}: kept the finished run in {}", p.name, p.dir);
       continue;
     }
     Job j;
     j.log = p.dir + ".log";
-    if (e == Earlier::Interrupted) {
+    if (e.state == Earlier::Interrupted) {
       ++continued;
-      log::info("sphere impact: {}: continued from the checkpoint in {}", p.name, p.dir);
+      // The child's `run --restart` looks for the newest checkpoint again: the same one unless a
+      // killed run's folder appeared in between.
+      log::info("sphere impact: {}: continued from its checkpoint {}", p.name, e.checkpoint);
       j.args = {"-q", "-t", "1", "run", "--restart", p.dir, "--no-progress"};
       j.args.insert(j.args.end(), {"--checkpoint-wall", fmt::format("{}", runs.checkpoint_wall)});
       // After the interrupted part's messages, which say where it stopped.
