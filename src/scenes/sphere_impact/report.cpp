@@ -84,7 +84,7 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
       ++continued;
       // The child's `run --restart` looks for the newest checkpoint again: the same one unless a
       // killed run's folder appeared in between.
-      log::info("sphere impact: {}: continued from its checkpoint {}", p.name, e.checkpoint);
+      log::info("sphere impact: {}: continued from the newest checkpoint in {} ({})", p.name, p.dir, e.checkpoint);
       j.args = {"-q", "-t", "1", "run", "--restart", p.dir, "--no-progress"};
       j.args.insert(j.args.end(), {"--checkpoint-wall", fmt::format("{}", runs.checkpoint_wall)});
       // After the interrupted part's messages, which say where it stopped.
