@@ -128,7 +128,7 @@ TEST(Locality, ReorderingKeepsTheMeshAndPutsNeighboursTogether) {
     // median element's over a few dozen (32, 57), below a lexicographic layer of 121 nodes.
     // The mean (800 -> 133, 1038 -> 150) keeps the curve's folds; it must still fall 4x.
     const auto sb = spreads(bad), sg = spreads(good);
-    RecordProperty(std::string(cell_name(type)) + "_median_spread",
+    RecordProperty(fmt::format("{}_median_spread", cell_name(type)),
                    fmt::format("{:.0f} -> {:.0f}", median(sb), median(sg)));
     EXPECT_GT(median(sb), 600.0) << cell_name(type);
     EXPECT_LT(median(sg), 0.1 * median(sb)) << cell_name(type);

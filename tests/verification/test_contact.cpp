@@ -386,7 +386,7 @@ PathCheck ridge_over_ridge(const std::function<std::pair<Real, Real>(Real)>& pla
     for (Index n : g->nodes) z += fv[3 * n + 2];
     return z;
   };
-  Real U0, U, work = 0, max_jump = 0;
+  Real U0 = 0, U = 0, work = 0, max_jump = 0;
   move(0);
   forces(U0);
   std::vector<Real> f_prev = f, x_prev = x;

@@ -2,6 +2,7 @@
 // eqs. 24-25, src/scenes/brazilian_disc/REFERENCE.md), on the report's stress-check mesh: the check
 // that `dspdem report` runs beside the scene. The scene's own mesh (7.6 mm linear tets) is
 // too coarse near the plates for this; the check's case is built from the scene's file.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -17,7 +18,7 @@ namespace {
 // The scene's profile frame, from its run (`dspdem report cases/brazilian_disc.toml`: frame
 // 23, t = 2.3 ms, 29.47 kN, 83 % of its 35.46 kN peak): the report gives the check these.
 constexpr Real kSceneProfileTime = 2.3e-3, kSceneProfileLoad = 29.47e3;
-CaseConfig scene() { return read_case(std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml", {}); }
+CaseConfig scene() { return read_case(fmt::format("{}/cases/brazilian_disc.toml", DSPDEM_SOURCE_DIR), {}); }
 }  // namespace
 
 TEST(DiscField, StressCheckCaseChangesOnlyMeshJointsRateAndLoading) {
