@@ -42,17 +42,19 @@ int run_main(int argc, char** argv) {
   std::string case_file, out_dir;
   std::vector<std::string> sets;
   bool progress = false, no_progress = false;
-  std::string restart_dir;
+  std::string restart_path;
   double checkpoint_every = 0;
   double checkpoint_wall = kCheckpointWallDefault;
   auto* run_case_opt = run->add_option("case", case_file, "Case file (TOML); none with --restart");
   run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
   auto* run_set_opt =
       run->add_option("--set", sets, "Override a case key: section.key=value (repeatable; value in TOML syntax)");
-  auto* restart_opt = run->add_option("--restart", restart_dir,
-                                      "Continue the run whose output folder is RUN_DIR from its newest checkpoint, "
-                                      "with the case and --set it was started with (outputs: RUN_DIR unless --out)");
-  restart_opt->excludes(run_case_opt)->excludes(run_set_opt)->type_name("RUN_DIR");
+  auto* restart_opt =
+      run->add_option("--restart", restart_path,
+                      "Continue the run whose output folder is RUN_DIR from its newest checkpoint, or from the "
+                      "checkpoint file given, with the case and --set it was started with (outputs: the run's folder "
+                      "unless --out)");
+  restart_opt->excludes(run_case_opt)->excludes(run_set_opt)->type_name("RUN_DIR|CHECKPOINT");
   auto* ckpt_opt =
       run->add_option("--checkpoint-every", checkpoint_every,
                       "Write DIR/checkpoint.bin every T of simulated time (atomically, over the last one); "
@@ -252,16 +254,18 @@ int run_main(int argc, char** argv) {
       RunOptions opt;
       opt.checkpoint_every = checkpoint_every;
       opt.checkpoint_wall = checkpoint_wall;
-      if (!restart_dir.empty()) {
+      if (!restart_path.empty()) {
         // The case and overrides come from the checkpoint; run_case checks that the case
         // still reads as it did then.
-        opt.restart_file = find_checkpoint(restart_dir);
-        StateArchive body;
-        const CheckpointHeader h = read_checkpoint(opt.restart_file, body);
+        const FoundCheckpoint f = restart_checkpoint(restart_path);
+        const CheckpointHeader& h = f.header;
+        require_this_build(h, f.path);
+        opt.restart_file = f.path;
         case_file = h.case_path, sets = h.sets;
         if (ckpt_opt->count() == 0) opt.checkpoint_every = h.checkpoint_every;
         if (wall_opt->count() == 0) opt.checkpoint_wall = h.checkpoint_wall;
-        if (out_dir.empty()) out_dir = restart_dir;
+        if (out_dir.empty())
+          out_dir = std::filesystem::is_directory(restart_path) ? restart_path : run_folder_of(f.path);
         log::info("dspdem run --restart: {} (step {}, t = {:.6g} s)", opt.restart_file, h.steps, h.time);
       }
       DSPDEM_CHECK(!case_file.empty(), "run: give a case file, or --restart RUN_DIR");

@@ -2,7 +2,6 @@
 
 #include <filesystem>
 
-#include "core/archive.hpp"
 #include "core/file.hpp"
 #include "core/log.hpp"
 #include "io/run_summary.hpp"
@@ -24,18 +23,18 @@ EarlierRun earlier_run(const std::string& dir, const std::string& resolved) {
   };
   try {
     if (same(d, "completed")) return {Earlier::Finished, {}};
-    // `run --restart DIR` takes the newest checkpoint in DIR: it must be this run's.
-    const fs::path ckpt = find_checkpoint(dir);
-    const fs::path from = ckpt.parent_path();
+    // The newest checkpoint in the folder (its CRC checked), which `run --restart DIR` would
+    // take too: it must be this run's.
+    const FoundCheckpoint ckpt = find_checkpoint(dir);
+    const fs::path from = fs::path(ckpt.path).parent_path();
     if (from == d / "interrupted_run") {
       if (!same(from, "interrupted")) return {};
     } else if (!left_by_killed_run(from.string())) {
       return {};  // a live run's (another report's, at work in this folder) or none
     }
-    StateArchive body;
-    const CheckpointHeader h = read_checkpoint(ckpt.string(), body);  // checks its build and CRC
-    if (h.executable == executable_id() && same_case(h.resolved_toml, resolved))
-      return {Earlier::Interrupted, ckpt.string()};
+    // The executable, and with it the build (executable_id begins with checkpoint_build_id).
+    if (ckpt.header.executable == executable_id() && same_case(ckpt.header.resolved_toml, resolved))
+      return {Earlier::Interrupted, ckpt.path};
   } catch (const std::exception&) {
     // An unreadable summary, folder or checkpoint: the run starts again.
   }

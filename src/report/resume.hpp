@@ -16,8 +16,9 @@ namespace dspdem::report {
 enum class Earlier { None, Finished, Interrupted };
 
 /// What earlier_run found, and for Interrupted the checkpoint it judged to be this run's: the
-/// one to go on from (a second look could find another, should a killed run's folder appear
-/// in between, and would read every candidate again).
+/// one to go on from, in-process or as `dspdem run --restart FILE` (a second search of the
+/// folder could find another, should a killed run's folder appear in between, and would read
+/// every candidate again).
 struct EarlierRun {
   Earlier state = Earlier::None;
   std::string checkpoint;

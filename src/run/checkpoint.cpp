@@ -124,17 +124,20 @@ void move_checkpoint_into_place(const std::string& path) {
   DSPDEM_CHECK(!ec, "cannot move checkpoint '{}' into place: {}", path, ec.message());
 }
 
-CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body) {
-  CheckpointHeader h = open_checked(path, body);
-  // Another build may round differently or store its state differently: no bitwise restart.
+void require_this_build(const CheckpointHeader& h, const std::string& path) {
   DSPDEM_CHECK(h.build == checkpoint_build_id(),
                "checkpoint '{}' was written by another build of dspdem ({}); this one is {}: restart it with that "
                "build, or run the case again",
                path, h.build, checkpoint_build_id());
+}
+
+CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body) {
+  CheckpointHeader h = open_checked(path, body);
+  require_this_build(h, path);
   return h;
 }
 
-std::string find_checkpoint(const std::string& run_dir) {
+FoundCheckpoint find_checkpoint(const std::string& run_dir) {
   DSPDEM_CHECK(fs::is_directory(run_dir), "--restart {}: no such run folder", run_dir);
   std::vector<fs::path> cands = {fs::path(run_dir) / "checkpoint.bin",
                                  fs::path(run_dir) / "interrupted_run" / "checkpoint.bin"};
@@ -143,24 +146,44 @@ std::string find_checkpoint(const std::string& run_dir) {
     if (e.is_directory() && e.path().filename().string().rfind(".staging-", 0) == 0 &&
         left_by_killed_run(e.path().string()))
       cands.push_back(e.path() / "checkpoint.bin");
-  std::string best, errors;
+  FoundCheckpoint best;
+  std::string errors;
   fs::file_time_type best_time = fs::file_time_type::min();
   for (const auto& p : cands) {
     if (!fs::is_regular_file(p)) continue;
     try {
       StateArchive body;
-      open_checked(p.string(), body);
+      const CheckpointHeader h = open_checked(p.string(), body);
       const auto t = fs::last_write_time(p);
-      if (best.empty() || t > best_time) best_time = t, best = p.string();
+      if (best.path.empty() || t > best_time) best_time = t, best = {p.string(), h};
     } catch (const Error& e) {
       errors += fmt::format("\n  {}", e.what());  // a damaged one does not hide a good one
     }
   }
-  DSPDEM_CHECK(!best.empty(),
+  DSPDEM_CHECK(!best.path.empty(),
                "--restart {}: no usable checkpoint in the run folder (looked for checkpoint.bin there, in "
                "interrupted_run/ and in the .staging-* folder of a run that was killed){}",
                run_dir, errors);
   return best;
+}
+
+FoundCheckpoint restart_checkpoint(const std::string& path) {
+  if (fs::is_directory(path)) return find_checkpoint(path);
+  DSPDEM_CHECK(fs::is_regular_file(path), "--restart {}: no such run folder or checkpoint file", path);
+  StateArchive body;
+  FoundCheckpoint f{path, open_checked(path, body)};
+  DSPDEM_CHECK(f.header.rank == 0,
+               "--restart {}: this is process {}'s checkpoint of a run on {} processes; give process 0's, {}", path,
+               f.header.rank, f.header.processes, (fs::path(path).parent_path() / "checkpoint.bin").string());
+  return f;
+}
+
+std::string run_folder_of(const std::string& checkpoint_file) {
+  const fs::path holder = fs::path(checkpoint_file).parent_path();
+  const std::string name = holder.filename().string();
+  const bool aside = name == "interrupted_run" || name.rfind(".staging-", 0) == 0;
+  const fs::path run = aside ? holder.parent_path() : holder;
+  return run.empty() ? std::string(".") : run.string();
 }
 
 namespace {

@@ -70,11 +70,33 @@ void move_checkpoint_into_place(const std::string& path);
 /// `body` positioned at the state.
 CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body);
 
+/// Error unless `h`, the header of checkpoint `path`, was written by this build (another build
+/// may round differently or store its state differently: no bitwise restart).
+void require_this_build(const CheckpointHeader& h, const std::string& path);
+
+/// A checkpoint file found and read whole once, its magic, CRC and format checked (not its
+/// build: require_this_build), with its header.
+struct FoundCheckpoint {
+  std::string path;
+  CheckpointHeader header;
+};
+
 /// The newest checkpoint (the last written) a run folder holds: its own checkpoint.bin, an
 /// interrupted run's (interrupted_run/) or a killed run's (.staging-*/). Error if none. The
 /// last written, not the furthest: a killed run's staging folder can outlive it, and a
 /// later run of the folder, of another case perhaps, is the one to go on with.
-std::string find_checkpoint(const std::string& run_dir);
+FoundCheckpoint find_checkpoint(const std::string& run_dir);
+
+/// What `dspdem run --restart PATH` goes on from: a run folder's newest checkpoint
+/// (find_checkpoint), or the checkpoint file PATH itself, which must be process 0's (a
+/// distributed run's other files are found beside it). A file names one checkpoint exactly:
+/// `report --resume` hands its child the one it judged, which a second search of the folder
+/// might not find again.
+FoundCheckpoint restart_checkpoint(const std::string& path);
+
+/// The run folder a checkpoint file belongs to, where a restart writes by default: the folder
+/// that holds it, or that folder's when it lies in interrupted_run/ or a .staging-* folder.
+std::string run_folder_of(const std::string& checkpoint_file);
 
 /// The first line where two case texts differ, for messages ("" if equal).
 std::string first_difference(const std::string& a, const std::string& b);

@@ -152,18 +152,15 @@ TEST_F(Restart, FracturingRunWithContactStoppedTwiceEndsBitwiseAsTheUninterrupte
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "interrupted_run" / "summary.json"))["status"], "interrupted");
 
   // Second leg, on one thread (results do not depend on the thread count), stopped again.
-  opt.restart_file = find_checkpoint(dir.string());
+  opt.restart_file = find_checkpoint(dir.string()).path;
   opt.interrupt_at_step = 9000;
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   EXPECT_THROW(run_case(c, opt), Interrupted);
   omp_set_num_threads(threads);
-  {
-    StateArchive body;
-    EXPECT_EQ(read_checkpoint(find_checkpoint(dir.string()), body).steps, 9000);
-  }
+  EXPECT_EQ(find_checkpoint(dir.string()).header.steps, 9000);
 
-  opt.restart_file = find_checkpoint(dir.string());
+  opt.restart_file = find_checkpoint(dir.string()).path;
   opt.interrupt_at_step = -1;
   EXPECT_EQ(run_case(c, opt), 0);
   EXPECT_FALSE(fs::exists(dir / "interrupted_run"));  // superseded by the results
@@ -202,7 +199,7 @@ TEST_F(Restart, AnExtrinsicRunWhoseStepFallsRestartsBitwise) {
   auto half = nlohmann::json::parse(slurp(dir / "interrupted_run" / "summary.json"));
   EXPECT_LT(half["dt"].get<double>(), j["dt_start"].get<double>());
   EXPECT_GT(half["dt"].get<double>(), j["dt"].get<double>());
-  opt.restart_file = find_checkpoint(dir.string());
+  opt.restart_file = find_checkpoint(dir.string()).path;
   opt.interrupt_at_step = -1;
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
@@ -222,7 +219,7 @@ TEST_F(Restart, ARestartGivenTheKilledRunsPidKeepsItsCheckpoint) {
   const fs::path killed = dir / fmt::format(".staging-{}", getpid());
   fs::rename(dir / "interrupted_run", killed);
   fs::create_directories(dir / ".staging-999999999");  // a killed run's of a pid no process has
-  opt.restart_file = find_checkpoint(dir.string());
+  opt.restart_file = find_checkpoint(dir.string()).path;
   ASSERT_EQ(fs::path(opt.restart_file), killed / "checkpoint.bin");
   EXPECT_EQ(run_case(read_case(kCase, kSets), opt), 0);
   expect_same_outputs(full(), dir);
@@ -233,7 +230,7 @@ TEST_F(Restart, ARestartGivenTheKilledRunsPidKeepsItsCheckpoint) {
 TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   const fs::path dir = root_ / "refuse";
   RunOptions opt = stopped_at(dir, 50);
-  const std::string ck = find_checkpoint(dir.string());
+  const std::string ck = find_checkpoint(dir.string()).path;
 
   // Another case: the message names the case line that changed.
   std::vector<std::string> other = kSets;
@@ -289,6 +286,36 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   }
   std::ofstream(dir / "not.bin") << "hello";
   EXPECT_THROW(read_checkpoint((dir / "not.bin").string(), body), Error);
+
+  // `run --restart FILE`: a file that is no checkpoint, and another process's file of a
+  // distributed run, whose process 0 would read it as its own.
+  auto refused = [](const fs::path& p) {
+    try {
+      restart_checkpoint(p.string());
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refused(dir / "not.bin").find("not a dspdem checkpoint"), std::string::npos) << refused(dir / "not.bin");
+  h = CheckpointHeader{};
+  h.build = checkpoint_build_id();
+  h.processes = 2, h.rank = 1;
+  write_checkpoint((dir / "checkpoint.1.bin").string(), h, StateArchive());
+  EXPECT_NE(refused(dir / "checkpoint.1.bin").find("process 1's checkpoint of a run on 2 processes"), std::string::npos)
+      << refused(dir / "checkpoint.1.bin");
+  EXPECT_NE(refused(dir / "none.bin").find("no such run folder or checkpoint file"), std::string::npos);
+}
+
+// Where a restart from a checkpoint file writes by default: the run folder, also when the file
+// lies in the folder an interrupted or a killed run left beside it.
+TEST(RestartFile, ARunsFolderIsTheOneThatHoldsItsCheckpoint) {
+  EXPECT_EQ(run_folder_of("out/v7.5/checkpoint.bin"), "out/v7.5");
+  EXPECT_EQ(run_folder_of("out/v7.5/interrupted_run/checkpoint.bin"), "out/v7.5");
+  EXPECT_EQ(run_folder_of("out/v7.5/.staging-4242/checkpoint.bin"), "out/v7.5");
+  EXPECT_EQ(run_folder_of("interrupted_run/checkpoint.bin"), ".");
+  EXPECT_EQ(run_folder_of("checkpoint.bin"), ".");
+  EXPECT_EQ(run_folder_of("out/staging/checkpoint.bin"), "out/staging");  // not a staging folder's name
 }
 
 // The executable, stopped by a real SIGTERM part way: exit status 5, whole frames and a
@@ -339,7 +366,10 @@ TEST_F(Restart, SigtermLeavesAValidCollectionAndARestartableCheckpoint) {
   EXPECT_GE(listed, 2);
   ASSERT_TRUE(fs::exists(kept / "checkpoint.bin"));
 
-  const auto res = testsupport::shell(fmt::format("{} -q -t 2 run --restart {}", DSPDEM_BIN, dir.string()));
+  // Given the checkpoint file itself, not the folder: the outputs go to the run folder that
+  // holds interrupted_run/.
+  const auto res =
+      testsupport::shell(fmt::format("{} -q -t 2 run --restart {}", DSPDEM_BIN, (kept / "checkpoint.bin").string()));
   ASSERT_EQ(res.code, 0) << res.out;
   expect_same_outputs(full(), dir);
 
@@ -391,8 +421,9 @@ TEST_F(Restart, AKilledRunGoesOnFromItsLastCheckpointByWallTime) {
   EXPECT_TRUE(judged_live) << "a running run's staging folder was judged a killed run's";
   EXPECT_TRUE(fs::exists(staging / ".lock"));
   EXPECT_TRUE(left_by_killed_run(staging.string())) << "the kernel let go of its lock";
-  StateArchive body;
-  const CheckpointHeader h = read_checkpoint(find_checkpoint(dir.string()), body);
+  const FoundCheckpoint found = find_checkpoint(dir.string());
+  EXPECT_EQ(fs::path(found.path), staging / "checkpoint.bin");
+  const CheckpointHeader& h = found.header;
   EXPECT_GT(h.steps, 0);
   EXPECT_EQ(h.checkpoint_wall, 0.2);  // what the restart keeps unless given anew
   const auto res = testsupport::shell(fmt::format("{} -q -t 1 run --restart {}", DSPDEM_BIN, dir.string()));

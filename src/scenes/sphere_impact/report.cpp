@@ -82,10 +82,10 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
     j.log = p.dir + ".log";
     if (e.state == Earlier::Interrupted) {
       ++continued;
-      // The child's `run --restart` looks for the newest checkpoint again: the same one unless a
-      // killed run's folder appeared in between.
-      log::info("sphere impact: {}: continued from the newest checkpoint in {} ({})", p.name, p.dir, e.checkpoint);
-      j.args = {"-q", "-t", "1", "run", "--restart", p.dir, "--no-progress"};
+      // The checkpoint judged, by its file: a search of the folder by the child could find
+      // another, should a killed run's staging folder appear in between.
+      log::info("sphere impact: {}: continued from its checkpoint {}", p.name, e.checkpoint);
+      j.args = {"-q", "-t", "1", "run", "--restart", e.checkpoint, "--out", p.dir, "--no-progress"};
       j.args.insert(j.args.end(), {"--checkpoint-wall", fmt::format("{}", runs.checkpoint_wall)});
       // After the interrupted part's messages, which say where it stopped.
       j.append_log = true;
