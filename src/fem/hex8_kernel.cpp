@@ -106,7 +106,7 @@ ForceStatus hex8_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
 }
 
 template <bool Corot>
-ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s, ElementPass p) {
+ForceStatus dispatch_hex8(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s, ElementPass p) {
   if (b.damped)
     return s ? hex8_kernel<Corot, true, true>(m, b, x, v, s, p) : hex8_kernel<Corot, true, false>(m, b, x, v, s, p);
   return s ? hex8_kernel<Corot, false, true>(m, b, x, v, s, p) : hex8_kernel<Corot, false, false>(m, b, x, v, s, p);
@@ -114,8 +114,8 @@ ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* 
 }  // namespace
 
 ForceStatus hex8_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress, ElementPass pass) {
-  return b.kin == Kinematics::Corotational ? dispatch<true>(m, b, x, v, stress, pass)
-                                           : dispatch<false>(m, b, x, v, stress, pass);
+  return b.kin == Kinematics::Corotational ? dispatch_hex8<true>(m, b, x, v, stress, pass)
+                                           : dispatch_hex8<false>(m, b, x, v, stress, pass);
 }
 
 }  // namespace dspdem

@@ -83,7 +83,7 @@ ForceStatus tet4_kernel(FemModel& m, const FemBlock& b, const Real* x, const Rea
 }
 
 template <bool Corot>
-ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s, ElementPass p) {
+ForceStatus dispatch_tet4(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* s, ElementPass p) {
   if (b.damped)
     return s ? tet4_kernel<Corot, true, true>(m, b, x, v, s, p) : tet4_kernel<Corot, true, false>(m, b, x, v, s, p);
   return s ? tet4_kernel<Corot, false, true>(m, b, x, v, s, p) : tet4_kernel<Corot, false, false>(m, b, x, v, s, p);
@@ -91,8 +91,8 @@ ForceStatus dispatch(FemModel& m, const FemBlock& b, const Real* x, const Real* 
 }  // namespace
 
 ForceStatus tet4_forces(FemModel& m, const FemBlock& b, const Real* x, const Real* v, Real* stress, ElementPass pass) {
-  return b.kin == Kinematics::Corotational ? dispatch<true>(m, b, x, v, stress, pass)
-                                           : dispatch<false>(m, b, x, v, stress, pass);
+  return b.kin == Kinematics::Corotational ? dispatch_tet4<true>(m, b, x, v, stress, pass)
+                                           : dispatch_tet4<false>(m, b, x, v, stress, pass);
 }
 
 }  // namespace dspdem
