@@ -264,8 +264,9 @@ int run_main(int argc, char** argv) {
         case_file = h.case_path, sets = h.sets;
         if (ckpt_opt->count() == 0) opt.checkpoint_every = h.checkpoint_every;
         if (wall_opt->count() == 0) opt.checkpoint_wall = h.checkpoint_wall;
-        if (out_dir.empty())
-          out_dir = std::filesystem::is_directory(restart_path) ? restart_path : run_folder_of(f.path);
+        // The folder the checkpoint belongs to, also when RUN_DIR is given as DIR/interrupted_run
+        // (which a finished run removes).
+        if (out_dir.empty()) out_dir = run_folder_of(f.path);
         log::info("dspdem run --restart: {} (step {}, t = {:.6g} s)", opt.restart_file, h.steps, h.time);
       }
       DSPDEM_CHECK(!case_file.empty(), "run: give a case file, or --restart RUN_DIR");

@@ -170,6 +170,11 @@ FoundCheckpoint find_checkpoint(const std::string& run_dir) {
 FoundCheckpoint restart_checkpoint(const std::string& path) {
   if (fs::is_directory(path)) return find_checkpoint(path);
   DSPDEM_CHECK(fs::is_regular_file(path), "--restart {}: no such run folder or checkpoint file", path);
+  // As find_checkpoint: not a live run's, whose staging folder a finished restart would clear.
+  const fs::path holder = fs::absolute(path).lexically_normal().parent_path();
+  DSPDEM_CHECK(holder.filename().string().rfind(".staging-", 0) != 0 || left_by_killed_run(holder.string()),
+               "--restart {}: the checkpoint of a run at work (its staging folder is held); wait for it, or stop it",
+               path);
   StateArchive body;
   FoundCheckpoint f{path, open_checked(path, body)};
   DSPDEM_CHECK(f.header.rank == 0,
@@ -179,11 +184,12 @@ FoundCheckpoint restart_checkpoint(const std::string& path) {
 }
 
 std::string run_folder_of(const std::string& checkpoint_file) {
-  const fs::path holder = fs::path(checkpoint_file).parent_path();
+  // Absolute and without '.' or '..': `--restart checkpoint.bin` given inside interrupted_run/
+  // belongs to the folder above it.
+  const fs::path holder = fs::absolute(checkpoint_file).lexically_normal().parent_path();
   const std::string name = holder.filename().string();
   const bool aside = name == "interrupted_run" || name.rfind(".staging-", 0) == 0;
-  const fs::path run = aside ? holder.parent_path() : holder;
-  return run.empty() ? std::string(".") : run.string();
+  return (aside ? holder.parent_path() : holder).string();
 }
 
 namespace {

@@ -89,13 +89,15 @@ FoundCheckpoint find_checkpoint(const std::string& run_dir);
 
 /// What `dspdem run --restart PATH` goes on from: a run folder's newest checkpoint
 /// (find_checkpoint), or the checkpoint file PATH itself, which must be process 0's (a
-/// distributed run's other files are found beside it). A file names one checkpoint exactly:
+/// distributed run's other files are found beside it) and, in a staging folder, a killed
+/// run's, not a live one's (as find_checkpoint). A file names one checkpoint exactly:
 /// `report --resume` hands its child the one it judged, which a second search of the folder
 /// might not find again.
 FoundCheckpoint restart_checkpoint(const std::string& path);
 
 /// The run folder a checkpoint file belongs to, where a restart writes by default: the folder
-/// that holds it, or that folder's when it lies in interrupted_run/ or a .staging-* folder.
+/// that holds it, or that folder's when it lies in interrupted_run/ or a .staging-* folder; as
+/// an absolute path, without '.' or '..'.
 std::string run_folder_of(const std::string& checkpoint_file);
 
 /// The first line where two case texts differ, for messages ("" if equal).

@@ -308,16 +308,38 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
 }
 
 // Where a restart from a checkpoint file writes by default: the run folder, also when the file
-// lies in the folder an interrupted or a killed run left beside it.
+// lies in the folder an interrupted or a killed run left beside it; absolute, so that a file
+// named from inside interrupted_run/ or through '.' still finds its run's folder.
 TEST(RestartFile, ARunsFolderIsTheOneThatHoldsItsCheckpoint) {
-  EXPECT_EQ(run_folder_of("out/v7.5/checkpoint.bin"), "out/v7.5");
-  EXPECT_EQ(run_folder_of("out/v7.5/interrupted_run/checkpoint.bin"), "out/v7.5");
-  EXPECT_EQ(run_folder_of("out/v7.5/.staging-4242/checkpoint.bin"), "out/v7.5");
-  EXPECT_EQ(run_folder_of("interrupted_run/checkpoint.bin"), ".");
-  EXPECT_EQ(run_folder_of("checkpoint.bin"), ".");
-  EXPECT_EQ(run_folder_of("out/staging/checkpoint.bin"), "out/staging");  // not a staging folder's name
+  const fs::path run = fs::absolute("out/v7.5");
+  EXPECT_EQ(run_folder_of("out/v7.5/checkpoint.bin"), run.string());
+  EXPECT_EQ(run_folder_of("out/v7.5/interrupted_run/checkpoint.bin"), run.string());
+  EXPECT_EQ(run_folder_of("out/v7.5/.staging-4242/checkpoint.bin"), run.string());
+  EXPECT_EQ(run_folder_of("out/v7.5/interrupted_run/./checkpoint.bin"), run.string());
+  EXPECT_EQ(run_folder_of("out/x/../v7.5/checkpoint.bin"), run.string());
+  EXPECT_EQ(run_folder_of("interrupted_run/checkpoint.bin"), fs::current_path().string());
+  EXPECT_EQ(run_folder_of("out/staging/checkpoint.bin"), fs::absolute("out/staging").string());  // not a staging name
 }
 
+// `run --restart FILE` refuses the checkpoint of a run at work: when the restart ended, it
+// would clear that run's staging folder. Staged in this process, whose own staging folder is
+// held (as a run's at work is by its lock).
+TEST(RestartFile, ALiveRunsCheckpointIsRefused) {
+  const ScratchDir scratch("dspdem_restart_live");
+  const Staging live(scratch.path.string());
+  CheckpointHeader h;
+  h.build = checkpoint_build_id();
+  const fs::path ck = fs::path(live.path()) / "checkpoint.bin";
+  write_checkpoint(ck.string(), h, StateArchive());
+  try {
+    restart_checkpoint(ck.string());
+    FAIL() << "a live run's checkpoint was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a run at work"), std::string::npos) << e.what();
+  }
+  // Given by its folder, the run folder holds no checkpoint of a run that is gone.
+  EXPECT_THROW(restart_checkpoint(scratch.path.string()), Error);
+}
 // The executable, stopped by a real SIGTERM part way: exit status 5, whole frames and a
 // collection that lists only them, a checkpoint; `--restart` then finishes the run as the
 // uninterrupted one. A second run into the same folder, stopped by two signals, exits at
