@@ -11,6 +11,7 @@
 #include <fstream>
 #include <mutex>
 #include <set>
+#include <string_view>
 
 #include "core/error.hpp"
 
@@ -18,11 +19,12 @@ namespace dspdem {
 namespace fs = std::filesystem;
 
 namespace {
+constexpr std::string_view staging_prefix = ".staging-";
+
 // The pid in a staging folder's name; 0 for another folder.
 long staging_pid(const fs::path& dir) {
-  const std::string name = dir.filename().string();
-  if (name.rfind(".staging-", 0) != 0) return 0;
-  return std::strtol(name.c_str() + 9, nullptr, 10);
+  if (!is_staging_folder(dir.string())) return 0;
+  return std::strtol(dir.filename().c_str() + staging_prefix.size(), nullptr, 10);
 }
 
 // The staging folders whose locks this process holds. Its own are not asked of the lock: where
@@ -55,6 +57,14 @@ Lock lock_state(const fs::path& dir) {
 }
 }  // namespace
 
+bool is_staging_folder(const std::string& dir) {
+  return fs::path(dir).filename().string().rfind(staging_prefix, 0) == 0;
+}
+
+bool is_side_folder(const std::string& dir) {
+  return is_staging_folder(dir) || fs::path(dir).filename() == interrupted_folder;
+}
+
 bool left_by_killed_run(const std::string& dir) {
   const long pid = staging_pid(fs::path(dir));
   if (pid <= 0 || held_here(dir)) return false;
@@ -75,7 +85,7 @@ bool left_by_killed_run(const std::string& dir) {
 Staging::Staging(const std::string& out_dir) : Staging(out_dir, static_cast<long>(getpid()), true) {}
 
 Staging::Staging(const std::string& out_dir, long id, bool owner) : out_(out_dir), owner_(owner) {
-  stage_ = (fs::path(out_) / fmt::format(".staging-{}", id)).string();
+  stage_ = (fs::path(out_) / fmt::format("{}{}", staging_prefix, id)).string();
   if (!owner) return;
   std::error_code ec;
   fs::create_directories(out_, ec);
@@ -157,7 +167,7 @@ void Staging::commit() {
   // A successful run supersedes an earlier failure's or interruption's partial outputs, and
   // the staging folders of earlier runs that were killed (their process gone).
   fs::remove_all(fs::path(out_) / "failed_run");
-  fs::remove_all(fs::path(out_) / "interrupted_run");
+  fs::remove_all(fs::path(out_) / interrupted_folder);
   std::error_code ec;
   for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {
     const bool mine = aside_ > 0 && it->path() == fs::path(stage_ + "." + std::to_string(aside_));  // moved aside

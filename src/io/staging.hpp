@@ -48,6 +48,17 @@ class Staging {
   int lock_fd_ = -1;
 };
 
+/// The folder a stopped run's outputs and checkpoint are kept in, inside its run folder.
+inline constexpr const char* interrupted_folder = "interrupted_run";
+
+/// Whether `dir`'s last component names a staging folder: `.staging-<pid>`, or one moved aside,
+/// `.staging-<pid>.<k>` (not a `.new-staging-<pid>` that is still being set up).
+bool is_staging_folder(const std::string& dir);
+
+/// Whether `dir` is one of the folders beside a run's outputs that can hold its checkpoint: a
+/// staging folder or `interrupted_run`. Their run folder is the one above them.
+bool is_side_folder(const std::string& dir);
+
 /// Whether `dir` is the staging folder of a run whose process is gone: a run killed outright
 /// (`.staging-<pid>`, or such a folder moved aside, `.staging-<pid>.<k>`). A live run's (its
 /// lock held), or this process's own, is not.

@@ -27,7 +27,7 @@ EarlierRun earlier_run(const std::string& dir, const std::string& resolved) {
     // take too: it must be this run's.
     const FoundCheckpoint ckpt = find_checkpoint(dir);
     const fs::path from = fs::path(ckpt.path).parent_path();
-    if (from == d / "interrupted_run") {
+    if (from == d / interrupted_folder) {
       if (!same(from, "interrupted")) return {};
     } else if (!left_by_killed_run(from.string())) {
       return {};  // a live run's (another report's, at work in this folder) or none

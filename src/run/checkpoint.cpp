@@ -140,11 +140,10 @@ CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body) {
 FoundCheckpoint find_checkpoint(const std::string& run_dir) {
   DSPDEM_CHECK(fs::is_directory(run_dir), "--restart {}: no such run folder", run_dir);
   std::vector<fs::path> cands = {fs::path(run_dir) / "checkpoint.bin",
-                                 fs::path(run_dir) / "interrupted_run" / "checkpoint.bin"};
+                                 fs::path(run_dir) / interrupted_folder / "checkpoint.bin"};
   // A killed run's staging folder, not a live run's: that one is still writing its outputs.
   for (const auto& e : fs::directory_iterator(run_dir))
-    if (e.is_directory() && e.path().filename().string().rfind(".staging-", 0) == 0 &&
-        left_by_killed_run(e.path().string()))
+    if (e.is_directory() && is_staging_folder(e.path().string()) && left_by_killed_run(e.path().string()))
       cands.push_back(e.path() / "checkpoint.bin");
   FoundCheckpoint best;
   std::string errors;
@@ -172,7 +171,7 @@ FoundCheckpoint restart_checkpoint(const std::string& path) {
   DSPDEM_CHECK(fs::is_regular_file(path), "--restart {}: no such run folder or checkpoint file", path);
   // As find_checkpoint: not a live run's, whose staging folder a finished restart would clear.
   const fs::path holder = fs::absolute(path).lexically_normal().parent_path();
-  DSPDEM_CHECK(holder.filename().string().rfind(".staging-", 0) != 0 || left_by_killed_run(holder.string()),
+  DSPDEM_CHECK(!is_staging_folder(holder.string()) || left_by_killed_run(holder.string()),
                "--restart {}: the checkpoint of a run at work (its staging folder is held); wait for it, or stop it",
                path);
   StateArchive body;
@@ -187,9 +186,7 @@ std::string run_folder_of(const std::string& checkpoint_file) {
   // Absolute and without '.' or '..': `--restart checkpoint.bin` given inside interrupted_run/
   // belongs to the folder above it.
   const fs::path holder = fs::absolute(checkpoint_file).lexically_normal().parent_path();
-  const std::string name = holder.filename().string();
-  const bool aside = name == "interrupted_run" || name.rfind(".staging-", 0) == 0;
-  return (aside ? holder.parent_path() : holder).string();
+  return (is_side_folder(holder.string()) ? holder.parent_path() : holder).string();
 }
 
 namespace {

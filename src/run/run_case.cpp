@@ -576,7 +576,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         write_ckpt();
         write_summary(stage.path(), "interrupted", fmt::format("interrupted at step {}, t = {:.6g} s", it.steps(), t));
         par::barrier();  // every process's file written before process 0 moves the folder
-        const std::string kept = stage.keep_as("interrupted_run");
+        const std::string kept = stage.keep_as(interrupted_folder);
         // mpirun ends the job as soon as one process exits non-zero: none leaves (nor loses
         // its signal handler, to a late signal) before process 0 has moved the folder.
         par::barrier();
@@ -645,8 +645,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // one) is superseded by these results.
   if (!restart_file.empty()) {
     const fs::path src = fs::path(restart_file).parent_path();
-    const std::string name = src.filename().string();
-    if (name.rfind(".staging-", 0) == 0 || name == "interrupted_run") fs::remove_all(src);
+    if (is_side_folder(src.string())) fs::remove_all(src);
   }
   log::info("  {} steps to t = {:.6g} s in {:.2f} s ({:.3g} element-steps/s, {} threads); energy balance error {:.2e}",
             it.steps(), it.time(), wall.seconds(),

@@ -321,6 +321,20 @@ TEST(RestartFile, ARunsFolderIsTheOneThatHoldsItsCheckpoint) {
   EXPECT_EQ(run_folder_of("out/staging/checkpoint.bin"), fs::absolute("out/staging").string());  // not a staging name
 }
 
+// The side folders' names, which find_checkpoint, run --restart and a finished restart's
+// clean-up all go by (io/staging.hpp).
+TEST(RestartFile, SideFoldersAreKnownByTheirNames) {
+  EXPECT_TRUE(is_staging_folder("out/v7.5/.staging-4242"));
+  EXPECT_TRUE(is_staging_folder("out/v7.5/.staging-4242.1"));     // a killed run's, moved aside
+  EXPECT_FALSE(is_staging_folder("out/v7.5/.new-staging-4242"));  // still being set up: no run's yet
+  EXPECT_FALSE(is_staging_folder("out/v7.5/staging-4242"));
+  EXPECT_FALSE(is_staging_folder("out/.staging-4242/v7.5"));  // only the last component counts
+  EXPECT_TRUE(is_side_folder("out/v7.5/interrupted_run"));
+  EXPECT_TRUE(is_side_folder("out/v7.5/.staging-4242"));
+  EXPECT_FALSE(is_side_folder("out/v7.5/failed_run"));  // kept for a look, never continued
+  EXPECT_FALSE(is_side_folder("out/interrupted_run/v7.5"));
+}
+
 // `run --restart FILE` refuses the checkpoint of a run at work: when the restart ended, it
 // would clear that run's staging folder. Staged in this process, whose own staging folder is
 // held (as a run's at work is by its lock).
