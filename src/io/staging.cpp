@@ -57,13 +57,17 @@ Lock lock_state(const fs::path& dir) {
 }
 }  // namespace
 
-bool is_staging_folder(const std::string& dir) {
-  return fs::path(dir).filename().string().rfind(staging_prefix, 0) == 0;
+namespace {
+// A folder's own name, also when its path ends in a slash.
+std::string folder_name(const std::string& dir) {
+  const fs::path p(dir);
+  return (p.has_filename() ? p : p.parent_path()).filename().string();
 }
+}  // namespace
 
-bool is_side_folder(const std::string& dir) {
-  return is_staging_folder(dir) || fs::path(dir).filename() == interrupted_folder;
-}
+bool is_staging_folder(const std::string& dir) { return folder_name(dir).rfind(staging_prefix, 0) == 0; }
+
+bool is_side_folder(const std::string& dir) { return is_staging_folder(dir) || folder_name(dir) == interrupted_folder; }
 
 bool left_by_killed_run(const std::string& dir) {
   const long pid = staging_pid(fs::path(dir));
@@ -166,7 +170,7 @@ void Staging::commit() {
   fs::remove_all(stage_);
   // A successful run supersedes an earlier failure's or interruption's partial outputs, and
   // the staging folders of earlier runs that were killed (their process gone).
-  fs::remove_all(fs::path(out_) / "failed_run");
+  fs::remove_all(fs::path(out_) / failed_folder);
   fs::remove_all(fs::path(out_) / interrupted_folder);
   std::error_code ec;
   for (fs::directory_iterator it(out_, ec), end; !ec && it != end; it.increment(ec)) {

@@ -15,6 +15,11 @@
 
 namespace dspdem {
 
+/// The folder a stopped run's outputs and checkpoint are kept in, inside its run folder.
+inline constexpr const char* interrupted_folder = "interrupted_run";
+/// The folder a failed run's partial outputs are kept in, for a look (never continued).
+inline constexpr const char* failed_folder = "failed_run";
+
 class Staging {
  public:
   explicit Staging(const std::string& out_dir);
@@ -31,7 +36,7 @@ class Staging {
   /// of the same name (old ones are removed only after the new ones are in place).
   void commit();
   /// Renames the staging folder to DIR/failed_run (replacing an older one); returns its path.
-  std::string keep_failed() { return keep_as("failed_run"); }
+  std::string keep_failed() { return keep_as(failed_folder); }
   /// Renames the staging folder to DIR/<name> (replacing an older one); returns its path.
   std::string keep_as(const std::string& name);
   /// 0, or k when a folder of this staging folder's name was there already (a killed run's
@@ -48,10 +53,8 @@ class Staging {
   int lock_fd_ = -1;
 };
 
-/// The folder a stopped run's outputs and checkpoint are kept in, inside its run folder.
-inline constexpr const char* interrupted_folder = "interrupted_run";
-
-/// Whether `dir`'s last component names a staging folder: `.staging-<pid>`, or one moved aside,
+/// Whether `dir`'s last component (a trailing slash aside) names a staging folder: `.staging-<pid>`, or one moved
+/// aside,
 /// `.staging-<pid>.<k>` (not a `.new-staging-<pid>` that is still being set up).
 bool is_staging_folder(const std::string& dir);
 

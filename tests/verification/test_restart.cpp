@@ -333,6 +333,9 @@ TEST(RestartFile, SideFoldersAreKnownByTheirNames) {
   EXPECT_TRUE(is_side_folder("out/v7.5/.staging-4242"));
   EXPECT_FALSE(is_side_folder("out/v7.5/failed_run"));  // kept for a look, never continued
   EXPECT_FALSE(is_side_folder("out/interrupted_run/v7.5"));
+  EXPECT_FALSE(is_side_folder("out/v7.5/interrupted_run.old"));  // the name exactly
+  EXPECT_TRUE(is_side_folder("out/v7.5/interrupted_run/"));      // a trailing slash aside
+  EXPECT_TRUE(is_staging_folder("out/v7.5/.staging-4242/"));
 }
 
 // `run --restart FILE` refuses the checkpoint of a run at work: when the restart ended, it
