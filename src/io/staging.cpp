@@ -21,10 +21,16 @@ namespace fs = std::filesystem;
 namespace {
 constexpr std::string_view staging_prefix = ".staging-";
 
+// A folder's own name, also when its path ends in a slash.
+std::string folder_name(const fs::path& dir) {
+  return (dir.has_filename() ? dir : dir.parent_path()).filename().string();
+}
+
 // The pid in a staging folder's name; 0 for another folder.
 long staging_pid(const fs::path& dir) {
-  if (!is_staging_folder(dir.string())) return 0;
-  return std::strtol(dir.filename().c_str() + staging_prefix.size(), nullptr, 10);
+  const std::string name = folder_name(dir);
+  if (name.rfind(staging_prefix, 0) != 0) return 0;
+  return std::strtol(name.c_str() + staging_prefix.size(), nullptr, 10);
 }
 
 // The staging folders whose locks this process holds. Its own are not asked of the lock: where
@@ -54,14 +60,6 @@ Lock lock_state(const fs::path& dir) {
   ::close(fd);  // lets go of the lock if it was taken here
   if (r == 0) return Lock::Free;
   return err == EWOULDBLOCK ? Lock::Held : Lock::None;
-}
-}  // namespace
-
-namespace {
-// A folder's own name, also when its path ends in a slash.
-std::string folder_name(const std::string& dir) {
-  const fs::path p(dir);
-  return (p.has_filename() ? p : p.parent_path()).filename().string();
 }
 }  // namespace
 

@@ -53,9 +53,9 @@ class Staging {
   int lock_fd_ = -1;
 };
 
-/// Whether `dir`'s last component (a trailing slash aside) names a staging folder: `.staging-<pid>`, or one moved
-/// aside,
-/// `.staging-<pid>.<k>` (not a `.new-staging-<pid>` that is still being set up).
+/// Whether `dir`'s last component (a trailing slash aside) names a staging folder:
+/// `.staging-<pid>`, or one moved aside, `.staging-<pid>.<k>` (not a `.new-staging-<pid>` that
+/// is still being set up).
 bool is_staging_folder(const std::string& dir);
 
 /// Whether `dir` is one of the folders beside a run's outputs that can hold its checkpoint: a
