@@ -166,11 +166,19 @@ FoundCheckpoint find_checkpoint(const std::string& run_dir) {
   return best;
 }
 
+namespace {
+// The folder that holds a checkpoint file, absolute and without '.' or '..': `--restart
+// checkpoint.bin` given inside interrupted_run/ is seen in that folder.
+fs::path holder_of(const std::string& checkpoint_file) {
+  return fs::absolute(checkpoint_file).lexically_normal().parent_path();
+}
+}  // namespace
+
 FoundCheckpoint restart_checkpoint(const std::string& path) {
   if (fs::is_directory(path)) return find_checkpoint(path);
   DSPDEM_CHECK(fs::is_regular_file(path), "--restart {}: no such run folder or checkpoint file", path);
   // As find_checkpoint: not a live run's, whose staging folder a finished restart would clear.
-  const fs::path holder = fs::absolute(path).lexically_normal().parent_path();
+  const fs::path holder = holder_of(path);
   DSPDEM_CHECK(!is_staging_folder(holder.string()) || left_by_killed_run(holder.string()),
                "--restart {}: the checkpoint of a run at work (its staging folder is held); wait for it, or stop it",
                path);
@@ -183,9 +191,7 @@ FoundCheckpoint restart_checkpoint(const std::string& path) {
 }
 
 std::string run_folder_of(const std::string& checkpoint_file) {
-  // Absolute and without '.' or '..': `--restart checkpoint.bin` given inside interrupted_run/
-  // belongs to the folder above it.
-  const fs::path holder = fs::absolute(checkpoint_file).lexically_normal().parent_path();
+  const fs::path holder = holder_of(checkpoint_file);
   return (is_side_folder(holder.string()) ? holder.parent_path() : holder).string();
 }
 

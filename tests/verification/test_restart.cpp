@@ -357,6 +357,7 @@ TEST(RestartFile, ALiveRunsCheckpointIsRefused) {
   // Given by its folder, the run folder holds no checkpoint of a run that is gone.
   EXPECT_THROW(restart_checkpoint(scratch.path.string()), Error);
 }
+
 // The executable, stopped by a real SIGTERM part way: exit status 5, whole frames and a
 // collection that lists only them, a checkpoint; `--restart` then finishes the run as the
 // uninterrupted one. A second run into the same folder, stopped by two signals, exits at
