@@ -23,6 +23,7 @@ struct JointMaterial {
   bool nodal_quadrature = false;       ///< joint_quadrature = "nodal"
   bool coupled = false;                ///< joint_law = "coupled"
   bool mode_i = false;                 ///< joint_law = "mode_I": no shear failure
+  bool residual = false;               ///< joint_law = "paper_residual": the cohesion softens, friction stays
 };
 
 /// [contact] and [[walls]].

@@ -389,7 +389,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       }
       JointMaterial jm;
       const std::string law = s.str("joint_law");
-      jm.coupled = law == "coupled", jm.mode_i = law == "mode_I";
+      jm.coupled = law == "coupled", jm.mode_i = law == "mode_I", jm.residual = law == "paper_residual";
       if (jm.mode_i) {
         // Opening only: the shear stays elastic until the joint breaks, so a cohesion or a
         // mode-II energy would be ignored; say so instead of ignoring it.

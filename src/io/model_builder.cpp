@@ -265,7 +265,10 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
         p.ks = jm.ks > 0 ? jm.ks : p.kn;
         p.ft = jm.ft, p.GfI = jm.GfI, p.c = jm.c, p.GfII = jm.GfII;
         p.tan_phi = std::tan(jm.phi_deg * M_PI / 180.0);
-        p.law = jm.coupled ? joint::JointLaw::Coupled : jm.mode_i ? joint::JointLaw::ModeI : joint::JointLaw::Paper;
+        p.law = jm.coupled    ? joint::JointLaw::Coupled
+                : jm.mode_i   ? joint::JointLaw::ModeI
+                : jm.residual ? joint::JointLaw::PaperResidual
+                              : joint::JointLaw::Paper;
         js.param[j] = static_cast<Index>(js.params.size());
         js.params.push_back(p);
         js.quadrature.push_back(jm.nodal_quadrature ? joint::Quadrature::Nodal : joint::Quadrature::Gauss);

@@ -23,8 +23,8 @@
 #include "core/error.hpp"
 #include "fem/linear_elastic.hpp"
 #include "io/staging.hpp"
-#include "joint/coupled_law.hpp"
 #include "joint/joint_forces.hpp"
+#include "joint/joint_law.hpp"
 #include "joint/joint_set.hpp"
 
 namespace dspdem {

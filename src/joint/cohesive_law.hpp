@@ -41,7 +41,9 @@ namespace dspdem::joint {
 /// damage variable softens both together), or mode I only (the paper's normal law; the
 /// shear stays elastic until the joint breaks in opening, as the paper's impact beam with
 /// its "shear strength set high enough").
-enum class JointLaw : char { Paper = 0, Coupled = 1, ModeI = 2 };
+/// The fourth, paper_residual (residual_law.hpp), is the paper's law with the shear softening
+/// as its text and Fig. 2(b) describe it: the cohesion softens, the friction stays.
+enum class JointLaw : char { Paper = 0, Coupled = 1, ModeI = 2, PaperResidual = 3 };
 
 struct CohesiveParams {
   Real kn = 0, ks = 0;     ///< penalty stiffness [Pa/m]
@@ -62,22 +64,29 @@ struct CohesiveState {
   /// Only ever increasing. Coupled law: secant damage d in [0, 1]. The paper's law: the shear
   /// damage b of eq. 6, the largest <ds - w_fs> / w_GII reached (past 1 at the break).
   Real damage = 0;
-  Real diss_II_at_break = 0;    ///< mode-II dissipation when the point failed [J/m^2]
+  /// Mode-II dissipation when the point failed [J/m^2]; paper_residual books it as it goes.
+  Real diss_II_at_break = 0;
   Real friction = 0;            ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
   Real sn = 0, ss = 0;          ///< last tractions [Pa]
   Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
   JointStatus status = JointStatus::Intact;
 
-  /// Recoverable energy per unit area at the current state [J/m^2].
+  /// Recoverable energy per unit area at the current state [J/m^2]. The shear of a broken
+  /// point, and of any point of paper_residual, is elastic-plastic: 1/2 s_s^2 / k_s; the
+  /// other laws' shear unloads along the secant: 1/2 s_s ds.
   Real elastic_energy(const CohesiveParams& p) const {
     const Real en = 0.5 * sn * dn;
-    const Real es = status == JointStatus::Broken ? 0.5 * ss * ss / std::max(p.ks, Real(1e-300)) : 0.5 * ss * ds;
-    return en + es;
+    return en + (plastic_shear(p) ? 0.5 * ss * ss / std::max(p.ks, Real(1e-300)) : 0.5 * ss * ds);
   }
   Real dissipated_I(const CohesiveParams&) const { return work_n - 0.5 * sn * dn; }
-  Real dissipated_II(const CohesiveParams&) const {
-    return status == JointStatus::Broken ? diss_II_at_break + friction : work_s - 0.5 * ss * ds;
+  Real dissipated_II(const CohesiveParams& p) const {
+    if (status == JointStatus::Broken) return diss_II_at_break + friction;
+    if (p.law == JointLaw::PaperResidual) return diss_II_at_break;  // booked as it goes
+    return work_s - 0.5 * ss * ds;
+  }
+  bool plastic_shear(const CohesiveParams& p) const {
+    return status == JointStatus::Broken || p.law == JointLaw::PaperResidual;
   }
 };
 
@@ -108,21 +117,21 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, Cohesiv
 
 /// Advances one integration point to opening dn and slip magnitude ds (>= 0); updates the
 /// tractions sn, ss (ss acts against the slip), the history and the work integrals.
+/// The paper's normal traction (eq. 3) at opening dn, with its history (the largest opening);
+/// a broken point carries compression only.
+inline Real paper_normal_traction(const CohesiveParams& p, Real dn, CohesiveState& s) {
+  if (s.status == JointStatus::Broken) return dn < 0 ? p.kn * dn : 0.0;
+  if (dn <= 0) return p.kn * dn;
+  const Real w_ft = p.ft / p.kn, w_GI = 2.0 * p.GfI / p.ft;
+  s.dn_max = std::max(s.dn_max, dn);
+  const Real m = s.dn_max;
+  if (m <= w_ft) return p.kn * dn;
+  return std::max<Real>(0.0, p.ft * (1.0 - (m - w_ft) / w_GI)) / m * dn;  // secant below the envelope
+}
+
 inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
   const Real w_ft = p.ft / p.kn, w_GI = 2.0 * p.GfI / p.ft;
-  Real sn;
-  if (s.status == JointStatus::Broken) {
-    sn = dn < 0 ? p.kn * dn : 0.0;
-  } else if (dn <= 0) {
-    sn = p.kn * dn;
-  } else {
-    s.dn_max = std::max(s.dn_max, dn);
-    const Real m = s.dn_max;
-    if (m <= w_ft)
-      sn = p.kn * dn;
-    else
-      sn = std::max<Real>(0.0, p.ft * (1.0 - (m - w_ft) / w_GI)) / m * dn;  // secant below the envelope
-  }
+  Real sn = paper_normal_traction(p, dn, s);
   Real ss;
   if (s.status == JointStatus::Broken) {
     ss = residual_friction(p, sn, ds, s);

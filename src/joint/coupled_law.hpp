@@ -108,23 +108,4 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
   s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
 }
 
-/// How far a point is along its way to failure, in [0, 1] (1: broken): the coupled law's
-/// damage; for the paper's law the eq. 6 index sqrt(a^2 + b^2) of its largest opening and
-/// its shear damage; for mode I only, a. For output (the joints frame's damage field).
-inline Real damage_index(const CohesiveParams& p, const CohesiveState& s) {
-  if (s.status == JointStatus::Broken) return 1.0;
-  if (p.law == JointLaw::Coupled) return s.damage;
-  const Real a = std::max<Real>(0, s.dn_max - p.ft / p.kn) / (2 * p.GfI / p.ft);
-  if (p.law == JointLaw::ModeI) return std::min<Real>(1.0, a);
-  return std::min<Real>(1.0, std::sqrt(a * a + s.damage * s.damage));
-}
-
-/// The law a point follows, by its material's choice.
-inline void joint_law_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
-  if (p.law == JointLaw::Coupled)
-    coupled_update(p, dn, ds, s);
-  else
-    cohesive_update(p, dn, ds, s);
-}
-
 }  // namespace dspdem::joint

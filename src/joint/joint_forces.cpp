@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "joint/coupled_law.hpp"
+#include "joint/joint_law.hpp"
 #include "joint/lane4.hpp"
 
 namespace dspdem::joint {
@@ -173,7 +173,7 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
     // a half-failed facet would otherwise hold two separated pieces together.
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
     if (broken[b] > 0 && broken[b] < NPF)
-      for (int g = 0; g < NPF; ++g) force_break(js.full_point(js4 + g));
+      for (int g = 0; g < NPF; ++g) joint_force_break(js.params[js.param[j]], js.full_point(js4 + g));
     const JointStatus before = js.status[j];
     js.status[j] = broken[b] > 0 ? JointStatus::Broken : touched[b] > 0 ? JointStatus::Softening : JointStatus::Intact;
     js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;

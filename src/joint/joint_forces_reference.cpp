@@ -1,8 +1,8 @@
 // The joint kernel as plainly as it can be written: one joint after another, its quadrature
 // computed on the spot, its forces added to the nodes at once. The oracle of the optimised
 // add_joint_forces (tests/unit/test_joint_kernel.cpp): both must agree bit for bit.
-#include "joint/coupled_law.hpp"
 #include "joint/joint_forces.hpp"
+#include "joint/joint_law.hpp"
 
 namespace dspdem::joint {
 
@@ -49,7 +49,7 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
         }
     }
     if (broken > 0 && broken < ng)
-      for (int g = 0; g < ng; ++g) force_break(js.full_point(js4 + g));
+      for (int g = 0; g < ng; ++g) joint_force_break(p, js.full_point(js4 + g));
     const JointStatus before = js.status[j];
     js.status[j] = broken > 0 ? JointStatus::Broken : touched > 0 ? JointStatus::Softening : JointStatus::Intact;
     js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;

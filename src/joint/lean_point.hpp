@@ -13,7 +13,7 @@
 #pragma once
 #include <algorithm>
 
-#include "joint/coupled_law.hpp"
+#include "joint/joint_law.hpp"
 
 namespace dspdem::joint {
 

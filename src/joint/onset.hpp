@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/types.hpp"
-#include "joint/coupled_law.hpp"
+#include "joint/joint_law.hpp"
 
 namespace dspdem::joint {
 
@@ -44,6 +44,7 @@ inline Real onset_ratio(const CohesiveParams& p, const FaceTraction& t) {
     case JointLaw::ModeI:
       return t.tn / p.ft;
     case JointLaw::Paper:
+    case JointLaw::PaperResidual:  // the same elastic limit; only the softening differs
       return std::max(t.tn / p.ft, t.ts / shear_strength(p, t.tn));
     case JointLaw::Coupled: {
       const Real un = std::max<Real>(0.0, t.tn) / p.ft;
@@ -92,6 +93,7 @@ inline Real onset_floor(const CohesiveParams& p) {
     case JointLaw::Coupled:
       return std::min(p.ft, p.c);
     case JointLaw::Paper:
+    case JointLaw::PaperResidual:
       return std::min(p.ft, std::max<Real>(0.0, p.c) / (1 + std::max<Real>(0.0, p.tan_phi)));
   }
   return 0;

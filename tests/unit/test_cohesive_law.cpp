@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "joint/cohesive_law.hpp"
-#include "joint/coupled_law.hpp"
+#include "joint/joint_law.hpp"
 
 using namespace dspdem;
 using namespace dspdem::joint;

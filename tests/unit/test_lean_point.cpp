@@ -39,7 +39,7 @@ Real near(Real limit, std::mt19937_64& rng) {
 }  // namespace
 
 TEST(LeanPoint, KeepsAPointLeanExactlyWhileItsLawIsElastic) {
-  for (JointLaw law : {JointLaw::Paper, JointLaw::ModeI, JointLaw::Coupled}) {
+  for (JointLaw law : {JointLaw::Paper, JointLaw::ModeI, JointLaw::Coupled, JointLaw::PaperResidual}) {
     const CohesiveParams p = params(law);
     std::mt19937_64 rng(2026);
     int kept = 0, given_up = 0, on_limit = 0;

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "joint/coupled_law.hpp"
+#include "joint/joint_law.hpp"
 #include "joint/onset.hpp"
 
 using namespace dspdem;
@@ -52,7 +52,7 @@ TEST(Onset, RatioOneIsWhereEachLawLeavesItsElasticBranch) {
   // Directions in the (t_n, t_s) plane from pure tension through shear to compression and
   // shear; along each, the traction with ratio 1 (found by bisection) scaled by 1 -+ 1e-6:
   // the law stays elastic just inside and leaves just outside.
-  for (JointLaw law : {JointLaw::ModeI, JointLaw::Paper, JointLaw::Coupled}) {
+  for (JointLaw law : {JointLaw::ModeI, JointLaw::Paper, JointLaw::Coupled, JointLaw::PaperResidual}) {
     const CohesiveParams p = params(law);
     for (Real ang : {0.0, 0.4, 0.9, 1.4, M_PI / 2, 2.0, 2.5}) {
       const Real cn = std::cos(ang), cs = std::sin(ang);
@@ -75,7 +75,7 @@ TEST(Onset, RatioOneIsWhereEachLawLeavesItsElasticBranch) {
 TEST(Onset, CompressionRaisesTheShearStrength) {
   // Pure shear against shear with compression: the second needs more shear to open, by
   // tan(phi) times the compression (both laws with friction); mode I ignores shear.
-  for (JointLaw law : {JointLaw::Paper, JointLaw::Coupled}) {
+  for (JointLaw law : {JointLaw::Paper, JointLaw::Coupled, JointLaw::PaperResidual}) {
     const CohesiveParams p = params(law);
     EXPECT_NEAR(onset_ratio(p, {0, p.c}), 1.0, 1e-12);
     EXPECT_NEAR(onset_ratio(p, {-2e6, p.c + 2e6 * p.tan_phi}), 1.0, 1e-12);
@@ -86,7 +86,7 @@ TEST(Onset, CompressionRaisesTheShearStrength) {
 TEST(Onset, TheFloorScreensOnlyTractionsBelowTheOnset) {
   // Tractions in every direction with magnitudes up to the floor: none may reach the onset;
   // the floor is not far below it either (some direction at 1.5 x the floor opens).
-  for (JointLaw law : {JointLaw::ModeI, JointLaw::Paper, JointLaw::Coupled}) {
+  for (JointLaw law : {JointLaw::ModeI, JointLaw::Paper, JointLaw::Coupled, JointLaw::PaperResidual}) {
     const CohesiveParams p = params(law);
     const Real fl = onset_floor(p);
     bool opens_above = false;

@@ -125,6 +125,38 @@ TEST(Joints, ShearUnderCompressionThroughTheKernel) {
   EXPECT_NEAR(t.fracture_II / (p.GfII * A + fs * fs / (2 * p.ks) * A + -sigma * p.tan_phi * A * slip_after), 1.0, 0.01);
 }
 
+TEST(Joints, TheTextsShearSofteningKeepsTheFrictionThroughTheKernel) {
+  // joint_law = "paper_residual" (src/joint/residual_law.hpp) on the same two blocks, under
+  // 20 MPa of compression: halfway through the softening the face carries the friction and
+  // half the cohesion (the printed law: half of the whole strength), and it breaks with G_fII
+  // and the friction's work dissipated, sliding on the friction after. Tolerances as above.
+  CaseConfig c = simple_case(30e9, 0.2, 2400);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000, 100);
+  c.joint_materials[0].residual = true;
+  Model m = build_model(c, box_mesh(CellType::Hex8, 2, 1, 1, Vec3(0.2, 0.1, 0.1)));
+  const joint::CohesiveParams p = m.joints.params[0];
+  ASSERT_EQ(p.law, joint::JointLaw::PaperResidual);
+  const Real A = 0.01, sigma = -20e6, dn = sigma / p.kn, mu = -sigma * p.tan_phi;
+  const Real fs = p.c + mu, w_GII = 2 * p.GfII / p.c;
+  std::vector<Real> slots;
+  // Halfway: plastic slip w_GII / 2, so ds = w_GII / 2 + (f_s - h w_GII / 2) / k_s.
+  const Real half = 0.5 * w_GII + (fs - 0.5 * p.c) / p.ks;
+  Vec3 F;
+  const int n = 4000;
+  for (int i = 1; i <= n; ++i) F = force_on_b(m, place(m, Vec3(dn, half * i / n, 0), Mat3::Identity()), slots);
+  EXPECT_EQ(m.joints.status[0], joint::JointStatus::Softening);
+  EXPECT_NEAR(-F(1) / ((mu + 0.5 * p.c) * A), 1.0, 1e-6);
+  const Real end = 1.3 * (w_GII + fs / p.ks);
+  for (int i = 1; i <= n; ++i)
+    F = force_on_b(m, place(m, Vec3(dn, half + (end - half) * i / n, 0), Mat3::Identity()), slots);
+  EXPECT_EQ(m.joints.status[0], joint::JointStatus::Broken);
+  EXPECT_NEAR(F(0) / (-sigma * A), 1.0, 1e-6);
+  EXPECT_NEAR(-F(1) / (mu * A), 1.0, 1e-6);
+  const joint::JointTotals t = joint::joint_totals(m.joints);
+  // G_fII A and the friction over all the plastic slip: end less the elastic slip mu / k_s.
+  EXPECT_NEAR(t.fracture_II / (p.GfII * A + mu * A * (end - mu / p.ks)), 1.0, 0.01);
+}
+
 namespace {
 // A 384-tet block, 0.1 m wide, under 1 MPa of uniaxial tension (rollers on three faces),
 // relaxed to its static state; joints on every interior face when `joints`.
