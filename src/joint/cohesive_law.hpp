@@ -88,6 +88,13 @@ struct CohesiveState {
   bool plastic_shear(const CohesiveParams& p) const {
     return status == JointStatus::Broken || p.law == JointLaw::PaperResidual;
   }
+  /// Ends an update at opening dn, slip ds with tractions sn, ss: the work of the tractions
+  /// over the step (trapezoid rule) and the new last state. Every law ends so.
+  void advance(Real dn_new, Real ds_new, Real sn_new, Real ss_new) {
+    work_n += 0.5 * (sn + sn_new) * (dn_new - dn);
+    work_s += 0.5 * (ss + ss_new) * (ds_new - ds);
+    dn = dn_new, ds = ds_new, sn = sn_new, ss = ss_new;
+  }
 };
 
 /// Shear strength f_s for the current normal traction (eq. 5, tension positive).
@@ -99,13 +106,19 @@ inline Real shear_strength(const CohesiveParams& p, Real sn) {
 /// slip, |s_s| <= -s_n tan(phi), with the sign allowed to reverse so that sliding back is
 /// resisted too. Dissipation, exactly: first the cap changes at fixed slip (a drop releases
 /// (s^2 - cap^2) / 2 k_s), then the slip increment slides at the cap (cap x plastic slip).
+/// Drops a shear traction e above the cap to +-cap at a fixed slip; returns the energy per
+/// unit area that the drop releases (dissipated), (e^2 - cap^2) / 2 k_s, or 0.
+inline Real drop_to_cap(Real& e, Real cap, Real ks) {
+  if (std::abs(e) <= cap) return 0.0;
+  const Real released = (e * e - cap * cap) / (2.0 * ks);
+  e = e > 0 ? cap : -cap;
+  return released;
+}
+
 inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, CohesiveState& s) {
   const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
   Real e = s.ss;
-  if (std::abs(e) > cap) {
-    s.friction += (e * e - cap * cap) / (2.0 * p.ks);
-    e = e > 0 ? cap : -cap;
-  }
+  s.friction += drop_to_cap(e, cap, p.ks);
   Real trial = e + p.ks * (ds - s.ds);
   if (std::abs(trial) > cap) {
     s.friction += cap * (std::abs(trial) - cap) / p.ks;
@@ -115,8 +128,6 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, Cohesiv
   return trial;
 }
 
-/// Advances one integration point to opening dn and slip magnitude ds (>= 0); updates the
-/// tractions sn, ss (ss acts against the slip), the history and the work integrals.
 /// The paper's normal traction (eq. 3) at opening dn, with its history (the largest opening);
 /// a broken point carries compression only.
 inline Real paper_normal_traction(const CohesiveParams& p, Real dn, CohesiveState& s) {
@@ -129,8 +140,17 @@ inline Real paper_normal_traction(const CohesiveParams& p, Real dn, CohesiveStat
   return std::max<Real>(0.0, p.ft * (1.0 - (m - w_ft) / w_GI)) / m * dn;  // secant below the envelope
 }
 
-inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+/// Eq. 6 with the mode-I part of the largest opening reached and the shear damage b.
+inline bool eq6_broken(const CohesiveParams& p, Real dn_max, Real b) {
   const Real w_ft = p.ft / p.kn, w_GI = 2.0 * p.GfI / p.ft;
+  const Real a = std::max<Real>(0.0, dn_max - w_ft) / w_GI;
+  return a * a + b * b >= 1.0;
+}
+
+/// Advances one integration point to opening dn and slip magnitude ds (>= 0); updates the
+/// tractions sn, ss (ss acts against the slip), the history and the work integrals.
+inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+  const Real w_ft = p.ft / p.kn;
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
   if (s.status == JointStatus::Broken) {
@@ -148,8 +168,7 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
     }
     ss = (s.ks_secant < 0 ? p.ks : s.ks_secant) * ds;
     // Mixed-mode failure (eq. 6); mode I only: b = 0.
-    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI, b = mode_i ? 0.0 : s.damage;
-    if (a * a + b * b >= 1.0) {
+    if (eq6_broken(p, s.dn_max, mode_i ? 0.0 : s.damage)) {
       s.status = JointStatus::Broken;
       s.ds_plastic = ds;
       sn = dn < 0 ? p.kn * dn : 0.0;
@@ -159,9 +178,7 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
       s.status = JointStatus::Softening;
     }
   }
-  s.work_n += 0.5 * (s.sn + sn) * (dn - s.dn);
-  s.work_s += 0.5 * (s.ss + ss) * (ds - s.ds);
-  s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
+  s.advance(dn, ds, sn, ss);
 }
 
 /// Fails a point that has not reached eq. 6 itself, because its joint failed elsewhere: it

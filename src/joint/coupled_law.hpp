@@ -103,9 +103,7 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
       if (s.damage > 0) s.status = JointStatus::Softening;
     }
   }
-  s.work_n += 0.5 * (s.sn + sn) * (dn - s.dn);
-  s.work_s += 0.5 * (s.ss + ss) * (ds - s.ds);
-  s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
+  s.advance(dn, ds, sn, ss);
 }
 
 }  // namespace dspdem::joint

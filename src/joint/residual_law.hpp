@@ -16,18 +16,23 @@
 //   shear  : elastic-plastic along the slip magnitude, s_s = k_s (ds - p), |s_s| <= cap,
 //            cap = f_mu + coh (1 - D), f_mu = <-s_n> tan(phi), coh = f_s(s_n) - f_mu
 //            (c in compression, eq. 5's c - s_n tan(phi) in tension: the part that softens);
-//            D grows with the plastic slip p, dD = |dp| / w_GII, w_GII = 2 G_fII / coh, so
-//            the cohesion's triangle above the friction line holds exactly G_fII whatever
-//            s_n does meanwhile; at D = 1 the face slides on friction alone.
+//            D grows with the plastic slip p of sliding on the cap, dD = |dp| / w_GII,
+//            w_GII = 2 G_fII / coh, so the cohesion's triangle above the friction line holds
+//            exactly G_fII whatever s_n does meanwhile; at D = 1 the face slides on friction
+//            alone. A cap that falls below the traction (compression released) drops it at
+//            the same slip, dissipated but no damage (no slip has happened).
 //   break  : eq. 6 with b = D; then the residual friction of a broken point (cohesive_law.hpp),
 //            which starts from the traction the face had, capped at f_mu: no drop to zero.
 //
 // At constant s_n and growing slip this is eq. 4's curve with its softening line ending on
 // the friction, as Fig. 2(b) draws it (the softening measured in plastic slip: its end lies
-// (f_s - f_mu) / k_s short of the printed w_fs + w_GII, a fraction f_s^2 / (2 k_s G_fII) of
-// w_GII, 2 % at the sphere's strength). The mode-II dissipation (dissipated_II) then holds
+// (f_s - f_mu) / k_s short of the printed w_fs + w_GII, a fraction c^2 / (2 k_s G_fII) of
+// w_GII in compression, 2 % for the sphere's joints). The mode-II dissipation (dissipated_II) then holds
 // G_fII and the friction's work while the face slides. Like the residual friction, the law
 // acts on the slip's magnitude: a slip that turns without growing is not resisted.
+// Where it differs from the printed law: once a face passes its shear strength (it unloads
+// elastically from the cap, not along the secant to the origin, and keeps its friction in
+// compression), and where a compressed face breaks (it keeps its friction, not zero).
 #pragma once
 #include "joint/cohesive_law.hpp"
 
@@ -55,69 +60,59 @@ inline void residual_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
     } else {
       slid = true;  // past the strength (perhaps by rounding alone): softening from now on
       // As residual_friction: first the traction above a cap that fell (compression
-      // released) drops at the old slip, its energy dissipated; then the slip's increment
-      // goes elastic and slides on the cap, the cohesion softening along the plastic slip
-      // dp (softening modulus h): k_s (|trial| - dp) = cap - h dp. Past D = 1 the rest
-      // slides on friction alone, as it does at once where k_s <= h. The dissipation is
-      // booked exactly, path by path (diss_II_at_break, until the break).
+      // released) drops at the old slip, its energy dissipated but no damage done (no slip
+      // has happened: session 54's rule for the paper's law); then the slip's increment goes
+      // elastic and slides on the cap. The dissipation is booked exactly, path by path
+      // (diss_II_at_break, until the break).
       Real e = s.ss;
-      if (std::abs(e) > cap) {
-        s.diss_II_at_break += (e * e - cap * cap) / (2.0 * p.ks);
-        e = e > 0 ? cap : -cap;
-      }
-      const Real trial = e + p.ks * (ds - s.ds), t = std::abs(trial);
+      s.diss_II_at_break += drop_to_cap(e, cap, p.ks);
+      const Real trial = e + p.ks * (ds - s.ds), t = std::abs(trial), sign = trial > 0 ? 1.0 : -1.0;
+      const Real dp_soft = p.ks > h ? (t - cap) / (p.ks - h) : INFINITY;
       if (t <= cap) {
         ss = trial;
+      } else if (D + dp_soft / w_GII < 1.0) {
+        // Slides by dp with the cohesion softening along it (modulus h in plastic slip):
+        // k_s (t - dp) = cap - h dp; dissipated, the cap's mean along dp times dp.
+        s.diss_II_at_break += (cap - 0.5 * h * dp_soft) * dp_soft;
+        s.damage = D + dp_soft / w_GII;
+        ss = sign * (t - p.ks * dp_soft);
       } else {
-        Real dp = p.ks > h ? (t - cap) / (p.ks - h) : INFINITY;
-        if (D + dp / w_GII < 1.0) {
-          s.diss_II_at_break += (cap - 0.5 * h * dp) * dp;  // the mean of the cap along dp
-        } else {
-          dp = (t - mu) / p.ks;
-          const Real dp1 = (1.0 - std::min<Real>(D, 1.0)) * w_GII;  // softening to the friction
-          s.diss_II_at_break += dp1 <= dp ? 0.5 * (cap + mu) * dp1 + mu * (dp - dp1) : 0.5 * (t + mu) * dp;
-        }
-        s.damage = D + dp / w_GII;
-        ss = trial > 0 ? t - p.ks * dp : p.ks * dp - t;
+        // The cohesion is spent within the step: it softens to the friction over dp1, and the
+        // rest of the slip slides on the friction alone. Where k_s <= h (a softening steeper
+        // than the penalty) it goes at once, the traction above the friction released.
+        const Real dp = (t - mu) / p.ks, dp1 = (1.0 - std::min<Real>(D, 1.0)) * w_GII;
+        s.diss_II_at_break += p.ks > h ? 0.5 * (cap + mu) * dp1 + mu * (dp - dp1) : (t * t - mu * mu) / (2.0 * p.ks);
+        s.damage = p.ks > h ? D + dp / w_GII : std::max<Real>(1.0, D + dp / w_GII);  // >= 1: broken
+        ss = sign * (t - p.ks * dp);                                                 // the friction mu
       }
       s.ds_plastic = ds - ss / p.ks;
     }
   }
   if (s.status != JointStatus::Broken) {
-    const Real w_ft = p.ft / p.kn, w_GI = 2.0 * p.GfI / p.ft;
-    const Real a = std::max<Real>(0.0, s.dn_max - w_ft) / w_GI, b = s.damage;
-    if (a * a + b * b >= 1.0) {
-      // Broken (eq. 6): no tension, no cohesion; the friction keeps what it can carry, and
-      // the rest of the shear traction is released at this slip (dissipated).
+    if (eq6_broken(p, s.dn_max, s.damage)) {
+      // Broken: no tension, no cohesion; the friction keeps what it can carry, and the rest
+      // of the shear traction is released at this slip (dissipated).
       s.status = JointStatus::Broken;
       sn = dn < 0 ? p.kn * dn : 0.0;
-      const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
-      const Real kept = std::clamp(ss, -cap, cap);
-      s.diss_II_at_break += (ss * ss - kept * kept) / (2.0 * p.ks);
-      ss = kept;
+      s.diss_II_at_break += drop_to_cap(ss, p.tan_phi * std::max<Real>(0.0, -sn), p.ks);
       s.ds_plastic = ds - ss / p.ks;
-    } else if (s.dn_max > w_ft || s.damage > 0 || slid) {
+    } else if (s.dn_max > p.ft / p.kn || s.damage > 0 || slid) {
       s.status = JointStatus::Softening;
     }
   }
-  // The work of the tractions, as the other laws book it (the ledger's dissipation of this
-  // law is booked exactly above: CohesiveState::dissipated_II).
-  s.work_n += 0.5 * (s.sn + sn) * (dn - s.dn);
-  s.work_s += 0.5 * (s.ss + ss) * (ds - s.ds);
-  s.dn = dn, s.ds = ds, s.sn = sn, s.ss = ss;
+  // The work of the tractions, as the other laws book it; this law's dissipation is booked
+  // exactly above (CohesiveState::dissipated_II).
+  s.advance(dn, ds, sn, ss);
 }
 
 /// Fails a point of paper_residual that has not reached eq. 6 itself, because its joint
 /// failed elsewhere: no tension and no cohesion from now on; its shear keeps what the
 /// residual friction can carry at its normal traction (none if it is open), the rest is
-/// released (dissipated).
+/// released (dissipated). (The paper's law drops the shear to zero: force_break.)
 inline void residual_force_break(const CohesiveParams& p, CohesiveState& s) {
   if (s.status == JointStatus::Broken) return;
   s.status = JointStatus::Broken;
-  const Real cap = s.dn < 0 ? p.tan_phi * std::max<Real>(0.0, -s.sn) : 0.0;
-  const Real kept = std::clamp(s.ss, -cap, cap);
-  s.diss_II_at_break += (s.ss * s.ss - kept * kept) / (2.0 * p.ks);
-  s.ss = kept;
+  s.diss_II_at_break += drop_to_cap(s.ss, s.dn < 0 ? p.tan_phi * std::max<Real>(0.0, -s.sn) : 0.0, p.ks);
   s.ds_plastic = s.ds - s.ss / p.ks;
 }
 

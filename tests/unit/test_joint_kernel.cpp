@@ -44,14 +44,17 @@ bool same_state(const joint::CohesiveState& a, const joint::CohesiveState& b, Re
          close_work(a.work_s, b.work_s, work_floor) && close_work(a.diss_II_at_break, b.diss_II_at_break, work_floor);
 }
 
-enum class Law { Paper, Coupled, ModeI };
+enum class Law { Paper, Coupled, ModeI, Residual };
 
 void compare_kernels(CellType type, joint::Quadrature rule, int threads, Law law = Law::Paper) {
   CaseConfig c = simple_case(30e9, 0.2, 2400);
   // Mode I fails in opening only: 3 % of the fracture energy (w_GI 2 um), so that the
   // loading below breaks joints under it too.
-  make_fracturable(c, 3e6, law == Law::ModeI ? 3 : 100, 10e6, 30, 1000);
-  for (auto& jm : c.joint_materials) jm.coupled = law == Law::Coupled, jm.mode_i = law == Law::ModeI;
+  // paper_residual breaks once the cohesion is spent along the plastic slip, 2 G_fII / c:
+  // G_fII 3 N/m (0.6 um) for the same reason.
+  make_fracturable(c, 3e6, law == Law::ModeI ? 3 : 100, 10e6, 30, law == Law::Residual ? 3 : 1000);
+  for (auto& jm : c.joint_materials)
+    jm.coupled = law == Law::Coupled, jm.mode_i = law == Law::ModeI, jm.residual = law == Law::Residual;
   const int n = type == CellType::Tet4 ? 8 : 14;
   const Model m = build_model(c, box_mesh(type, n, n, n, Vec3(0.1, 0.1, 0.1), 0.2));
   ASSERT_GT(m.joints.size(), 4000);
@@ -118,6 +121,11 @@ TEST(JointKernel, TetGaussMatchesTheSerialOracleOnTwoThreads) {
 }
 TEST(JointKernel, TetNodalMatchesTheSerialOracleOnTwoThreads) {
   compare_kernels(CellType::Tet4, joint::Quadrature::Nodal, 2);
+}
+// The text's shear softening (paper_residual): the paper's elastic gate, its own law and its
+// own forced break (a failed face keeps its friction).
+TEST(JointKernel, TetGaussPaperResidualMatchesTheSerialOracleOnTwoThreads) {
+  compare_kernels(CellType::Tet4, joint::Quadrature::Gauss, 2, Law::Residual);
 }
 // The disc's combination: nodal points (the kernel's own branch, which skips the zero shape
 // values) under the coupled law (its own elastic gate in lean_update).
