@@ -5,6 +5,7 @@
 
 #include "joint/cohesive_law.hpp"
 #include "joint/joint_law.hpp"
+#include "support/joint_walk.hpp"
 
 using namespace dspdem;
 using namespace dspdem::joint;
@@ -135,26 +136,10 @@ TEST(CohesiveLaw, NoPathCreatesEnergy) {
   // 1e-6 of the fracture energies).
   const CohesiveParams p = disc_params();
   const Real w_ft = p.ft / p.kn, w_fs = p.c / p.ks;
-  std::uint64_t r = 12345;
-  auto uni = [&r]() {
-    r = r * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<Real>(r >> 11) * 0x1.0p-53;
-  };
-  for (int path = 0; path < 50; ++path) {
-    CohesiveState s;
-    Real dI = 0, dII = 0;
-    Real dn = 0, ds = 0;
-    for (int i = 0; i < 20000; ++i) {
-      dn = std::clamp(dn + (uni() - 0.5) * 0.2 * w_ft, -60 * w_ft, 3 * w_ft);
-      ds = std::clamp(ds + (uni() - 0.45) * 0.2 * w_fs, 0.0, 200 * w_fs);
-      cohesive_update(p, dn, ds, s);
-      const Real nI = s.dissipated_I(p), nII = s.dissipated_II(p);
-      const Real tol = 1e-6 * (p.GfI + p.GfII);
-      ASSERT_GE(nI, dI - tol) << "path " << path << " step " << i;
-      ASSERT_GE(nII, dII - tol) << "path " << path << " step " << i;
-      dI = std::max(dI, nI), dII = std::max(dII, nII);
-    }
-  }
+  testsupport::JointWalk walk{12345, 0.2 * w_ft, 0.2 * w_fs, -60 * w_ft, 3 * w_ft, 200 * w_fs};
+  const testsupport::WalkVerdict v =
+      testsupport::walk_energy(p, walk, 50, 20000, 1e-6 * (p.GfI + p.GfII), cohesive_update);
+  EXPECT_LT(v.path, 0) << "energy created on path " << v.path << " at step " << v.step;
 }
 
 TEST(CohesiveLaw, ResidualFrictionResistsReversal) {

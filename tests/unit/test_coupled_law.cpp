@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "joint/coupled_law.hpp"
+#include "support/joint_walk.hpp"
 
 using namespace dspdem;
 using namespace dspdem::joint;
@@ -167,18 +168,14 @@ TEST(CoupledLaw, NoPathCreatesEnergy) {
   // trapezoid rule's error at kinks, 1e-6 of the fracture energies), damage never heals.
   const CohesiveParams p = params();
   const Real w_ft = p.ft / p.kn, w_fs = p.c / p.ks;
-  std::uint64_t r = 987654321;
-  auto uni = [&r]() {
-    r = r * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<Real>(r >> 11) * 0x1.0p-53;
-  };
+  testsupport::JointWalk walk{987654321, 0.2 * w_ft, 0.2 * w_fs, -60 * w_ft, 40 * w_ft, 200 * w_fs};
   for (int path = 0; path < 50; ++path) {
     CohesiveState s;
-    Real dI = 0, dII = 0, dmg = 0, dn = 0, ds = 0;
+    Real dI = 0, dII = 0, dmg = 0;
+    walk.reset();
     for (int i = 0; i < 20000; ++i) {
-      dn = std::clamp(dn + (uni() - 0.5) * 0.2 * w_ft, -60 * w_ft, 40 * w_ft);
-      ds = std::clamp(ds + (uni() - 0.45) * 0.2 * w_fs, 0.0, 200 * w_fs);
-      coupled_update(p, dn, ds, s);
+      walk.step();
+      coupled_update(p, walk.dn, walk.ds, s);
       const Real nI = s.dissipated_I(p), nII = s.dissipated_II(p), tol = 1e-6 * (p.GfI + p.GfII);
       ASSERT_GE(nI, dI - tol) << "path " << path << " step " << i;
       ASSERT_GE(nII, dII - tol) << "path " << path << " step " << i;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "joint/joint_law.hpp"
+#include "support/joint_walk.hpp"
 
 using namespace dspdem;
 using namespace dspdem::joint;
@@ -109,29 +110,11 @@ TEST(ResidualLaw, NoPathCreatesEnergy) {
   // stored energy is never negative.
   const CohesiveParams p = sphere_params();
   const Real w_ft = p.ft / p.kn, w_fs = p.c / p.ks;
-  std::uint64_t r = 2026;
-  auto uni = [&r]() {
-    r = r * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<Real>(r >> 11) * 0x1.0p-53;
-  };
-  int broken = 0;
-  for (int path = 0; path < 50; ++path) {
-    CohesiveState s;
-    Real dI = 0, dII = 0, dn = 0, ds = 0;
-    for (int i = 0; i < 20000; ++i) {
-      dn = std::clamp(dn + (uni() - 0.5) * 0.2 * w_ft, -200 * w_ft, 3 * w_ft);
-      ds = std::clamp(ds + (uni() - 0.45) * 0.2 * w_fs, 0.0, 200 * w_fs);
-      residual_update(p, dn, ds, s);
-      const Real nI = s.dissipated_I(p), nII = s.dissipated_II(p);
-      const Real tol = 1e-6 * (p.GfI + p.GfII);
-      ASSERT_GE(nI, dI - tol) << "path " << path << " step " << i;
-      ASSERT_GE(nII, dII - tol) << "path " << path << " step " << i;
-      ASSERT_GE(s.elastic_energy(p), -tol) << "path " << path << " step " << i;
-      dI = std::max(dI, nI), dII = std::max(dII, nII);
-    }
-    broken += s.status == JointStatus::Broken;
-  }
-  EXPECT_GT(broken, 0);  // the walks do reach the break
+  testsupport::JointWalk walk{2026, 0.2 * w_ft, 0.2 * w_fs, -200 * w_ft, 3 * w_ft, 200 * w_fs};
+  const testsupport::WalkVerdict v =
+      testsupport::walk_energy(p, walk, 50, 20000, 1e-6 * (p.GfI + p.GfII), residual_update);
+  EXPECT_LT(v.path, 0) << "energy created on path " << v.path << " at step " << v.step;
+  EXPECT_GT(v.broken, 0);  // the walks do reach the break
 }
 
 TEST(ResidualLaw, AFaceBrokenElsewhereKeepsItsFrictionInCompressionAndNothingOpen) {
@@ -174,20 +157,15 @@ TEST(ResidualLaw, TheExactBookingConvergesToTheWorkAsTheStepsShrink) {
   const CohesiveParams p = sphere_params();
   const Real w_ft = p.ft / p.kn, w_fs = p.c / p.ks;
   auto worst = [&](Real scale) {
-    std::uint64_t r = 7;
-    auto uni = [&r]() {
-      r = r * 6364136223846793005ull + 1442695040888963407ull;
-      return static_cast<Real>(r >> 11) * 0x1.0p-53;
-    };
+    testsupport::JointWalk walk{7, scale * w_ft, scale * w_fs, -200 * w_ft, 3 * w_ft, 200 * w_fs};
     Real w = 0;
     for (int path = 0; path < 20; ++path) {
       CohesiveState s;
-      Real dn = 0, ds = 0;
+      walk.reset();
       const int n = static_cast<int>(4000 / scale);  // the same length of walk at every step
       for (int i = 0; i < n; ++i) {
-        dn = std::clamp(dn + (uni() - 0.5) * scale * w_ft, -200 * w_ft, 3 * w_ft);
-        ds = std::clamp(ds + (uni() - 0.45) * scale * w_fs, 0.0, 200 * w_fs);
-        residual_update(p, dn, ds, s);
+        walk.step();
+        residual_update(p, walk.dn, walk.ds, s);
       }
       w = std::max(w, std::abs((0.5 * s.ss * s.ss / p.ks + s.dissipated_II(p)) / s.work_s - 1));
     }
