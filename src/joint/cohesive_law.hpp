@@ -102,10 +102,6 @@ inline Real shear_strength(const CohesiveParams& p, Real sn) {
   return std::max<Real>(p.c - std::min(sn, p.ft) * p.tan_phi, 1e-12 * std::max<Real>(p.c, 1.0));
 }
 
-/// Shear traction of a broken point: residual Coulomb friction, elastic-plastic along the
-/// slip, |s_s| <= -s_n tan(phi), with the sign allowed to reverse so that sliding back is
-/// resisted too. Dissipation, exactly: first the cap changes at fixed slip (a drop releases
-/// (s^2 - cap^2) / 2 k_s), then the slip increment slides at the cap (cap x plastic slip).
 /// Drops a shear traction e above the cap to +-cap at a fixed slip; returns the energy per
 /// unit area that the drop releases (dissipated), (e^2 - cap^2) / 2 k_s, or 0.
 inline Real drop_to_cap(Real& e, Real cap, Real ks) {
@@ -115,6 +111,10 @@ inline Real drop_to_cap(Real& e, Real cap, Real ks) {
   return released;
 }
 
+/// Shear traction of a broken point: residual Coulomb friction, elastic-plastic along the
+/// slip, |s_s| <= -s_n tan(phi), with the sign allowed to reverse so that sliding back is
+/// resisted too. Dissipation, exactly: first the cap changes at fixed slip (a drop releases
+/// (s^2 - cap^2) / 2 k_s), then the slip increment slides at the cap (cap x plastic slip).
 inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, CohesiveState& s) {
   const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
   Real e = s.ss;
