@@ -20,10 +20,10 @@ CohesiveParams sphere_params() {
   return p;
 }
 
-// Monotonic slip to `to` at a fixed normal traction sigma, in n steps.
+// Monotonic slip to `to` at a fixed normal traction sigma, in n steps, under p's law.
 CohesiveState slide(const CohesiveParams& p, Real sigma, Real to, int n) {
   CohesiveState s;
-  for (int i = 1; i <= n; ++i) residual_update(p, sigma / p.kn, to * i / n, s);
+  for (int i = 1; i <= n; ++i) joint_law_update(p, sigma / p.kn, to * i / n, s);
   return s;
 }
 }  // namespace
@@ -77,8 +77,7 @@ TEST(ResidualLaw, WithoutCompressionItIsThePrintedLawsShearSoftening) {
   EXPECT_NEAR(s.dissipated_II(p) / p.GfII, 1.0, 1e-3);
   CohesiveParams printed = p;
   printed.law = JointLaw::Paper;
-  CohesiveState q;
-  for (int i = 1; i <= 40000; ++i) cohesive_update(printed, 0.0, 1.2 * (w_fs + w_GII) * i / 40000, q);
+  const CohesiveState q = slide(printed, 0.0, 1.2 * (w_fs + w_GII), 40000);
   ASSERT_EQ(q.status, JointStatus::Broken);
   EXPECT_NEAR(q.dissipated_II(printed) / s.dissipated_II(p), 1 + p.c * p.c / (2 * p.ks * p.GfII), 1e-3);
 }
