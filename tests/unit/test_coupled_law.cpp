@@ -3,7 +3,8 @@
 // and a penalty k = 10 E / h (E = 25.8 GPa, h = 7.6 mm).
 #include <gtest/gtest.h>
 
-#include <cstdint>
+#include <algorithm>
+#include <cmath>
 
 #include "joint/coupled_law.hpp"
 #include "support/joint_walk.hpp"
