@@ -120,6 +120,7 @@ struct CaseConfig {
   RenderConfig render;
   // checks
   Real energy_blowup_factor = 10;
+  Real energy_balance_warn = 0.01;     ///< [checks]: time/balance_watch.hpp
   std::string resolved_toml;           ///< the case with every default filled in
   std::vector<std::string> overrides;  ///< the "section.key=value" strings it was read with
 };

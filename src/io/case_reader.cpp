@@ -749,6 +749,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
   {
     Section s(ctx, sub_table(ctx, root, "checks"), "checks", "[checks]");
     c.energy_blowup_factor = s.real("energy_blowup_factor");
+    c.energy_balance_warn = s.real("energy_balance_warn");
     c.contact.settings.overlap_limit = s.real("contact_overlap_limit");
     s.finish();
   }

@@ -31,6 +31,7 @@
 #endif
 #include "run/case_mesh.hpp"
 #include "run/checkpoint.hpp"
+#include "time/balance_watch.hpp"
 #include "time/extrinsic.hpp"
 #include "time/integrator.hpp"
 #include "time/stop_rule.hpp"
@@ -344,6 +345,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   joint::Fragments frag;
   if (!distributed) frag = joint::find_fragments(model.mesh, model.joints, elem_mass);
   PeakDropStop stop_rule(c.stop_fraction, c.stop_min_peak);
+  BalanceWatch balance_watch(c.energy_balance_warn);
   LoopState ls;
   ls.next_frame = c.frame_interval, ls.next_series = c.series_interval, ls.next_checkpoint = opt.checkpoint_every;
   ls.n_steps = last_step(0, 0.0, dt);
@@ -548,7 +550,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       bool last = s + 1 == ls.n_steps;
       const Real t = it.time();
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {
-        it.check_energy(c.energy_blowup_factor);
+        const Energy e = it.check_energy(c.energy_blowup_factor);
+        if (auto w = balance_watch.update(e, it.steps(), t); w && my_rank == 0) log::warn("{}", *w);
         if (stop_value && ls.stop_at < 0 && stop_rule.update(stop_value())) {
           ls.stop_at = t + c.stop_delay;
           ls.stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",

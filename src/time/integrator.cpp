@@ -523,7 +523,7 @@ Energy Integrator::energy() const {
   return e;
 }
 
-void Integrator::check_energy(Real factor) const {
+Energy Integrator::check_energy(Real factor) const {
   const Energy e = energy();
   const Real budget =
       e.initial + std::abs(e.external_work) + e.damping + e.fracture_I + e.fracture_II + e.friction + e.contact_damping;
@@ -542,6 +542,7 @@ void Integrator::check_energy(Real factor) const {
                     n_, t_, held, e.contact_elastic, factor, budget, element_tag(worst)),
         n_, t_);
   }
+  return e;
 }
 
 Real Integrator::monitor(const MonitorSet& ms) const {

@@ -74,8 +74,9 @@ class Integrator {
   /// the flag itself.
   void watch_flag(const volatile std::sig_atomic_t* flag) { flag_ = flag; }
   bool flag_anywhere() const { return flag_anywhere_; }
-  /// Throws NumericalError when KE + IE exceeds factor x (E0 + |W_ext| + D) + floor.
-  void check_energy(Real factor) const;
+  /// Throws NumericalError when KE + IE exceeds factor x (E0 + |W_ext| + D) + floor;
+  /// else returns the energies it summed (a collective sum in a distributed run).
+  Energy check_energy(Real factor) const;
   /// Value of a monitor at the current state.
   Real monitor(const MonitorSet& ms) const;
   /// Cauchy stress of every element at the current state (6 per element).

@@ -242,6 +242,22 @@ TEST_F(Cli, NumericalFailureNamesStepAndElementAndKeepsEarlierResults) {
   EXPECT_TRUE(fs::exists(out / "failed_run/frames/frame_0000.vtu"));
 }
 
+TEST_F(Cli, AnOpenEnergyLedgerIsWarnedOnceWithItsStepAndTheRunGoesOn) {
+  // The good case's ledger closes to rounding: silent at the default limit (1 %); at a limit
+  // below its rounding the one warning comes, naming step and time, and the run completes.
+  const fs::path c = write("good.toml", good_);
+  const Result quiet = run("-q run " + c.string() + " --out " + (dir_ / "a").string());
+  ASSERT_EQ(quiet.code, 0) << quiet.out;
+  EXPECT_EQ(quiet.out.find("energy balance off"), std::string::npos) << quiet.out;
+  const Result r =
+      run("-q run " + c.string() + " --out " + (dir_ / "b").string() + " --set checks.energy_balance_warn=1e-300");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("energy balance off by .* at step [0-9]+, t = "))) << r.out;
+  const std::regex once("energy balance off");
+  EXPECT_EQ(std::distance(std::sregex_iterator(r.out.begin(), r.out.end(), once), std::sregex_iterator()), 1) << r.out;
+  EXPECT_NE(slurp(dir_ / "b" / "summary.json").find("\"status\": \"completed\""), std::string::npos);
+}
+
 TEST_F(Cli, ProgressLineOnRequest) {
   const Result r =
       run("run " + write("good.toml", good_).string() + " --out " + (dir_ / "out").string() + " --progress");
