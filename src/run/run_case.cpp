@@ -551,7 +551,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       const Real t = it.time();
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {
         const Energy e = it.check_energy(c.energy_blowup_factor);
-        if (auto w = balance_watch.update(e, it.steps(), t); w && my_rank == 0) log::warn("{}", *w);
+        if (auto w = balance_watch.update(e, it.steps(), t)) log::warn("{}", *w);
         if (stop_value && ls.stop_at < 0 && stop_rule.update(stop_value())) {
           ls.stop_at = t + c.stop_delay;
           ls.stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",

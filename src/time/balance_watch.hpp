@@ -1,9 +1,10 @@
 // The energy ledger's closing error watched over a run ([checks] energy_balance_warn). The
-// blow-up check stops a run only when the energy held grows past ten times its budget; a
+// blow-up check stops a run only when the energy held grows past energy_blowup_factor (10)
+// times its budget; a
 // ledger that opens slowly (a contact creating a few per cent of the impact energy, a step
 // too large for a stiff spring) runs to the end and shows only as a number in series.csv.
-// A batch user reads the log: the first time the error passes the limit, one warning names
-// the step, the time and the terms then. A warning, not a stop: studies of the step or the
+// A batch user reads the log: at the first series row whose error passes the limit, one
+// warning names the step, the time and the terms then. A warning, not a stop: studies of the step or the
 // penalty run on purpose where the ledger opens. Not kept in checkpoints: a restarted run
 // warns again if its ledger is still open.
 #pragma once
