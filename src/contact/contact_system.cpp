@@ -480,7 +480,8 @@ bool ContactSystem::evaluate(Index p, Index ea, Index eb, const Wall* wall, cons
   const Vec3 vn_rel = velocity_w(ea, o.Wa) - (wall ? wall->velocity_at(t.pb) : velocity_w(eb, o.Wb));
   Vec3 vrel = va - vb;
   vrel += (vn_rel - vrel).dot(t.n) * t.n;
-  o.hist = {static_cast<int>(t.kind), t.fa, t.fb, history_.find(p, static_cast<int>(t.kind), t.fa, t.fb)};
+  o.hist.kind = static_cast<int>(t.kind), o.hist.fa = t.fa, o.hist.fb = t.fb, o.hist.share = t.share;
+  o.hist.xi = history_.carry(p, o.hist.kind, t.fa, t.fb, t.share);
   const LawParams law = pair_params(ea, wall ? -1 : eb, wall);
   LawResult r = contact_law(law, overlap, t.n, vrel, dt, o.hist.xi);
   // A faded touch's stored energy is weight x E: the weight's gradient is a force too (a

@@ -321,7 +321,10 @@ bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, V
 // as the cluster weights' own gradients are not in the force either. That is the case of a
 // crossing within band of the vertex whose pair it takes over (turned there through the
 // blend, that pair does work of up to ln 2 of its energy, by a review's estimate; not
-// measured).
+// measured). The share 1 / max(1, S_i) is kept apart (Touch::share): a change of it changes
+// a loaded tangential spring's energy with no force to pay for it, so the spring's history
+// is carried across such changes at constant energy (PairHistory::carry). The normal
+// spring's energy still follows the share (its overlap is geometry, not history).
 void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
   auto phi = [](Real s2) { return s2 < 1 ? (1 - s2) * (1 - s2) : 0.0; };
   const Real inv_l2 = 1.0 / (l * l);
@@ -331,6 +334,7 @@ void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
     for (std::size_t j = first; j < out.size(); ++j)
       sum += out[j].fade * phi(0.25 * (out[j].pa + out[j].pb - xi).squaredNorm() * inv_l2);
     const Real norm = std::max<Real>(1, sum);
+    out[i].share = 1 / norm;
     out[i].weight = out[i].fade / norm;
     for (int m = 0; m < out[i].n_fades; ++m) out[i].fades[m].dw_ds /= norm;
   }

@@ -42,7 +42,8 @@ struct Touch {
   int fa, fb;  ///< feature index on A and on B (vertex, edge or triangle, by kind)
   Vec3 pa, pb, n;
   Real d;
-  Real weight = 1;  ///< share of a cluster of coincident contacts (see find_touches)
+  Real weight = 1;  ///< share of a cluster of coincident contacts times fade (see weigh in narrow_phase.cpp)
+  Real share = 1;   ///< that share alone, 1 / max(1, S): the tangential history is carried by it (PairHistory::carry)
   /// pa and pb as combinations of skeleton vertices (up to 3, unused weights 0): the
   /// normal force is spread with these, which makes it the exact gradient of the overlap
   /// energy (the rotation of a face or edge included, by the envelope theorem).

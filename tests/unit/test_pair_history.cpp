@@ -1,8 +1,11 @@
 // The flat contact history (contact/pair_history): a rebuild of the candidate list keeps the
 // tangential springs of the pairs that stay candidates, under their new index, and only
 // theirs; lookups find a feature pair's elongation or zero; the spring energy of touches
-// that end (or whose pair is dropped) is counted once, and only theirs.
+// that end (or whose pair is dropped) is counted once, and only theirs; a spring is carried
+// to a new cluster share at constant energy.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "contact/pair_history.hpp"
 #include "core/error.hpp"
@@ -28,6 +31,23 @@ TEST(PairHistory, FindsAFeaturePairsElongationOrZero) {
   EXPECT_EQ(h.find(0, 4, 2, 1), Vec3::Zero());  // the same features the other way round: another contact
   EXPECT_EQ(h.find(1, 4, 1, 2), Vec3::Zero());
   EXPECT_EQ(h.find(2, 0, 3, 3), Vec3(0, 0, 3));
+}
+
+TEST(PairHistory, ASpringIsCarriedToItsNewClusterShareAtConstantEnergy) {
+  // Stored at share 0.5, looked up at share 0.25 and at 1: scaled by sqrt(0.5 / share), so
+  // share x |xi|^2 (the spring's energy over fade x kt / 2) stays 0.5 x 4 = 2 (round-off);
+  // at its own share it is the stored value bit for bit; a missing touch is zero at any share.
+  PairHistory h = two_pairs();
+  h.entry[1].share = 0.5;
+  EXPECT_EQ(h.carry(0, 3, 0, 5, 0.5), Vec3(0, 2, 0));
+  for (const Real share : {0.25, 1.0}) {
+    const Vec3 xi = h.carry(0, 3, 0, 5, share);
+    EXPECT_NEAR(share * xi.squaredNorm(), 2.0, 1e-14) << share;
+    EXPECT_EQ(xi(0), 0.0);
+    EXPECT_EQ(xi(2), 0.0);
+  }
+  EXPECT_EQ(h.carry(0, 4, 1, 2, 0.3), Vec3(1, 0, 0) * std::sqrt(1 / 0.3));  // stored at the default share 1
+  EXPECT_EQ(h.carry(1, 4, 1, 2, 0.3), Vec3::Zero());
 }
 
 TEST(PairHistory, ARebuildCarriesTheSurvivingPairsToTheirNewIndex) {

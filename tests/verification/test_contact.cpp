@@ -341,6 +341,62 @@ TEST(Contact, VertexSlidingWithFrictionOntoAnEdgeKeepsTheLedger) {
   EXPECT_NEAR((work + U - U0 + dissipated) / U_max, 0.0, 1e-3);
 }
 
+TEST(Contact, CornersSlidingApartWithFrictionKeepTheLedger) {
+  // A 0.1 m cube (one hex8) rests face on face on another, its skeleton 0.8 R above, corners
+  // over corners, and slides along (1, 0.5, 0) at 1 m/s in x (1e-6 m per step of 1e-6 s) by
+  // 1.5 R in x. At each aligned corner several feature pairs see one contact and share it by
+  // weight (weigh in narrow_phase.cpp); as the corners part the shares move while the
+  // tangential springs are loaded to mu fn / kt. A share is not a force: a loaded spring's
+  // energy must not follow it. The ledger (work of the contact forces on the top cube plus
+  // the change of stored energy plus the dissipation) is zero to 1e-3 of the largest stored
+  // energy. What is left is the normal springs' energy, which follows the shares (4.5e-4
+  // here without friction; not carried, narrow_phase.cpp). Measured 3.5e-4; with the
+  // springs' history not carried at constant energy (before PairHistory::carry) 5.3e-3: the
+  // cluster shares' leak of the sphere impact at friction 2.0
+  // (src/scenes/sphere_impact/REFERENCE.md). (Along x alone the edges stay in line and the
+  // leak is 1.1e-3 against 2.0e-4.)
+  Mesh mesh;
+  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "under", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
+  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "over", Vec3(0.05, 0.05, 0.05), Vec3(0, 0, 0.2));
+  Model m = build_model(contact_case(0.5), mesh);
+  const Index e_under = 0, e_over = 1;
+  const Real R = m.contact.radius(e_under) + m.contact.radius(e_over);
+  const contact::Poly su = m.contact.skeleton_poly(e_under, m.fem.x0.data());
+  const contact::Poly so = m.contact.skeleton_poly(e_over, m.fem.x0.data());
+  Real top = -INFINITY, bottom = INFINITY;
+  for (int k = 0; k < 8; ++k) top = std::max(top, su.v[k](2)), bottom = std::min(bottom, so.v[k](2));
+  const Group* g = m.mesh.find_group("over");
+  std::vector<Real> x0 = m.fem.x0;
+  for (Index n : g->nodes) x0[3 * n + 2] -= bottom - (top + 0.8 * R);
+  const Real ds = 1e-6, dt = 1e-6, dy = 0.5;  // dy: the slide's y per x
+  std::vector<Real> x = x0, v(x.size(), 0.0), f;
+  for (Index n : g->nodes) v[3 * n] = ds / dt, v[3 * n + 1] = dy * ds / dt;
+  auto forces = [&] {
+    f.assign(x.size(), 0.0);
+    m.contact.add_forces(m.mesh, m.joints, x.data(), v.data(), dt, f.data());
+    Real F = 0;
+    for (Index n : g->nodes) F += f[3 * n] + dy * f[3 * n + 1];
+    return F;
+  };
+  Real F_prev = forces();
+  const Real U0 = m.contact.totals().elastic, D0 = m.contact.totals().friction;
+  Real work = 0, U_max = U0;
+  const int steps = static_cast<int>(1.5 * R / ds);
+  for (int i = 1; i <= steps; ++i) {
+    for (Index n : g->nodes) x[3 * n] = x0[3 * n] + i * ds, x[3 * n + 1] = x0[3 * n + 1] + dy * i * ds;
+    const Real F = forces();
+    work += 0.5 * (F + F_prev) * ds;
+    U_max = std::max(U_max, m.contact.totals().elastic);
+    F_prev = F;
+  }
+  const Real U = m.contact.totals().elastic, dissipated = m.contact.totals().friction - D0;
+  RecordProperty("dissipated_over_max_energy", sci(dissipated / U_max));
+  RecordProperty("ledger_error", sci((work + U - U0 + dissipated) / U_max));
+  EXPECT_GT(U0, 0);
+  EXPECT_GT(dissipated, U_max);  // it slid: friction did work
+  EXPECT_NEAR((work + U - U0 + dissipated) / U_max, 0.0, 1e-3);
+}
+
 namespace {
 // Two cubes turned 45 deg about x meet ridge on ridge: a 0.1 m cube's top edge under a
 // 0.05 m cube's bottom edge, crossed at their middles with the skeletons 0.5 R apart. The
