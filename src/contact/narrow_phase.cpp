@@ -316,15 +316,17 @@ bool edge_edge(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, V
 // faded edge-edge pair on the vertex-edge pair it replaces shares one contact with it
 // (weights w and 1 - w, or 1 / (1 + w) and w / (1 + w) before the vertex pair fades), and
 // touches without fades get 1 / sum phi as before. Where S_i <= 1 the weight is the fade
-// and its gradient (the couple) is exact. Where S_i > 1 the couple is not: it takes
-// dw_i / df_i as 1 / S_i (it is (S_i - f_i) / S_i^2) and misses the neighbours' fades in S_i,
-// as the cluster weights' own gradients are not in the force either. That is the case of a
-// crossing within band of the vertex whose pair it takes over (turned there through the
-// blend, that pair does work of up to ln 2 of its energy, by a review's estimate; not
-// measured). The share 1 / max(1, S_i) is kept apart (Touch::share): a change of it changes
-// a loaded tangential spring's energy with no force to pay for it, so the spring's history
-// is carried across such changes at constant energy (PairHistory::carry). The normal
-// spring's energy still follows the share (its overlap is geometry, not history).
+// and its gradient (the couple) is exact. The share 1 / max(1, S_i) is kept apart
+// (Touch::share): a change of it changes a loaded tangential spring's energy with no force to
+// pay for it, so the spring's history is carried across such changes at constant energy
+// (PairHistory::carry), and for the tangential springs the couple's dw_i / df_i = 1 / S_i is
+// then the whole change. For the normal springs, whose overlap is geometry, not history, the
+// share's change (the neighbours' fades in S_i, the touches' distances) has no force: where
+// S_i > 1 their couple takes dw_i / df_i as 1 / S_i (it is (S_i - f_i) / S_i^2). That is the
+// case of a crossing within band of the vertex whose pair it takes over (turned there through
+// the blend, that pair does work of up to ln 2 of its energy, by a review's estimate; not
+// measured), and of corners sliding apart (4.5e-4 of the stored energy in
+// tests/verification/test_contact.cpp).
 void weigh(std::vector<Touch>& out, std::size_t first, Real l) {
   auto phi = [](Real s2) { return s2 < 1 ? (1 - s2) * (1 - s2) : 0.0; };
   const Real inv_l2 = 1.0 / (l * l);

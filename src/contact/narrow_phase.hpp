@@ -52,8 +52,9 @@ struct Touch {
   /// The touch's share by the angle of an edge of A (skeleton vertices a0 -> a1, vector u)
   /// and one of B (b0 -> b1, v) in the blend band; `fade` multiplies `weight`. dw_ds is the
   /// derivative of `weight` with respect to s = sin^2 of their angle (through this touch's
-  /// own fade; the cluster's other fades are held fixed, see weigh): the force gets
-  /// -E dw_ds ds/dx on the four vertices, E the touch's unweighted stored energy.
+  /// own fade; the cluster's other fades are held fixed, see weigh, and the tangential
+  /// springs are carried at constant energy across the rest, PairHistory::carry): the force
+  /// gets -E dw_ds ds/dx on the four vertices, E the touch's unweighted stored energy.
   struct Fade {
     int a0, a1, b0, b1;
     Vec3 u, v;

@@ -52,8 +52,11 @@ struct PairHistory {
   /// with the positions with no force for their gradient: unscaled, a loaded spring's energy
   /// followed its share with no work done (+25 J, 8.5 % of the impact, in the sphere impact
   /// at friction 2.0: src/scenes/sphere_impact/REFERENCE.md). A spring scaled past its
-  /// Coulomb cap slides back at once, and the law books that as friction. The fade's part of
-  /// the weight is not scaled here: its gradient is in the force (Touch::Fade).
+  /// Coulomb cap slides back at once, and the law books that as friction. The force
+  /// share x kt xi changes by sqrt(share now / share before): a spring sliding at its cap
+  /// whose share rises falls below the cap until the motion loads it again (a model choice:
+  /// energy kept, not force). The fade's part of the weight is not scaled here: its gradient
+  /// is in the force (Touch::Fade).
   Vec3 carry(Index p, int kind, int fa, int fb, Real share) const {
     for (Index k = offset[p]; k < offset[p + 1]; ++k) {
       const HistoryEntry& h = entry[k];

@@ -54,11 +54,14 @@ TEST(PairHistory, ARebuildCarriesTheSurvivingPairsToTheirNewIndex) {
   const std::vector<PairKey> old_keys = {{1, 2}, {1, 7}, {10, 3}};  // (10, 3): element 3 against wall 0 of 10 elements
   const std::vector<PairKey> new_keys = {{0, 4}, {1, 2}, {2, 9}, {10, 3}, {11, 3}};
   Real released = 0.25;  // added to, not set
-  const PairHistory h = remap_history(two_pairs(), old_keys, new_keys, &released);
+  PairHistory before = two_pairs();
+  before.entry[1].share = 0.5;  // the share the spring was stored at goes with it
+  const PairHistory h = remap_history(before, old_keys, new_keys, &released);
   EXPECT_EQ(released, 0.25);  // the dropped pair (1, 7) held no touch
   ASSERT_EQ(h.pairs(), 5);
   EXPECT_EQ(h.offset, (std::vector<Index>{0, 0, 2, 2, 3, 3}));
   EXPECT_EQ(h.find(1, 3, 0, 5), Vec3(0, 2, 0));  // (1, 2) moved from index 0 to 1
+  EXPECT_EQ(h.carry(1, 3, 0, 5, 0.5), Vec3(0, 2, 0));
   EXPECT_EQ(h.find(3, 0, 3, 3), Vec3(0, 0, 3));  // the wall pair from 2 to 3
   EXPECT_EQ(h.find(4, 0, 3, 3), Vec3::Zero());   // the same element against another wall: new
   const std::vector<Real> v = remap_values({0.5, 0.25, 0.125}, old_keys, new_keys, -1.0);

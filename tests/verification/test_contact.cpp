@@ -380,6 +380,7 @@ TEST(Contact, CornersSlidingApartWithFrictionKeepTheLedger) {
   };
   Real F_prev = forces();
   const Real U0 = m.contact.totals().elastic, D0 = m.contact.totals().friction;
+  const Index touches0 = m.contact.totals().contacts;
   Real work = 0, U_max = U0;
   const int steps = static_cast<int>(1.5 * R / ds);
   for (int i = 1; i <= steps; ++i) {
@@ -392,7 +393,9 @@ TEST(Contact, CornersSlidingApartWithFrictionKeepTheLedger) {
   const Real U = m.contact.totals().elastic, dissipated = m.contact.totals().friction - D0;
   RecordProperty("dissipated_over_max_energy", sci(dissipated / U_max));
   RecordProperty("ledger_error", sci((work + U - U0 + dissipated) / U_max));
+  RecordProperty("touches_at_start", static_cast<int>(touches0));
   EXPECT_GT(U0, 0);
+  EXPECT_GT(touches0, 4) << "each corner must be seen through several feature pairs (a cluster)";
   EXPECT_GT(dissipated, U_max);  // it slid: friction did work
   EXPECT_NEAR((work + U - U0 + dissipated) / U_max, 0.0, 1e-3);
 }
