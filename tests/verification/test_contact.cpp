@@ -341,6 +341,33 @@ TEST(Contact, VertexSlidingWithFrictionOntoAnEdgeKeepsTheLedger) {
   EXPECT_NEAR((work + U - U0 + dissipated) / U_max, 0.0, 1e-3);
 }
 
+namespace {
+// Two one-element hex cubes, "under" at the origin and "over" above it, both turned by Q;
+// over's skeleton set `gap` contact radii R above under's. x0 holds that placement.
+struct StackedCubes {
+  Model m;
+  Real R = 0;
+  const Group* over = nullptr;
+  std::vector<Real> x0;
+};
+StackedCubes stacked_cubes(Real side_over, Real mu, Real gap, const Mat3& Q = Mat3::Identity()) {
+  Mesh mesh;
+  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "under", Vec3(0.05, 0.05, 0.05), Vec3::Zero(), Q);
+  add_part(mesh, cube(CellType::Hex8, 1, side_over), "over", Vec3::Constant(side_over / 2), Vec3(0, 0, 0.2), Q);
+  StackedCubes s{build_model(contact_case(mu), mesh), 0, nullptr, {}};
+  const Index e_under = 0, e_over = 1;
+  s.R = s.m.contact.radius(e_under) + s.m.contact.radius(e_over);
+  const contact::Poly su = s.m.contact.skeleton_poly(e_under, s.m.fem.x0.data());
+  const contact::Poly so = s.m.contact.skeleton_poly(e_over, s.m.fem.x0.data());
+  Real top = -INFINITY, bottom = INFINITY;
+  for (int k = 0; k < 8; ++k) top = std::max(top, su.v[k](2)), bottom = std::min(bottom, so.v[k](2));
+  s.over = s.m.mesh.find_group("over");
+  s.x0 = s.m.fem.x0;
+  for (Index n : s.over->nodes) s.x0[3 * n + 2] -= bottom - (top + gap * s.R);
+  return s;
+}
+}  // namespace
+
 TEST(Contact, CornersSlidingApartWithFrictionKeepTheLedger) {
   // A 0.1 m cube (one hex8) rests face on face on another, its skeleton 0.8 R above, corners
   // over corners, and slides along (1, 0.5, 0) at 1 m/s in x (1e-6 m per step of 1e-6 s) by
@@ -355,19 +382,11 @@ TEST(Contact, CornersSlidingApartWithFrictionKeepTheLedger) {
   // cluster shares' leak of the sphere impact at friction 2.0
   // (src/scenes/sphere_impact/REFERENCE.md). (Along x alone the edges stay in line and the
   // leak is 1.1e-3 against 2.0e-4.)
-  Mesh mesh;
-  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "under", Vec3(0.05, 0.05, 0.05), Vec3::Zero());
-  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "over", Vec3(0.05, 0.05, 0.05), Vec3(0, 0, 0.2));
-  Model m = build_model(contact_case(0.5), mesh);
-  const Index e_under = 0, e_over = 1;
-  const Real R = m.contact.radius(e_under) + m.contact.radius(e_over);
-  const contact::Poly su = m.contact.skeleton_poly(e_under, m.fem.x0.data());
-  const contact::Poly so = m.contact.skeleton_poly(e_over, m.fem.x0.data());
-  Real top = -INFINITY, bottom = INFINITY;
-  for (int k = 0; k < 8; ++k) top = std::max(top, su.v[k](2)), bottom = std::min(bottom, so.v[k](2));
-  const Group* g = m.mesh.find_group("over");
-  std::vector<Real> x0 = m.fem.x0;
-  for (Index n : g->nodes) x0[3 * n + 2] -= bottom - (top + 0.8 * R);
+  StackedCubes st = stacked_cubes(0.1, 0.5, 0.8);
+  Model& m = st.m;
+  const Real R = st.R;
+  const Group* g = st.over;
+  const std::vector<Real>& x0 = st.x0;
   const Real ds = 1e-6, dt = 1e-6, dy = 0.5;  // dy: the slide's y per x
   std::vector<Real> x = x0, v(x.size(), 0.0), f;
   for (Index n : g->nodes) v[3 * n] = ds / dt, v[3 * n + 1] = dy * ds / dt;
@@ -412,20 +431,10 @@ struct PathCheck {
 };
 
 PathCheck ridge_over_ridge(const std::function<std::pair<Real, Real>(Real)>& place, int steps) {
-  Mesh mesh;
-  const Mat3 ridge = Mat3(Eigen::AngleAxis<Real>(M_PI / 4, Vec3::UnitX()));
-  add_part(mesh, cube(CellType::Hex8, 1, 0.1), "under", Vec3(0.05, 0.05, 0.05), Vec3::Zero(), ridge);
-  add_part(mesh, cube(CellType::Hex8, 1, 0.05), "over", Vec3(0.025, 0.025, 0.025), Vec3(0, 0, 0.2), ridge);
-  Model m = build_model(contact_case(), mesh);
-  const Index e_under = 0, e_over = 1;
-  const Real R = m.contact.radius(e_under) + m.contact.radius(e_over);
-  const contact::Poly su = m.contact.skeleton_poly(e_under, m.fem.x0.data());
-  const contact::Poly so = m.contact.skeleton_poly(e_over, m.fem.x0.data());
-  Real top = -INFINITY, bottom = INFINITY;
-  for (int k = 0; k < 8; ++k) top = std::max(top, su.v[k](2)), bottom = std::min(bottom, so.v[k](2));
-  const Group* g = m.mesh.find_group("over");
-  std::vector<Real> x0 = m.fem.x0;
-  for (Index n : g->nodes) x0[3 * n + 2] -= bottom - (top + 0.5 * R);
+  StackedCubes st = stacked_cubes(0.05, 0.0, 0.5, Mat3(Eigen::AngleAxis<Real>(M_PI / 4, Vec3::UnitX())));
+  Model& m = st.m;
+  const Group* g = st.over;
+  const std::vector<Real>& x0 = st.x0;
   std::vector<Real> x = x0, v(x.size(), 0.0), f;
   auto move = [&](Real u) {
     const auto [angle, shift] = place(u);
