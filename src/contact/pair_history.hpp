@@ -37,13 +37,18 @@ struct PairHistory {
   std::vector<HistoryEntry> entry;
 
   Index pairs() const { return static_cast<Index>(offset.size()) - 1; }
-  /// xi of pair p's feature pair (kind, fa, fb), or zero when it did not touch last step.
-  Vec3 find(Index p, int kind, int fa, int fb) const {
+  /// Pair p's entry of feature pair (kind, fa, fb), or null when it did not touch last step.
+  const HistoryEntry* entry_of(Index p, int kind, int fa, int fb) const {
     for (Index k = offset[p]; k < offset[p + 1]; ++k) {
       const HistoryEntry& h = entry[k];
-      if (h.kind == kind && h.fa == fa && h.fb == fb) return h.xi;
+      if (h.kind == kind && h.fa == fa && h.fb == fb) return &h;
     }
-    return Vec3::Zero();
+    return nullptr;
+  }
+  /// xi of pair p's feature pair (kind, fa, fb), or zero when it did not touch last step.
+  Vec3 find(Index p, int kind, int fa, int fb) const {
+    const HistoryEntry* h = entry_of(p, kind, fa, fb);
+    return h ? h->xi : Vec3::Zero();
   }
   /// xi of that touch carried to its cluster share `share` of this step: scaled by
   /// sqrt(share before / share now), so that the spring's stored energy, share x fade x kt
@@ -58,12 +63,8 @@ struct PairHistory {
   /// energy kept, not force). The fade's part of the weight is not scaled here: its gradient
   /// is in the force (Touch::Fade).
   Vec3 carry(Index p, int kind, int fa, int fb, Real share) const {
-    for (Index k = offset[p]; k < offset[p + 1]; ++k) {
-      const HistoryEntry& h = entry[k];
-      if (h.kind == kind && h.fa == fa && h.fb == fb)
-        return h.share == share ? h.xi : Vec3(h.xi * std::sqrt(h.share / share));
-    }
-    return Vec3::Zero();
+    const HistoryEntry* h = entry_of(p, kind, fa, fb);  // an unchanged share keeps xi's bits: x / x is exactly 1
+    return h ? Vec3(h->xi * std::sqrt(h->share / share)) : Vec3::Zero();
   }
   void clear(Index pairs) {
     offset.assign(static_cast<std::size_t>(pairs) + 1, 0);
