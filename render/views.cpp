@@ -134,7 +134,7 @@ struct FrameRenderer::Impl {
   vtkNew<vtkFeatureEdges> wall_edges;
   vtkNew<vtkLookupTable> lut;
   vtkNew<vtkScalarBarActor> bar;
-  vtkNew<vtkTextActor> time_text, scale_text;
+  vtkNew<vtkTextActor> time_text, scale_text, bar_title;
   vtkNew<vtkActor2D> scale_actor;
   vtkNew<vtkPolyDataMapper2D> scale_mapper;
   FieldDisplay display;
@@ -196,7 +196,9 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.mapper->SelectColorArray("field");
     s.mapper->ScalarVisibilityOn();
     s.bar->SetLookupTable(s.lut);
-    s.bar->SetTitle(s.display.title.c_str());
+    // The bar's own title sits under its labels with no gap, and touches them at small sizes
+    // (640 x 360): it is drawn above the bar instead, whose top is the top of its frame.
+    s.bar->SetTitle("");
     // Round tick values (2, 2.5 ... MPa, not 2.347): the bar's own labels split the range evenly.
     const std::vector<double> ticks = nice_ticks(lo, hi, 6);
     if (ticks.size() >= 2) {
@@ -227,6 +229,15 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     }
     s.bar->GetLabelTextProperty()->SetFontSize(std::max(10, o.height / 40));
     s.ren->AddViewProp(s.bar);
+    const int title_font = std::max(10, o.height / 40);
+    s.bar_title->SetInput(s.display.title.c_str());
+    vtkTextProperty* tp = s.bar_title->GetTextProperty();
+    tp->SetFontSize(title_font);
+    tp->SetColor(0.1, 0.1, 0.1);
+    tp->SetJustificationToCentered();
+    tp->SetVerticalJustificationToBottom();
+    s.bar_title->SetPosition(0.5 * o.width, (0.01 + 0.14) * o.height + 0.3 * title_font);
+    s.ren->AddViewProp(s.bar_title);
   } else {
     s.mapper->SetScalarModeToUseCellFieldData();
     s.mapper->SelectColorArray("colors");
