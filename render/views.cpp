@@ -212,9 +212,10 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     }
     // Horizontal along the bottom: it never covers the bodies, whatever their shape.
     s.bar->SetOrientationToHorizontal();
-    s.bar->SetPosition(0.2, 0.01);
+    constexpr double bar_bottom = 0.01, bar_height = 0.14;  // of the image's height
+    s.bar->SetPosition(0.2, bar_bottom);
     s.bar->SetWidth(0.6);
-    s.bar->SetHeight(0.14);
+    s.bar->SetHeight(bar_height);
     s.bar->SetTextPositionToPrecedeScalarBar();
     s.bar->UnconstrainedFontSizeOn();
     s.bar->GetTitleTextProperty()->SetFontSize(std::max(10, o.height / 40));
@@ -236,7 +237,7 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     tp->SetColor(0.1, 0.1, 0.1);
     tp->SetJustificationToCentered();
     tp->SetVerticalJustificationToBottom();
-    s.bar_title->SetPosition(0.5 * o.width, (0.01 + 0.14) * o.height + 0.3 * title_font);
+    s.bar_title->SetPosition(0.5 * o.width, (bar_bottom + bar_height) * o.height + 0.3 * title_font);
     s.ren->AddViewProp(s.bar_title);
   } else {
     s.mapper->SetScalarModeToUseCellFieldData();
