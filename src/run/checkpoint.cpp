@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "commit_id.hpp"  // generated at every build: DSPDEM_COMMIT
 #include "core/error.hpp"
 #include "core/file.hpp"
 #include "io/staging.hpp"
@@ -63,12 +64,7 @@ std::string checkpoint_piece(const std::string& path, int rank) {
   return (fs::path(path).parent_path() / fmt::format("checkpoint.{}.bin", rank)).string();
 }
 
-std::string checkpoint_build_id() {
-#ifndef DSPDEM_BUILD_ID
-#define DSPDEM_BUILD_ID "unknown"
-#endif
-  return DSPDEM_BUILD_ID;
-}
+std::string checkpoint_build_id() { return DSPDEM_BUILD_INFO " " DSPDEM_COMMIT " " DSPDEM_BUILD_TOOLS; }
 
 std::string executable_id() {
   static const std::string id = [] {

@@ -576,3 +576,18 @@ TEST(RestartCase, TheSameCaseGivenByARelativeOrAnAbsolutePathIsTheSameCase) {
   EXPECT_TRUE(same_case(a, b));
   EXPECT_FALSE(same_case(a, read_case(abs.string(), {"time.end=1e-4"}).resolved_toml));
 }
+
+// A run's summary.json and its checkpoints name the build; its commit is the one the sources
+// were built from (cmake/commit_id.cmake runs at every build), not the one CMake was configured
+// at: an incremental build after a commit named the older commit before. Outside a git
+// checkout there is nothing to compare with.
+TEST(BuildId, NamesTheCommitTheSourcesWereBuiltFrom) {
+  const auto head = testsupport::shell(fmt::format("git -C '{}' rev-parse --short=12 HEAD", DSPDEM_SOURCE_DIR));
+  if (head.code != 0) GTEST_SKIP() << "the sources are not a git checkout";
+  const std::string commit = head.out.substr(0, head.out.find_first_of("\r\n"));
+  ASSERT_EQ(commit.size(), 12u) << head.out;
+  const std::string id = checkpoint_build_id();
+  EXPECT_TRUE(id.find(" " + commit + " ") != std::string::npos ||
+              id.find(" " + commit + "-dirty ") != std::string::npos)
+      << "build id '" << id << "', sources at " << commit << " (built before the last commit?)";
+}
