@@ -218,26 +218,22 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.bar->SetHeight(bar_height);
     s.bar->SetTextPositionToPrecedeScalarBar();
     s.bar->UnconstrainedFontSizeOn();
-    s.bar->GetTitleTextProperty()->SetFontSize(std::max(10, o.height / 40));
-    s.bar->GetLabelTextProperty()->SetFontSize(std::max(9, o.height / 45));
-    s.bar->GetTitleTextProperty()->SetColor(0.1, 0.1, 0.1);
-    s.bar->GetLabelTextProperty()->SetColor(0.1, 0.1, 0.1);
     // Upright, plain labels (VTK's default is bold italic with a shadow), as large as the title.
-    for (vtkTextProperty* tp : {s.bar->GetTitleTextProperty(), s.bar->GetLabelTextProperty()}) {
-      tp->ItalicOff();
-      tp->BoldOff();
-      tp->ShadowOff();
-    }
-    s.bar->GetLabelTextProperty()->SetFontSize(std::max(10, o.height / 40));
+    const int font = std::max(10, o.height / 40);
+    vtkTextProperty* labels = s.bar->GetLabelTextProperty();
+    labels->SetFontSize(font);
+    labels->SetColor(0.1, 0.1, 0.1);
+    labels->ItalicOff();
+    labels->BoldOff();
+    labels->ShadowOff();
     s.ren->AddViewProp(s.bar);
-    const int title_font = std::max(10, o.height / 40);
     s.bar_title->SetInput(s.display.title.c_str());
-    vtkTextProperty* tp = s.bar_title->GetTextProperty();
-    tp->SetFontSize(title_font);
-    tp->SetColor(0.1, 0.1, 0.1);
-    tp->SetJustificationToCentered();
-    tp->SetVerticalJustificationToBottom();
-    s.bar_title->SetPosition(0.5 * o.width, (bar_bottom + bar_height) * o.height + 0.3 * title_font);
+    vtkTextProperty* title = s.bar_title->GetTextProperty();
+    title->SetFontSize(font);
+    title->SetColor(0.1, 0.1, 0.1);
+    title->SetJustificationToCentered();
+    title->SetVerticalJustificationToBottom();
+    s.bar_title->SetPosition(0.5 * o.width, (bar_bottom + bar_height) * o.height + 0.3 * font);
     s.ren->AddViewProp(s.bar_title);
   } else {
     s.mapper->SetScalarModeToUseCellFieldData();

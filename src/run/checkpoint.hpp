@@ -54,8 +54,9 @@ std::string checkpoint_piece(const std::string& path, int rank);
 std::string checkpoint_build_id();
 
 /// This executable: checkpoint_build_id and the CRC-32 of the executable's own file
-/// (/proc/self/exe). The commit in the build id is the one CMake configured the build at, so a
-/// rebuild of changed code can keep it; the file's CRC changes. Written into summary.json.
+/// (/proc/self/exe). The commit in the build id is the last one that changed the code
+/// (cmake/commit_id.cmake), "-dirty" for uncommitted changes to it; the file's CRC tells
+/// two dirty builds apart. Written into summary.json.
 std::string executable_id();
 
 /// Writes header then body (the archive's bytes) to path atomically: to path.tmp, flushed
