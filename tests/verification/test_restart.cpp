@@ -596,7 +596,8 @@ TEST(BuildId, NamesTheCommitOfTheCodeItWasBuiltFrom) {
   ASSERT_TRUE(std::regex_search(line, m, std::regex("\"([^\"]+)\""))) << line;
   const std::string now = m[1];
   EXPECT_NE(checkpoint_build_id().find(" " + now + " "), std::string::npos)
-      << "build id '" << checkpoint_build_id() << "', the code now at " << now << " (built before the last commit?)";
+      << "build id '" << checkpoint_build_id() << "', the code now at " << now
+      << " (the code committed or changed since this build?)";
   if (now != "no-git") {
     EXPECT_GE(now.size(), 12u) << now;
   }
