@@ -45,11 +45,6 @@ struct PairHistory {
     }
     return nullptr;
   }
-  /// xi of pair p's feature pair (kind, fa, fb), or zero when it did not touch last step.
-  Vec3 find(Index p, int kind, int fa, int fb) const {
-    const HistoryEntry* h = entry_of(p, kind, fa, fb);
-    return h ? h->xi : Vec3::Zero();
-  }
   /// xi of that touch carried to its cluster share `share` of this step: scaled by
   /// sqrt(share before / share now), so that the spring's stored energy, share x fade x kt
   /// |xi|^2 / 2, does not change with the share. Coincident touches share one contact by
