@@ -113,6 +113,7 @@ struct CaseConfig {
   bool insertion_cut_front = true;  ///< extrinsic insertion: open the faces that tie an opened face's nodes
   std::string stop_series;          ///< empty: run to t_end
   Real stop_fraction = 0.3, stop_min_peak = 0, stop_delay = 0;
+  Real stop_reach = 0;  ///< > 0: also stop once |stop_series| has reached this
   // output
   Real frame_interval = 0, series_interval = 0;
   std::vector<std::string> fields;

@@ -676,6 +676,9 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     c.stop_fraction = s.real("stop_fraction");
     c.stop_min_peak = s.real("stop_min_peak");
     c.stop_delay = s.real("stop_delay");
+    c.stop_reach = s.real("stop_reach");
+    if (c.stop_reach > 0 && c.stop_series.empty())
+      fail("{}: [time] stop_reach = {} needs stop_series, the series.csv column it watches", s.where(), c.stop_reach);
     s.finish();
   }
   {

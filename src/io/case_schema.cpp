@@ -116,6 +116,7 @@ const std::vector<Key>& general_keys() {
     {"time", "stop_fraction", T::Real, "0.3", 0, 1, true, true, "", nullptr, "With stop_series: the fraction of the peak |value| below which the run ends."},
     {"time", "stop_delay", T::Real, "0.0", 0, inf, false, false, "s", nullptr, "With stop_series: run on this long after the drop before ending (the pieces of a specimen that has just lost its load may still be separating)."},
     {"time", "stop_min_peak", T::Real, "0.0", 0, inf, false, false, "", nullptr, "With stop_series: the peak |value| must first reach this (keeps the first contact's ringing from ending the run)."},
+    {"time", "stop_reach", T::Real, "0.0", 0, inf, false, false, "", nullptr, "With stop_series: also end the run once |value| has reached this (after stop_delay; a last frame is written there), for runs wanted only up to a load; 0: no such end. The Brazilian disc's stress check stops at the scene's profile load."},
     {"output", "frame_interval", T::Real, "auto", 0, inf, true, false, "s", nullptr, "Simulated time between VTU frames; default end/20."},
     {"output", "series_interval", T::Real, "auto", 0, inf, true, false, "s", nullptr, "Simulated time between rows of series.csv; default frame_interval/10."},
     {"output", "fields", T::StringList, "[\"displacement\", \"velocity\", \"stress\", \"von_mises\", \"max_principal\", \"body\", \"material\"]", 0, 0, false, false, "", "displacement|velocity|stress|von_mises|max_principal|body|material|element", "Fields written to each frame (element: each cell's gmsh element tag)."},

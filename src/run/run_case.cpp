@@ -552,10 +552,17 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {
         const Energy e = it.check_energy(c.energy_blowup_factor);
         if (auto w = balance_watch.update(e, it.steps(), t)) log::warn("{}", *w);
-        if (stop_value && ls.stop_at < 0 && stop_rule.update(stop_value())) {
-          ls.stop_at = t + c.stop_delay;
-          ls.stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",
-                                        c.stop_series, c.stop_fraction, stop_rule.peak(), t);
+        if (stop_value && ls.stop_at < 0) {
+          const Real v = stop_value();
+          if (stop_rule.update(v)) {
+            ls.stop_at = t + c.stop_delay;
+            ls.stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",
+                                          c.stop_series, c.stop_fraction, stop_rule.peak(), t);
+          } else if (c.stop_reach > 0 && std::abs(v) >= c.stop_reach) {
+            ls.stop_at = t + c.stop_delay;
+            ls.stop_message = fmt::format("|{}| reached {:.6g} ({:.6g}) at t = {:.6g} s; stopped at ", c.stop_series,
+                                          c.stop_reach, v, t);
+          }
         }
         if (ls.stop_at >= 0 && t >= ls.stop_at - 1e-12 * c.t_end && !last) {
           last = true;  // this row and a last frame, then stop

@@ -210,6 +210,7 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
        "",
        {"inverted", "element tags: 1"}},
       {"stop_series", good_, "--set time.stop_series=plate_fy", {"stop_series = \"plate_fy\"", "known:"}},
+      {"stop_reach", good_, "--set time.stop_reach=1e3", {"[time] stop_reach", "needs stop_series"}},
       {"unknown_group",
        replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""),
        "",
@@ -374,6 +375,35 @@ TEST_F(Cli, RunEndsOnceTheLoadHasDroppedAndThePiecesSeparated) {
   EXPECT_LT(s.frames, 11);  // the full run writes 11
   EXPECT_TRUE(fs::exists(out / fmt::format("frames/frame_{:04d}.vtu", s.frames - 1)));
   EXPECT_NE(slurp(out / "run.pvd").find(fmt::format("frame_{:04d}.vtu", s.frames - 1)), std::string::npos);
+}
+
+TEST_F(Cli, RunEndsOnceTheLoadHasReachedAGivenValue) {
+  // [time] stop_reach: a run wanted only up to a load (the Brazilian disc's stress check)
+  // ends at the first series row whose |stop_series| has reached the value, says so, and
+  // leaves a finished run with its last frame there. The notched bar's reaction peaks at
+  // 3.24 kN at 0.39 ms (no joint broken before 0.4 ms); half of it comes at about 0.2 ms.
+  const fs::path out = dir_ / "nb_reach";
+  constexpr double reach = 1600;  // N
+  const Result r = run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml --out " +
+                       out.string() + fmt::format(" --set time.stop_series=force --set time.stop_reach={}", reach));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const dspdem::RunSummary s = dspdem::read_run_summary((out / "summary.json").string());
+  EXPECT_EQ(s.status, "completed");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(s.message, m,
+                                std::regex("reached [0-9.e+]+ \\(([-0-9.e+]+)\\) at t = ([0-9.e-]+) s; stopped at t = "
+                                           "([0-9.e-]+) s")))
+      << s.message;
+  EXPECT_GE(std::abs(std::stod(m[1].str())), reach);
+  EXPECT_EQ(m[2].str(), m[3].str());  // no stop_delay: it stops at that row
+  const dspdem::report::Series series((out / "series.csv").string());
+  const auto& f = series["force"];
+  ASSERT_GE(f.size(), 3u);
+  EXPECT_GE(std::abs(f.back()), reach);
+  for (std::size_t i = 0; i + 1 < f.size(); ++i) EXPECT_LT(std::abs(f[i]), reach) << "row " << i;
+  EXPECT_LT(s.t_end, 0.3e-3);
+  EXPECT_EQ(s.broken_joints, 0);
+  EXPECT_TRUE(fs::exists(out / fmt::format("frames/frame_{:04d}.vtu", s.frames - 1)));
 }
 
 TEST_F(Cli, HelpListsSubcommands) {
