@@ -17,9 +17,10 @@
 namespace dspdem {
 
 /// The check's case from the scene's: mesh 0.66 size in the bulk and size/7.6 at the loaded
-/// lines (5 mm and 1 mm for the default 7.6 mm), no joints, plates 4x faster, run to 1.25x
-/// the closure at which the scene carried its profile load (reached at `t_target`).
-CaseConfig stress_check_case(const CaseConfig& scene, Real t_target);
+/// lines (5 mm and 1 mm for the default 7.6 mm), no joints, plates 4x faster, run until the
+/// top plate carries the scene's profile load `P_target` (time.stop_reach), at most to 1.25x
+/// the closure at which the scene carried it (reached at `t_target`).
+CaseConfig stress_check_case(const CaseConfig& scene, Real t_target, Real P_target);
 
 /// Runs the check's case `c` under `dir` and analyses it at the scene's profile load
 /// `P_target` (writing profile.csv and profile_analytic.csv there). `runs`:
