@@ -554,15 +554,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         if (auto w = balance_watch.update(e, it.steps(), t)) log::warn("{}", *w);
         if (stop_value && ls.stop_at < 0) {
           const Real v = stop_value();
-          if (stop_rule.update(v)) {
-            ls.stop_at = t + c.stop_delay;
+          if (stop_rule.update(v))
             ls.stop_message = fmt::format("|{}| fell below {} of its peak {:.6g} at t = {:.6g} s; stopped at ",
                                           c.stop_series, c.stop_fraction, stop_rule.peak(), t);
-          } else if (c.stop_reach > 0 && std::abs(v) >= c.stop_reach) {
-            ls.stop_at = t + c.stop_delay;
+          else if (c.stop_reach > 0 && std::abs(v) >= c.stop_reach)
             ls.stop_message = fmt::format("|{}| reached {:.6g} ({:.6g}) at t = {:.6g} s; stopped at ", c.stop_series,
                                           c.stop_reach, v, t);
-          }
+          if (!ls.stop_message.empty()) ls.stop_at = t + c.stop_delay;
         }
         if (ls.stop_at >= 0 && t >= ls.stop_at - 1e-12 * c.t_end && !last) {
           last = true;  // this row and a last frame, then stop

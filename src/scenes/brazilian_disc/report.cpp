@@ -61,7 +61,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   if (checked) {
     try {
       check_case = stress_check_case(c, r.t_profile, r.P_profile);
-      check = run_stress_check(check_case, r.P_profile, check_dir.string(), a.runs);
+      check = run_stress_check(check_case, check_dir.string(), a.runs);
     } catch (const Interrupted&) {
       throw;  // the user stopped the report: not a failed check, and no study after it
     } catch (const std::exception& e) {

@@ -22,10 +22,9 @@ namespace dspdem {
 /// the closure at which the scene carried it (reached at `t_target`).
 CaseConfig stress_check_case(const CaseConfig& scene, Real t_target, Real P_target);
 
-/// Runs the check's case `c` under `dir` and analyses it at the scene's profile load
-/// `P_target` (writing profile.csv and profile_analytic.csv there). `runs`:
-/// report::run_or_resume.
-DiscResult run_stress_check(const CaseConfig& c, Real P_target, const std::string& dir,
-                            const report::RunPolicy& runs = {});
+/// Runs the check's case `c` (from stress_check_case) under `dir` and analyses it at the load
+/// it stops at, the scene's profile load (`c.stop_reach`; writing profile.csv and
+/// profile_analytic.csv there). `runs`: report::run_or_resume.
+DiscResult run_stress_check(const CaseConfig& c, const std::string& dir, const report::RunPolicy& runs = {});
 
 }  // namespace dspdem

@@ -229,8 +229,8 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
   const auto outcome = report::run_variants(generic, dir, [&](std::size_t i, const std::string& run_dir) {
     const Variant& v = variants[i];
     if (v.elastic)  // the stress check's case needs the reference's profile time
-      rows[i].second = run_stress_check(stress_check_case(base, reference.t_profile, reference.P_profile),
-                                        reference.P_profile, run_dir, runs);
+      rows[i].second =
+          run_stress_check(stress_check_case(base, reference.t_profile, reference.P_profile), run_dir, runs);
     else
       rows[i].second = analyse_disc_run(report::run_variant_case(base, v, run_dir, runs), run_dir, false);
   });
