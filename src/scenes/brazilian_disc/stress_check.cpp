@@ -51,8 +51,8 @@ CaseConfig stress_check_case(const CaseConfig& scene, Real t_target, Real P_targ
 }
 
 DiscResult run_stress_check(const CaseConfig& c, const std::string& dir, const report::RunPolicy& runs) {
-  if (!(c.stop_reach > 0))
-    throw Error("stress check: the case has no time.stop_reach (the profile load); build it with stress_check_case");
+  DSPDEM_CHECK(c.stop_reach > 0,
+               "stress check: the case has no time.stop_reach (the profile load); build it with stress_check_case");
   const Real P_target = c.stop_reach;
   log::info(
       "stress check: no joints, mesh {:.1f} mm, {:.1f} mm at the loads, plates 4x faster, until they carry {:.2f} kN "
