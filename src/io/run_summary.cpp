@@ -43,6 +43,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
                               {"contact_elastic", num(s.energy.contact_elastic)},
                               {"friction", num(s.energy.friction)},
                               {"contact_damping", num(s.energy.contact_damping)},
+                              {"kick", num(s.energy.kick)},
                               {"balance_error", num(s.energy.balance_error)}};
   json masses = json::array();
   for (double m : s.largest_fragment_masses) masses.push_back(num(m));
@@ -139,6 +140,7 @@ RunSummary read_run_summary(const std::string& path) {
   get(*ej, "contact_elastic", e.contact_elastic, path);
   get(*ej, "friction", e.friction, path);
   get(*ej, "contact_damping", e.contact_damping, path);
+  if (ej->contains("kick")) get(*ej, "kick", e.kick, path);  // not in folders written before it
   get(*ej, "balance_error", e.balance_error, path);
   // Not in runs without contact, nor in run folders written before it was recorded.
   if (const auto bj = j.find("contacts_born_overlapping"); bj != j.end()) {

@@ -15,6 +15,9 @@ struct EnergySummary {
   double kinetic = 0, internal = 0, external_work = 0, damping = 0, initial = 0;
   double joint_elastic = 0, fracture_I = 0, fracture_II = 0;
   double contact_elastic = 0, friction = 0, contact_damping = 0;
+  /// Velocity Verlet's kick term (time/integrator.hpp, Energy::kick); NaN in run folders
+  /// written before it was recorded.
+  double kick = std::nan("");
   double balance_error = 0;
 };
 

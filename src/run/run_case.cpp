@@ -126,7 +126,7 @@ class Series {
     // so far (contact/contact_system.hpp, BornTotals).
     if (m.contact.enabled())
       f_ << ",contact_elastic,friction,contact_damping,contacts,born_split_energy,born_unseen_energy,born_wall_energy";
-    f_ << ",balance_error";  // monitors follow this column (dspdem render plots each)
+    f_ << ",kick,balance_error";  // monitors follow this column (dspdem render plots each)
     for (const auto& w : m.contact.walls()) {
       f_ << ',' << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
       if (w.free)  // a free wall's motion: its centre and velocity
@@ -146,7 +146,7 @@ class Series {
                         e.contact_damping, ct.contacts, ct.born.split.energy, ct.born.unseen.energy,
                         ct.born.wall.energy);
     }
-    f_ << fmt::format(",{:.4g}", e.balance_error());
+    f_ << fmt::format(",{:.10g},{:.4g}", e.kick, e.balance_error());
     for (const auto& w : m.contact.walls()) {
       f_ << fmt::format(",{:.10g},{:.10g},{:.10g}", w.force(0), w.force(1), w.force(2));
       if (w.free)
@@ -508,8 +508,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)
       s.largest_fragment_masses.push_back(frag.mass[i]);
     s.element_steps_per_s = s.wall_s > 0 ? static_cast<double>(it.steps()) * whole_elements / s.wall_s : 0.0;
-    s.energy = {e.kinetic,    e.internal,    e.external_work,   e.damping,  e.initial,         e.joint_elastic,
-                e.fracture_I, e.fracture_II, e.contact_elastic, e.friction, e.contact_damping, e.balance_error()};
+    s.energy = {e.kinetic,         e.internal,   e.external_work,  e.damping,         e.initial,
+                e.joint_elastic,   e.fracture_I, e.fracture_II,    e.contact_elastic, e.friction,
+                e.contact_damping, e.kick,       e.balance_error()};
     if (model.contact.enabled()) {
       const contact::ContactTotals ct = model.contact.totals();
       auto born = [](const contact::BornOverlaps& b) {

@@ -32,10 +32,10 @@ class BalanceWatch {
     return fmt::format(
         "energy balance off by {:.3g} of its largest term at step {}, t = {:.6g} s (checks.energy_balance_warn = "
         "{:g}): kinetic {:.4g}, internal {:.4g}, joints {:.4g}, contact springs {:.4g}, fracture {:.4g}, friction "
-        "{:.4g}, damping {:.4g} J against initial {:.4g} + work {:.4g} J; series.csv's balance_error shows how it "
-        "grew (warned once per run)",
+        "{:.4g}, damping {:.4g}, less the kick's term {:.4g} J against initial {:.4g} + work {:.4g} J; series.csv's "
+        "balance_error shows how it grew (warned once per run)",
         err, step, t, limit_, e.kinetic, e.internal, e.joint_elastic, e.contact_elastic, e.fracture_I + e.fracture_II,
-        e.friction, e.damping + e.contact_damping, e.initial, e.external_work);
+        e.friction, e.damping + e.contact_damping, e.kick, e.initial, e.external_work);
   }
   bool warned() const { return warned_; }
 

@@ -20,7 +20,7 @@ Real Energy::balance_error() const {
   return l > 0 ? std::abs(balance()) / l : 0.0;
 }
 
-Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dist), dt_(dt) {
+Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dist), dt_(dt), h_last_(dt) {
   DSPDEM_CHECK(dt > 0 && std::isfinite(dt), "time step must be positive, got {}", dt);
   const std::size_t nd = 3 * static_cast<std::size_t>(m.fem.n_nodes);
   x_ = m.fem.x0;
@@ -41,6 +41,7 @@ Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dis
   for (Index i = 0; i < m.fem.n_nodes && quiet_; ++i)
     quiet_ = m.fem.node_alpha[i] == 0 && m.fem.mass[i] > 0 && std::isfinite(m.fem.mass[i]);
   for (const auto& c : m.constraints) constrained_[c.dof] = 1;
+  set_damp_alpha();
   if (!m.joints.closed.empty()) retie(true);
   for (const auto& c : m.constraints) v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
   for (const RigidBody& b : m.rigid) rigid_set_velocities(b, x_.data(), v_.data());
@@ -54,8 +55,10 @@ Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dis
           if (b.conn[static_cast<std::size_t>(e) * b.npe() + i] >= m.owned_nodes) interior_[b.elem[e]] = 0;
   }
   compute_forces(v_, 0.0, false);
+  damp_lag_ = 0;
   const Energy e = energy();
   e0_ = e.kinetic + e.internal + e.joint_elastic + e.contact_elastic;
+  kick0_ = e.kick;
 }
 
 Real Integrator::nodal_force(std::size_t i, int d, Real vk, Real& f, Real& dp) const {
@@ -177,6 +180,28 @@ void Integrator::step() {
   Real* f = f_.data();
   const Real* fe = f_ext_.data();
   const Real* im = inv_mass_.data();
+  if (!damp_alpha_.empty()) {
+    // Mass damping is booked below as h alpha m v+^2 at the mid-step velocity v+, but the
+    // kicks apply its force lagged: -alpha m u in f (u the velocity it was evaluated at)
+    // with the first half kick, -alpha m v+ with the second. Their trapezoid over the drift
+    // is 1/2 h alpha m v+.(u + v+); the difference, 1/2 h alpha m v+.(u - v+) with
+    // u - v+ = -(damp_lag_ + h/2) f / m, is booked here, so that the ledger's kick term
+    // closes it (time/integrator.hpp).
+    const Real* al = damp_alpha_.data();
+    const char* cons = constrained_.data();
+    const Real lag = damp_lag_ + hh;
+    damp_ -= 0.5 * h * lag * chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
+               Real s = 0;
+               for (std::size_t i = b; i < e; ++i) {
+                 if (al[i] == 0) continue;
+                 Real p = 0;
+                 for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
+                   if (!cons[k]) p += (v[k] + hh * f[k] * im[i]) * f[k];
+                 s += al[i] * p;
+               }
+               return std::array<Real, 1>{s};
+             })[0];
+  }
   const Real* mass = m_.fem.mass.data();
   const Vec3 g = m_.gravity;
   const char* cons = constrained_.data();
@@ -278,6 +303,7 @@ void Integrator::step() {
   if (contact) m_.contact.drift_walls(h, m_.gravity);
   t_ += h;
   ++n_;
+  h_last_ = h;
   // Ghosts take their owners' drifted positions and mid-step velocities, which are exactly
   // what this process would have computed with all of their forces (compute_forces).
   Real* keep = nullptr;
@@ -361,6 +387,7 @@ void Integrator::step() {
   });
   if (fused) dpower_ = (tg[2] + tail[2]) + element_dpower();
   damp_ += h * dpower_;
+  damp_lag_ = hh;
   w += tg[0] + tail[0];
   w_ext_ += w;
   if (contact) m_.contact.add_wall_work(0.5 * h * (wall_power0 + m_.contact.wall_power()));
@@ -395,6 +422,7 @@ void Integrator::retie(bool average) {
   ties_ = joint::build_ties(m_.joints, m_.fem.n_nodes);
   const Real* mass = m_.fem.mass.data();
   for (Index i = 0; i < m_.fem.n_nodes; ++i) inv_mass_[i] = 1.0 / mass[i];
+  set_damp_alpha();
   group_mass_.assign(static_cast<std::size_t>(ties_.groups()), 0.0);
   // The fused step finishes a group's force in its last pass, after the reactions and loads
   // were booked per copy: if any group holds a loaded or supported dof, the whole model
@@ -422,6 +450,11 @@ void Integrator::retie(bool average) {
               "nodes {} and {} are tied across closed joints (extrinsic insertion) but only one is constrained in "
               "{}: constrain the whole group or neither",
               m_.mesh.node_tag[ties_.node[b]], m_.mesh.node_tag[ties_.node[q]], "xyz"[d]);
+    if (!damp_alpha_.empty()) {
+      Real am = 0;
+      for (Index q = b; q < e; ++q) am += m_.fem.node_alpha[ties_.node[q]] * mass[ties_.node[q]];
+      for (Index q = b; q < e; ++q) damp_alpha_[ties_.node[q]] = q == b ? am / M : 0.0;
+    }
     if (average)
       for (int d = 0; d < 3; ++d) {
         Real p = 0;
@@ -429,6 +462,15 @@ void Integrator::retie(bool average) {
         for (Index q = b; q < e; ++q) v_[3 * ties_.node[q] + d] = p / M;
       }
   }
+}
+
+void Integrator::set_damp_alpha() {
+  damp_alpha_.clear();
+  const std::vector<Real>& a = m_.fem.node_alpha;
+  if (std::none_of(a.begin(), a.end(), [](Real x) { return x != 0; })) return;
+  damp_alpha_ = a;
+  for (const RigidBody& b : m_.rigid)  // their nodes move with the body, not with the kicks
+    for (Index i : b.nodes) damp_alpha_[i] = 0;
 }
 
 void Integrator::tie_forces() {
@@ -483,12 +525,34 @@ void Integrator::contact_crossed() const {
 Energy Integrator::energy() const {
   Energy e;
   const Index nn = m_.n_owned_nodes();
-  std::vector<Real> ke(nn);
+  std::vector<Real> ke(nn), kick(nn, 0.0);
+  // The kick's term 1/2 (h/2)^2 f^2 / m per free dof (Energy::kick), where the kicks apply
+  // it: a tied group's force and inverse mass are at its first copy, which stands for the
+  // group; a rigid body's nodes move with it, and its term is its momentum's, below.
+  std::vector<char> rigid_node;
+  if (!m_.rigid.empty()) {
+    rigid_node.assign(static_cast<std::size_t>(m_.fem.n_nodes), 0);
+    for (const RigidBody& b : m_.rigid)
+      for (Index i : b.nodes) rigid_node[i] = 1;
+  }
+  const Real hh = 0.5 * h_last_;
   for (Index i = 0; i < nn; ++i) {
-    const Real* v = &v_[3 * static_cast<std::size_t>(i)];
+    const std::size_t k0 = 3 * static_cast<std::size_t>(i);
+    const Real* v = &v_[k0];
     ke[i] = 0.5 * m_.fem.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if ((!rep_.empty() && rep_[i] >= 0 && rep_[i] != i) || (!rigid_node.empty() && rigid_node[i])) continue;
+    Real f2 = 0;
+    for (int d = 0; d < 3; ++d)
+      if (!constrained_[k0 + d]) f2 += f_[k0 + d] * f_[k0 + d];
+    kick[i] = 0.5 * hh * hh * f2 * inv_mass_[i];
   }
   e.kinetic = deterministic_sum(ke);
+  e.kick = deterministic_sum(kick);
+  for (const RigidBody& b : m_.rigid) {
+    Vec3 F = Vec3::Zero();
+    for (Index i : b.nodes) F += Vec3(f_[3 * i], f_[3 * i + 1], f_[3 * i + 2]);
+    e.kick += 0.5 * hh * hh * F.squaredNorm() / b.mass;
+  }
   e.internal = own_elements_sum(m_.fem.elem_energy);
   e.external_work = w_ext_;
   e.peak_work = w_peak_;
@@ -508,14 +572,16 @@ Energy Integrator::energy() const {
     // The processes' shares added in rank order; e0_ is already whole (the constructor
     // computed it through here), and so is w_peak_ (step()). Contact: each pair counted by
     // one process; the walls are the same on every process and added once, below.
-    Real a[12] = {e.kinetic,       e.internal,        e.external_work, e.damping,
+    Real a[13] = {e.kinetic,       e.internal,        e.external_work, e.damping,
                   e.joint_elastic, e.fracture_I,      e.fracture_II,   static_cast<Real>(e.broken_joints),
-                  e.crack_area,    e.contact_elastic, e.friction,      e.contact_damping};
-    dist_->sum(a, 12);
+                  e.crack_area,    e.contact_elastic, e.friction,      e.contact_damping,
+                  e.kick};
+    dist_->sum(a, 13);
     e.kinetic = a[0], e.internal = a[1], e.external_work = a[2], e.damping = a[3], e.joint_elastic = a[4];
     e.fracture_I = a[5], e.fracture_II = a[6], e.broken_joints = static_cast<Index>(a[7]), e.crack_area = a[8];
-    e.contact_elastic = a[9], e.friction = a[10], e.contact_damping = a[11];
+    e.contact_elastic = a[9], e.friction = a[10], e.contact_damping = a[11], e.kick = a[12];
   }
+  e.kick -= kick0_;  // whole, as e0_
   if (m_.contact.enabled()) {
     e.kinetic += ct.wall_kinetic;
     e.external_work += ct.wall_work;

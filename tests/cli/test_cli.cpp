@@ -133,7 +133,7 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   const std::string summary = slurp(out / "summary.json");
   for (const char* key : {"\"case\"", "\"steps\"", "\"dt\"", "\"t_end\"", "\"wall_s\"", "\"nodes\"", "\"elements\"",
                           "\"element_steps_per_s\"", "\"kinetic\"", "\"internal\"", "\"external_work\"", "\"damping\"",
-                          "\"balance_error\""})
+                          "\"kick\"", "\"balance_error\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
   EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos);
   // PVD lists 3 frames with real times.
@@ -158,7 +158,7 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   // series.csv: header with the monitors and one row per series step.
   const std::string csv = slurp(out / "series.csv");
   EXPECT_EQ(csv.rfind("time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_"
-                      "joints,crack_area,balance_error,tip_uy,clamp_reaction_y",
+                      "joints,crack_area,kick,balance_error,tip_uy,clamp_reaction_y",
                       0),
             0u);
   EXPECT_TRUE(fs::exists(out / "case.resolved.toml"));

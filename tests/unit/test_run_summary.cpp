@@ -23,7 +23,7 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   s.joint_added_compliance = 0.0175, s.crack_area = 0.0123, s.fragments = 3, s.total_mass = 2.85;
   s.largest_fragment_masses = {1.4, 1.3, 0.15};
   s.element_steps_per_s = 4.5e6;
-  s.energy.kinetic = 1.5, s.energy.fracture_I = 0.25, s.energy.balance_error = NAN;
+  s.energy.kinetic = 1.5, s.energy.fracture_I = 0.25, s.energy.kick = 3.5e-7, s.energy.balance_error = NAN;
   s.born_split = {7, 0.125, 0.4}, s.born_unseen = {1, 2.5, 0.3}, s.born_wall = {0, 0.0, 0.0};
   const fs::path p = fs::temp_directory_path() / "dspdem_summary_roundtrip.json";
   write_run_summary(p.string(), s);
@@ -40,6 +40,7 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   EXPECT_EQ(r.largest_fragment_masses, s.largest_fragment_masses);
   EXPECT_EQ(r.energy.fracture_I, 0.25);
   EXPECT_TRUE(std::isnan(r.energy.balance_error));  // written as null, never as "nan"
+  EXPECT_EQ(r.energy.kick, 3.5e-7);
   EXPECT_EQ(r.born_split.pairs, 7);
   EXPECT_EQ(r.born_split.energy, 0.125);
   EXPECT_EQ(r.born_split.max_ratio, 0.4);
@@ -87,4 +88,25 @@ TEST(RunSummary, AMissingKeyOrBrokenFileIsNamed) {
   std::ofstream(p) << "{\"case\": ";
   EXPECT_THROW(read_run_summary(p.string()), Error);
   EXPECT_THROW(read_run_summary((fs::temp_directory_path() / "dspdem_no_such_summary.json").string()), Error);
+}
+
+// Run folders written before the ledger's kick term was recorded have no "kick": it reads
+// as unknown, and the rest of the summary as written.
+TEST(RunSummary, AFolderWithoutTheKickTermReadsItAsUnknown) {
+  RunSummary s;
+  s.case_name = "c", s.status = "completed";
+  s.energy.kick = 0.5, s.energy.balance_error = 2e-5;
+  const fs::path p = fs::temp_directory_path() / "dspdem_summary_kick.json";
+  write_run_summary(p.string(), s);
+  std::ifstream in(p);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::string key = "\"kick\": 0.5,";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos) << text;
+  text.erase(at, key.size());
+  std::ofstream(p) << text;
+  const RunSummary r = read_run_summary(p.string());
+  EXPECT_TRUE(std::isnan(r.energy.kick));
+  EXPECT_EQ(r.energy.balance_error, 2e-5);
 }
