@@ -70,6 +70,9 @@ struct CohesiveState {
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
   Real sn = 0, ss = 0;          ///< last tractions [Pa]
   Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
+  /// The shear traction a forced break (force_break) dropped after the step's forces had
+  /// been applied with it: the next update books the work it does over that step [Pa].
+  Real ss_forced = 0;
   JointStatus status = JointStatus::Intact;
 
   /// Recoverable energy per unit area at the current state [J/m^2]. The shear of a broken
@@ -116,6 +119,10 @@ inline Real drop_to_cap(Real& e, Real cap, Real ks) {
 /// resisted too. Dissipation, exactly: first the cap changes at fixed slip (a drop releases
 /// (s^2 - cap^2) / 2 k_s), then the slip increment slides at the cap (cap x plastic slip).
 inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, CohesiveState& s) {
+  // A forced break zeroed the shear after the forces were assembled with it: the bodies
+  // felt it over the step that ends now, so its half of the trapezoid is dissipated here.
+  s.diss_II_at_break += 0.5 * s.ss_forced * (ds - s.ds);
+  s.ss_forced = 0;
   const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
   Real e = s.ss;
   s.friction += drop_to_cap(e, cap, p.ks);
@@ -189,6 +196,7 @@ inline void force_break(CohesiveState& s) {
   s.status = JointStatus::Broken;
   s.ds_plastic = s.ds;
   s.diss_II_at_break = s.work_s;  // the stored shear energy is released: no elastic part is left
+  s.ss_forced = s.ss;             // this step's forces carried it: booked at the next update
   s.ss = 0.0;
 }
 

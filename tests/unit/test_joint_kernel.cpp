@@ -34,11 +34,11 @@ bool close_work(Real a, Real b, Real floor) {
 // `status` holds whatever the compiler left there (clang's copies differ there, GCC's did not).
 bool same_state(const joint::CohesiveState& a, const joint::CohesiveState& b, Real work_floor) {
   using S = joint::CohesiveState;
-  // 12 Reals and status, then padding: a new field changes the size or takes the padding.
-  static_assert(sizeof(S) == 13 * sizeof(Real) && offsetof(S, status) + sizeof(S::status) + 4 == sizeof(S),
+  // 13 Reals and status, then padding: a new field changes the size or takes the padding.
+  static_assert(sizeof(S) == 14 * sizeof(Real) && offsetof(S, status) + sizeof(S::status) + 4 == sizeof(S),
                 "CohesiveState has a new field: compare it here");
-  for (Real S::*f :
-       {&S::dn_max, &S::ds_plastic, &S::ks_secant, &S::damage, &S::friction, &S::dn, &S::ds, &S::sn, &S::ss})
+  for (Real S::*f : {&S::dn_max, &S::ds_plastic, &S::ks_secant, &S::damage, &S::friction, &S::dn, &S::ds, &S::sn,
+                     &S::ss, &S::ss_forced})
     if (std::bit_cast<std::uint64_t>(a.*f) != std::bit_cast<std::uint64_t>(b.*f)) return false;
   return a.status == b.status && close_work(a.work_n, b.work_n, work_floor) &&
          close_work(a.work_s, b.work_s, work_floor) && close_work(a.diss_II_at_break, b.diss_II_at_break, work_floor);

@@ -157,6 +157,60 @@ TEST(Joints, TheTextsShearSofteningKeepsTheFrictionThroughTheKernel) {
   EXPECT_NEAR(t.fracture_II / (p.GfII * A + mu * A * (end - mu / p.ks)), 1.0, 0.01);
 }
 
+TEST(Joints, TheBooksAreTheWorkOfTheForcesAppliedAcrossAForcedBreak) {
+  // The face between two hexahedra opens unevenly while it slips: the opening grows from
+  // 0.75 (y = 0) to 1.5 (y = 0.1 m) times w_ft + w_GI, the slip to 2/3 of c / k_s, so the
+  // points nearer y = 0.1 break in opening and fail the others, which still carry their
+  // elastic shear (a forced break). The sides move by -+ half the jump about a fixed middle
+  // surface, so the normal and the slip direction stay put and the law's trapezoid of its
+  // tractions is the nodal forces' trapezoid over each increment. The books (stored plus
+  // dissipated) must then equal the work the nodal forces absorbed, to rounding (1e-10:
+  // 400 increments of terms exact to 1e-16 relative). Booked from the zeroed shear instead,
+  // the increment after the break misses half its shear work: 7e-6 of the total with the
+  // paper's law, 5e-9 with the coupled one (its secant shear is lower by then).
+  for (const bool coupled : {false, true}) {
+    CaseConfig c = simple_case(30e9, 0.2, 2400);
+    make_fracturable(c, 3e6, 100, 10e6, 30, 1000, 100);
+    c.joint_materials[0].coupled = coupled;
+    Model m = build_model(c, box_mesh(CellType::Hex8, 2, 1, 1, Vec3(0.2, 0.1, 0.1)));
+    ASSERT_EQ(m.joints.size(), 1);
+    const joint::CohesiveParams p = m.joints.params[0];
+    const Real w = p.ft / p.kn + 2 * p.GfI / p.ft, w_fs = p.c / p.ks;
+    std::vector<Real> slots, x = m.fem.x0, f_old(x.size(), 0.0);
+    Real absorbed = 0;
+    bool forced = false;
+    const int n = 400;
+    for (int i = 1; i <= n; ++i) {
+      const Real D = 1.5 * w * i / n, slip = 0.5 * w_fs * i / (0.75 * n);
+      std::vector<Real> xn = m.fem.x0;
+      for (int k = 0; k < 4; ++k)
+        for (const auto& [node, sign] : {std::pair{m.joints.a[k], -0.5}, std::pair{m.joints.b[k], 0.5}}) {
+          const Real y = m.fem.x0[3 * node + 1];
+          xn[3 * node] += sign * D * (0.5 + 0.5 * y / 0.1);
+          xn[3 * node + 1] += sign * slip;
+        }
+      std::vector<Real> f(x.size(), 0.0);
+      joint::add_joint_forces(m.joints, xn.data(), f.data(), slots);
+      for (std::size_t k = 0; k < x.size(); ++k) absorbed -= 0.5 * (f_old[k] + f[k]) * (xn[k] - x[k]);
+      if (m.joints.status[0] == joint::JointStatus::Broken && !forced) {
+        // The break happened in this increment: the two points at the larger y (2 x 2 Gauss)
+        // opened through, the other two were forced.
+        int opened = 0;
+        for (int g = 0; g < 4; ++g) opened += m.joints.point_state(g).dn_max >= w;
+        EXPECT_EQ(opened, 2) << "coupled " << coupled;
+        forced = true;
+      }
+      x = xn, f_old = f;
+    }
+    ASSERT_TRUE(forced) << "coupled " << coupled;
+    const joint::JointTotals t = joint::joint_totals(m.joints);
+    const Real books = t.elastic + t.fracture_I + t.fracture_II;
+    RecordProperty(coupled ? "coupled_books_over_work_minus_1" : "paper_books_over_work_minus_1",
+                   sci(books / absorbed - 1));
+    EXPECT_NEAR(books / absorbed, 1.0, 1e-10) << "coupled " << coupled;
+  }
+}
+
 namespace {
 // A 384-tet block, 0.1 m wide, under 1 MPa of uniaxial tension (rollers on three faces),
 // relaxed to its static state; joints on every interior face when `joints`.
