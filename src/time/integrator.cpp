@@ -180,28 +180,6 @@ void Integrator::step() {
   Real* f = f_.data();
   const Real* fe = f_ext_.data();
   const Real* im = inv_mass_.data();
-  if (!damp_alpha_.empty()) {
-    // Mass damping is booked below as h alpha m v+^2 at the mid-step velocity v+, but the
-    // kicks apply its force lagged: -alpha m u in f (u the velocity it was evaluated at)
-    // with the first half kick, -alpha m v+ with the second. Their trapezoid over the drift
-    // is 1/2 h alpha m v+.(u + v+); the difference, 1/2 h alpha m v+.(u - v+) with
-    // u - v+ = -(damp_lag_ + h/2) f / m, is booked here, so that the ledger's kick term
-    // closes it (time/integrator.hpp).
-    const Real* al = damp_alpha_.data();
-    const char* cons = constrained_.data();
-    const Real lag = damp_lag_ + hh;
-    damp_ -= 0.5 * h * lag * chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
-               Real s = 0;
-               for (std::size_t i = b; i < e; ++i) {
-                 if (al[i] == 0) continue;
-                 Real p = 0;
-                 for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
-                   if (!cons[k]) p += (v[k] + hh * f[k] * im[i]) * f[k];
-                 s += al[i] * p;
-               }
-               return std::array<Real, 1>{s};
-             })[0];
-  }
   const Real* mass = m_.fem.mass.data();
   const Vec3 g = m_.gravity;
   const char* cons = constrained_.data();
@@ -220,41 +198,52 @@ void Integrator::step() {
   const Index* gptr = ties_.ptr.data();
   const Index* gnode = ties_.node.data();
   const Real* gmass = group_mass_.data();
-  Real w = 0, bad = 0;
+  // Mass damping is booked below as h alpha m v+^2 at the mid-step velocity v+, but the
+  // kicks apply its force lagged: -alpha m u in f (u the velocity it was evaluated at) with
+  // the first half kick, -alpha m v+ with the second. Their trapezoid over the drift is
+  // 1/2 h alpha m v+.(u + v+); the difference, 1/2 h alpha m v+.(u - v+) with u - v+ =
+  // -(damp_lag_ + h/2) f / m, is booked too, so that the ledger's kick term closes it
+  // (time/integrator.hpp). The first pass sums alpha v+.f over the free dofs (al: null when
+  // no node is mass-damped).
+  const Real* al = damp_alpha_.empty() ? nullptr : damp_alpha_.data();
+  Real w = 0, bad = 0, vf = 0;
   if (fused) {
     // Half kick and drift in one pass: a constrained dof takes its prescribed velocity (the
     // last constraint on it wins, as in kick_nonnodal) before it drifts.
     Real* vt = v_target_.data();
     for (const auto& c : m_.constraints) vt[c.dof] = c.value * ramp_factor(t_ + hh, c.ramp);
-    const std::array<Real, 2> rg = chunked_sums<2>(
+    const std::array<Real, 3> rg = chunked_sums<3>(
         ng,
         [&](std::size_t b, std::size_t e) {
-          Real s = 0;
+          Real s = 0, sd = 0;
           bool finite = true;
           for (std::size_t gi = b; gi < e; ++gi) {
             const std::size_t i = static_cast<std::size_t>(gnode[gptr[gi]]);
+            Real pd = 0;
             for (int d = 0; d < 3; ++d) {
               const std::size_t k = 3 * i + d;
               v[k] += hh * f[k] * im[i];
+              pd += v[k] * f[k];
               const Real dx = h * v[k];
               x[k] += dx;
               finite &= x[k] - x[k] == 0;
               if (!quiet_) s += 0.5 * (gmass[gi] * g(d)) * dx;
             }
+            if (al) sd += al[i] * pd;
           }
-          return std::array<Real, 2>{s, finite ? 0.0 : 1.0};
+          return std::array<Real, 3>{s, finite ? 0.0 : 1.0, sd};
         },
         kGroupChunk);
-    const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
+    const std::array<Real, 3> r = chunked_sums<3>(nn, [&](std::size_t b, std::size_t e) {
       // The arrays in locals: through the closure's references they were reloaded after
       // every store. The finite check is a flag, not a sum: a sum is a chain of dependent
       // adds, one per dof, and its latency was most of this pass's time.
       Real* const xl = x;
       Real* const vl = v;
-      const Real *const fl = f, *const iml = im, *const vtl = vt, *const fel = fe, *const ml = mass;
+      const Real *const fl = f, *const iml = im, *const vtl = vt, *const fel = fe, *const ml = mass, *const all = al;
       const char *const cl = cons, *const sl = special;
       const bool quiet = quiet_;
-      Real s = 0;
+      Real s = 0, sd = 0;
       bool finite = true;
       for (std::size_t i = b; i < e; ++i) {
         if (rep && rep[i] >= 0) {
@@ -263,10 +252,12 @@ void Integrator::step() {
             for (int d = 0; d < 3; ++d) vl[3 * i + d] = vl[3 * r + d], xl[3 * i + d] = xl[3 * r + d];
           continue;
         }
+        Real pd = 0;
         for (int d = 0; d < 3; ++d) {
           const std::size_t k = 3 * i + d;
           const Real vk = cl[k] ? vtl[k] : vl[k] + hh * fl[k] * iml[i];
           vl[k] = vk;
+          if (all && !cl[k]) pd += vk * fl[k];
           const Real dx = h * vk;
           xl[k] += dx;
           finite &= xl[k] - xl[k] == 0;  // false once x is not finite
@@ -275,12 +266,26 @@ void Integrator::step() {
           else if (!quiet)
             s += 0.5 * (ml[i] * g(d)) * dx;
         }
+        if (all) sd += all[i] * pd;
       }
-      return std::array<Real, 2>{s, finite ? 0.0 : 1.0};
+      return std::array<Real, 3>{s, finite ? 0.0 : 1.0, sd};
     });
-    w = rg[0] + r[0], bad = rg[1] + r[1];
+    w = rg[0] + r[0], bad = rg[1] + r[1], vf = rg[2] + r[2];
     if (m_.contact.enabled()) m_.contact.kick_walls(hh, t_ + hh, m_.gravity);
   } else {
+    // alpha v+.f before the kick (v+ = v + h/2 f / m), as the fused pass sums it after.
+    if (al)
+      vf = chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
+        Real sd = 0;
+        for (std::size_t i = b; i < e; ++i) {
+          if (al[i] == 0) continue;
+          Real pd = 0;
+          for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
+            if (!cons[k]) pd += (v[k] + hh * f[k] * im[i]) * f[k];
+          sd += al[i] * pd;
+        }
+        return std::array<Real, 1>{sd};
+      })[0];
     // Rigid bodies set their nodes' velocities from the whole kick: kick, then drift.
     kick_nodes(hh);
     kick_nonnodal(hh, t_ + hh);
@@ -386,7 +391,7 @@ void Integrator::step() {
     return std::array<Real, 3>{s, finite ? 0.0 : 1.0, dp};
   });
   if (fused) dpower_ = (tg[2] + tail[2]) + element_dpower();
-  damp_ += h * dpower_;
+  damp_ += h * dpower_ - 0.5 * h * (damp_lag_ + hh) * vf;
   damp_lag_ = hh;
   w += tg[0] + tail[0];
   w_ext_ += w;
