@@ -8,10 +8,11 @@
 // drift; damping dissipation as dt times the dissipation rate at the mid-step velocity, and
 // for mass damping, as the trapezoid of the (lagged) damping forces the kicks applied.
 // The balance error is |KE - K_h + IE + D - (E0 + W_ext)| over the largest of those terms and
-// of the largest |W_ext| reached so far. K_h, the kick's term, is sum h^2 |f|^2 / 8m over the
-// nodes: velocity Verlet's kinetic energy at whole steps exceeds the trapezoidal work of the
-// forces by its change, exactly (the two half kicks around a drift), so KE - K_h is what the
-// work books; without it a body that rings shows h^2 |f|^2 / 8m as a balance error.
+// of the largest |W_ext| reached so far. K_h, the kick's term, is the change since the start
+// of sum h^2 |f|^2 / 8m over the nodes: velocity Verlet's kinetic energy at whole steps
+// exceeds the trapezoidal work of the forces by exactly that change (the two half kicks
+// around a drift), so KE - K_h is what the work books; without it a body that rings shows
+// h^2 |f|^2 / 8m as a balance error.
 #pragma once
 #include <cmath>
 #include <csignal>
