@@ -41,6 +41,11 @@ Integrator::Integrator(Model& m, Real dt, Distribution* dist) : m_(m), dist_(dis
   for (Index i = 0; i < m.fem.n_nodes && quiet_; ++i)
     quiet_ = m.fem.node_alpha[i] == 0 && m.fem.mass[i] > 0 && std::isfinite(m.fem.mass[i]);
   for (const auto& c : m.constraints) constrained_[c.dof] = 1;
+  if (!m.rigid.empty()) {
+    rigid_node_.assign(static_cast<std::size_t>(m.fem.n_nodes), 0);
+    for (const RigidBody& b : m.rigid)
+      for (Index i : b.nodes) rigid_node_[i] = 1;
+  }
   set_damp_alpha();
   if (!m.joints.closed.empty()) retie(true);
   for (const auto& c : m.constraints) v_[c.dof] = c.value * ramp_factor(0.0, c.ramp);
@@ -273,7 +278,11 @@ void Integrator::step() {
     w = rg[0] + r[0], bad = rg[1] + r[1], vf = rg[2] + r[2];
     if (m_.contact.enabled()) m_.contact.kick_walls(hh, t_ + hh, m_.gravity);
   } else {
-    // alpha v+.f before the kick (v+ = v + h/2 f / m), as the fused pass sums it after.
+    // Rigid bodies set their nodes' velocities from the whole kick: kick, then drift.
+    kick_nodes(hh);
+    kick_nonnodal(hh, t_ + hh);
+    // alpha v+.f, as the fused pass sums it (al is 0 at rigid bodies' nodes and at the
+    // copies a group's first copy stands for).
     if (al)
       vf = chunked_sums<1>(nn, [&](std::size_t b, std::size_t e) {
         Real sd = 0;
@@ -281,14 +290,11 @@ void Integrator::step() {
           if (al[i] == 0) continue;
           Real pd = 0;
           for (std::size_t k = 3 * i; k < 3 * i + 3; ++k)
-            if (!cons[k]) pd += (v[k] + hh * f[k] * im[i]) * f[k];
+            if (!cons[k]) pd += v[k] * f[k];
           sd += al[i] * pd;
         }
         return std::array<Real, 1>{sd};
       })[0];
-    // Rigid bodies set their nodes' velocities from the whole kick: kick, then drift.
-    kick_nodes(hh);
-    kick_nonnodal(hh, t_ + hh);
     const std::array<Real, 2> r = chunked_sums<2>(nn, [&](std::size_t b, std::size_t e) {
       Real s = 0;
       bool finite = true;
@@ -474,8 +480,8 @@ void Integrator::set_damp_alpha() {
   const std::vector<Real>& a = m_.fem.node_alpha;
   if (std::none_of(a.begin(), a.end(), [](Real x) { return x != 0; })) return;
   damp_alpha_ = a;
-  for (const RigidBody& b : m_.rigid)  // their nodes move with the body, not with the kicks
-    for (Index i : b.nodes) damp_alpha_[i] = 0;
+  for (std::size_t i = 0; i < rigid_node_.size(); ++i)  // they move with the body, not with the kicks
+    if (rigid_node_[i]) damp_alpha_[i] = 0;
 }
 
 void Integrator::tie_forces() {
@@ -534,18 +540,12 @@ Energy Integrator::energy() const {
   // The kick's term 1/2 (h/2)^2 f^2 / m per free dof (Energy::kick), where the kicks apply
   // it: a tied group's force and inverse mass are at its first copy, which stands for the
   // group; a rigid body's nodes move with it, and its term is its momentum's, below.
-  std::vector<char> rigid_node;
-  if (!m_.rigid.empty()) {
-    rigid_node.assign(static_cast<std::size_t>(m_.fem.n_nodes), 0);
-    for (const RigidBody& b : m_.rigid)
-      for (Index i : b.nodes) rigid_node[i] = 1;
-  }
   const Real hh = 0.5 * h_last_;
   for (Index i = 0; i < nn; ++i) {
     const std::size_t k0 = 3 * static_cast<std::size_t>(i);
     const Real* v = &v_[k0];
     ke[i] = 0.5 * m_.fem.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if ((!rep_.empty() && rep_[i] >= 0 && rep_[i] != i) || (!rigid_node.empty() && rigid_node[i])) continue;
+    if ((!rep_.empty() && rep_[i] >= 0 && rep_[i] != i) || (!rigid_node_.empty() && rigid_node_[i])) continue;
     Real f2 = 0;
     for (int d = 0; d < 3; ++d)
       if (!constrained_[k0 + d]) f2 += f_[k0 + d] * f_[k0 + d];

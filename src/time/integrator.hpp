@@ -182,6 +182,7 @@ class Integrator {
   std::vector<Real> x_, v_, f_, f_ext_, reaction_, inv_mass_, joint_slots_;
   std::vector<Real> v_target_;  ///< prescribed velocities of constrained dofs (scratch)
   std::vector<char> constrained_;
+  std::vector<char> rigid_node_;           ///< per node: 1 on a rigid body (empty without them)
   std::vector<char> special_;              ///< per dof: constrained or loaded
   std::vector<std::size_t> special_list_;  ///< those dofs, ascending
   /// No rigid bodies, no gravity, no mass damping: a dof without a load or a constraint has
