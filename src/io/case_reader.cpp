@@ -440,6 +440,10 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       }
       jm.penalty = s.real("joint_penalty");
       jm.nodal_quadrature = s.str("joint_quadrature") == "nodal";
+      if (s.has("mixed_mode") && !jm.coupled)
+        fail("{}: [materials.{}] mixed_mode applies to joint_law = \"coupled\" only (this material's law is \"{}\")",
+             s.where("mixed_mode"), mname, law);
+      jm.energy_mixed_mode = s.str("mixed_mode") == "energy";  // after has(): str() fills in the default
       if (s.has("joint_kn")) jm.kn = s.real("joint_kn");
       if (s.has("joint_ks")) jm.ks = s.real("joint_ks");
       contact::ContactMaterial cm;

@@ -269,6 +269,7 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
                 : jm.mode_i   ? joint::JointLaw::ModeI
                 : jm.residual ? joint::JointLaw::PaperResidual
                               : joint::JointLaw::Paper;
+        p.energy_mixed_mode = jm.energy_mixed_mode;
         js.param[j] = static_cast<Index>(js.params.size());
         js.params.push_back(p);
         js.quadrature.push_back(jm.nodal_quadrature ? joint::Quadrature::Nodal : joint::Quadrature::Gauss);

@@ -213,6 +213,20 @@ TEST(CaseReader, ModeIJointsTakeNoShearParameters) {
                {"come together", "friction_angle"});
 }
 
+TEST(CaseReader, TheMixedModeFormIsTheCoupledLawsOnly) {
+  // mixed_mode chooses where the coupled law's mixed paths break; under another law it would
+  // be ignored, so it is refused, naming the key's line and the law.
+  const std::string coupled = "nu = 0.2\njoint_law = \"coupled\"\nmixed_mode = \"energy\"";
+  const CaseConfig c = read_case(write_case(replace(kGood, "nu = 0.2", coupled)));
+  EXPECT_TRUE(c.joint_materials[0].coupled);
+  EXPECT_TRUE(c.joint_materials[0].energy_mixed_mode);
+  EXPECT_FALSE(read_case(write_case(kGood)).joint_materials[0].energy_mixed_mode);  // the default
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\nmixed_mode = \"energy\""),
+               {":9:", "mixed_mode", "coupled", "\"paper\""});
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\njoint_law = \"coupled\"\nmixed_mode = \"energies\""),
+               {"'mixed_mode'"});
+}
+
 TEST(CaseReader, ExtrinsicInsertionNeedsJoints) {
   // The good case's body has no joints: extrinsic insertion there is an error naming the key;
   // a wrong choice names it too; the check interval is read.
