@@ -24,7 +24,7 @@ struct JointMaterial {
   bool coupled = false;                ///< joint_law = "coupled"
   bool mode_i = false;                 ///< joint_law = "mode_I": no shear failure
   bool residual = false;               ///< joint_law = "paper_residual": the cohesion softens, friction stays
-  bool energy_mixed_mode = false;      ///< mixed_mode = "energy" (coupled law)
+  bool energy_mixed_mode = true;       ///< mixed_mode = "energy" (coupled law; the default)
 };
 
 /// [contact] and [[walls]].

@@ -442,7 +442,9 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       jm.nodal_quadrature = s.str("joint_quadrature") == "nodal";
       // A resolved case (case.resolved.toml) writes every key, so the default is accepted
       // under any law; another value would be ignored, so it is refused.
-      if (s.has("mixed_mode") && !jm.coupled && s.str("mixed_mode") != "displacement")
+      const bool mixed_mode_default =
+          fmt::format("\"{}\"", s.str("mixed_mode")) == find_key("materials.<name>", "mixed_mode").def;
+      if (s.has("mixed_mode") && !jm.coupled && !mixed_mode_default)
         fail("{}: [materials.{}] mixed_mode applies to joint_law = \"coupled\" only (this material's law is \"{}\")",
              s.where("mixed_mode"), mname, law);
       jm.energy_mixed_mode = s.str("mixed_mode") == "energy";  // after has(): str() fills in the default

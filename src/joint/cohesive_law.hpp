@@ -52,10 +52,10 @@ struct CohesiveParams {
   Real c = 0;              ///< cohesion [Pa]
   Real tan_phi = 0;        ///< tan of the friction angle
   JointLaw law = JointLaw::Paper;
-  /// Coupled law only: where a mixed-mode path breaks. false: the eq. 6 ellipse on the
-  /// displacements past the onset; true: on the energies released per mode,
-  /// G_I / G_fI + G_II / G_fII = 1 (coupled_law.hpp says why).
-  bool energy_mixed_mode = false;
+  /// Coupled law only: where a mixed-mode path breaks. true (the default): on the energies
+  /// released per mode, G_I / G_fI + G_II / G_fII = 1; false: the eq. 6 ellipse on the
+  /// displacements past the onset, the form before session 79 (coupled_law.hpp says why).
+  bool energy_mixed_mode = true;
 };
 
 enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };

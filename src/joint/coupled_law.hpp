@@ -25,24 +25,27 @@
 //                    s_n)
 //   onset            (k_n <dn> / f_t)^2 + (k_s ds / f_s)^2 = 1, i.e. lambda_0 =
 //                    1 / sqrt((k_n cos / f_t)^2 + (k_s sin / f_s)^2)
-//   final            the eq. 6 ellipse on the displacements past onset:
-//                    ((lambda - lambda_0) cos / w_GI)^2 + ((lambda - lambda_0) sin / w_GII)^2 = 1,
-//                    w_GI = 2 G_fI / f_t, w_GII = 2 G_fII / f_s
-//   damage           D = (lambda - lambda_0) / (lambda_f - lambda_0)  (the ellipse's radius),
-//                    d = D lambda_f / lambda, so the traction falls linearly from the onset
-//                    to zero at lambda_f on a proportional path.
-//   final, energy_mixed_mode (`mixed_mode = "energy"`): on the energies released past
+//   final            (`mixed_mode = "energy"`, the default) on the energies released past
 //                    the onset, G_I / G_fI + G_II / G_fII = 1, with G_I : G_II =
 //                    k_n cos^2 : k_s sin^2 on the path (Camanho & Davila 2002's power law
 //                    with exponent 1): the total is the mean of G_fI and G_fII weighted by
-//                    the shares, harmonically, so it always lies between them.
-// Why the second: the displacement ellipse was written for the paper's law, whose modes
+//                    the shares, harmonically, so it always lies between them;
+//                    (`"displacement"`, the form before session 79) the eq. 6 ellipse on the
+//                    displacements past onset:
+//                    ((lambda - lambda_0) cos / w_GI)^2 + ((lambda - lambda_0) sin / w_GII)^2 = 1,
+//                    w_GI = 2 G_fI / f_t, w_GII = 2 G_fII / f_s
+//   damage           D = (lambda - lambda_0) / (lambda_f - lambda_0), d = D lambda_f / lambda,
+//                    so the traction falls linearly from the onset to zero at lambda_f on a
+//                    proportional path.
+// Why the energy form: the displacement ellipse was written for the paper's law, whose modes
 // each soften from their own strength. Here a face opening at an angle starts to soften at
 // a shear traction of only about f_t tan(angle), so its w_GII = 2 G_fII / f_s stands for
 // far less energy than G_fII. Where w_GII < w_GI (c >> f_t: the sphere, c = 18 f_t) a face
 // 30 deg off its crack then releases 0.31 G_fI, below both modes' energies; the energy form
-// gives 1.2 G_fI there, between them. Where w_GII > w_GI (the Brazilian disc) the two
-// agree within 1 % up to 60 deg.
+// gives 1.2 G_fI there, between them. With the inter-element parameters c = 2 f_t,
+// G_fII = G_fI (the disc's core, the Galvez beam) the displacement form gives 0.80-1.0 G_fI
+// and the energy form G_fI at any angle. Where w_GII > w_GI (the paper's disc numbers) the
+// two agree within 1 % up to 60 deg.
 // In pure mode I this is the paper's mode-I triangle exactly (dissipation G_fI + f_t^2/2k_n);
 // in pure mode II the paper's mode-II triangle at that f_s (G_fII + f_s^2/2k_s); mixed paths
 // dissipate 1/2 lambda_0 lambda_f (k_n cos^2 + k_s sin^2), in between. At d = 1 the point is

@@ -216,14 +216,14 @@ TEST(CaseReader, ModeIJointsTakeNoShearParameters) {
 TEST(CaseReader, TheMixedModeFormIsTheCoupledLawsOnly) {
   // mixed_mode chooses where the coupled law's mixed paths break; under another law it would
   // be ignored, so it is refused, naming the key's line and the law.
-  const std::string coupled = "nu = 0.2\njoint_law = \"coupled\"\nmixed_mode = \"energy\"";
+  const std::string coupled = "nu = 0.2\njoint_law = \"coupled\"\nmixed_mode = \"displacement\"";
   const CaseConfig c = read_case(write_case(replace(kGood, "nu = 0.2", coupled)));
   EXPECT_TRUE(c.joint_materials[0].coupled);
-  EXPECT_TRUE(c.joint_materials[0].energy_mixed_mode);
-  EXPECT_FALSE(read_case(write_case(kGood)).joint_materials[0].energy_mixed_mode);  // the default
+  EXPECT_FALSE(c.joint_materials[0].energy_mixed_mode);
+  EXPECT_TRUE(read_case(write_case(kGood)).joint_materials[0].energy_mixed_mode);  // the default
   // The default, as a resolved case writes it for every material, is read under any law.
-  EXPECT_NO_THROW(read_case(write_case(replace(kGood, "nu = 0.2", "nu = 0.2\nmixed_mode = \"displacement\""))));
-  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\nmixed_mode = \"energy\""),
+  EXPECT_NO_THROW(read_case(write_case(replace(kGood, "nu = 0.2", "nu = 0.2\nmixed_mode = \"energy\""))));
+  expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\nmixed_mode = \"displacement\""),
                {":9:", "mixed_mode", "coupled", "\"paper\""});
   expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\njoint_law = \"coupled\"\nmixed_mode = \"energies\""),
                {"'mixed_mode'"});

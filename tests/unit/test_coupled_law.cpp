@@ -85,7 +85,9 @@ TEST(CoupledLaw, MixedPathsDissipateBetweenTheModesAsTheEnvelopeSays) {
   // On a proportional path at angle t the traction falls linearly from the onset to zero at
   // lambda_f, so the work is 1/2 lambda_0 lambda_f (k_n cos^2 + k_s sin^2); it lies between
   // the two pure modes' and grows with the shear share. Tolerance 2e-3: the path's steps.
-  const CohesiveParams p = params();
+  // The displacement form (mixed_mode = "displacement"), whose break this test checks below.
+  CohesiveParams p = params();
+  p.energy_mixed_mode = false;
   const Real GI = p.GfI + p.ft * p.ft / (2 * p.kn), GII = p.GfII + p.c * p.c / (2 * p.ks);
   Real last = 0;
   for (Real deg : {5.0, 30.0, 60.0, 85.0, 89.9}) {
@@ -220,7 +222,8 @@ TEST(CoupledLaw, TheEnergyFormBreaksMixedPathsOnTheLineOfTheEnergies) {
   // Each mode's energy past the onset, measured from the law's own books along the path, lies
   // on G_I / G_fI + G_II / G_fII = 1, so the total stays between the two modes'.
   // Tolerance 2e-3: the path's 200000 steps (as the envelope test above).
-  for (const CohesiveParams& p : {params(), sphere_params(false)}) {
+  for (CohesiveParams p : {params(), sphere_params(false)}) {
+    p.energy_mixed_mode = false;
     CohesiveParams q = p;
     q.energy_mixed_mode = true;
     for (Real deg : {5.0, 30.0, 60.0, 85.0}) {
@@ -251,9 +254,9 @@ TEST(CoupledLaw, TheDisplacementFormReleasesLessThanEitherModeWhenTheShearEllips
   const auto [eI, eII] = released_past_onset(sphere_params(true), 30.0);
   EXPECT_NEAR((eI + eII) / 80.0, 1.18, 0.01);
   for (Real deg : {5.0, 30.0, 60.0}) {
-    CohesiveParams q = params();
-    q.energy_mixed_mode = true;
-    const auto [dI, dII] = released_past_onset(params(), deg);
+    CohesiveParams d = params(), q = params();
+    d.energy_mixed_mode = false, q.energy_mixed_mode = true;
+    const auto [dI, dII] = released_past_onset(d, deg);
     const auto [nI, nII] = released_past_onset(q, deg);
     EXPECT_NEAR((nI + nII) / (dI + dII), 1.0, 0.01) << deg;
   }
