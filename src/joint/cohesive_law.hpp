@@ -120,23 +120,32 @@ inline Real drop_to_cap(Real& e, Real cap, Real ks) {
 
 /// Shear traction of a broken point: residual Coulomb friction, elastic-plastic along the
 /// slip, |s_s| <= -s_n tan(phi), with the sign allowed to reverse so that sliding back is
-/// resisted too. Dissipation, exactly: first the cap changes at fixed slip (a drop releases
-/// (s^2 - cap^2) / 2 k_s), then the slip increment slides at the cap (cap x plastic slip).
+/// resisted too: the cap changes at fixed slip (a fallen cap drops the traction to it), then
+/// the slip increment goes elastic and slides on the cap.
+/// Dissipation: the forces' work over the step by the trapezoid rule less the change of the
+/// stored energy 1/2 s_s^2 / k_s, as the contacts' tangential springs book it
+/// (contact_law.hpp), so the books follow the bodies' work. Booked at the law's own values
+/// (the released (s^2 - cap^2) / 2 k_s of a drop, cap x plastic slip), they ran ahead of it
+/// at every step that went from elastic to sliding: a step's work counts the traction's
+/// mean, the law the cap. That was the upward drift of the ledger after a break. Positive
+/// but for a step that both drops the cap and reverses the friction past zero: there the
+/// trapezoid hands the bodies back energy the spring never stored, so the step books none
+/// (a point's dissipation never falls) and the balance shows the step's error instead.
 inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, CohesiveState& s) {
   // A forced break zeroed the shear after the forces were assembled with it: the bodies
   // felt it over the step that ends now, so its half of the trapezoid is dissipated here.
   s.diss_II_at_break += 0.5 * s.ss_forced * (ds - s.ds);
   s.ss_forced = 0;
-  const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
+  const Real cap = p.tan_phi * std::max<Real>(0.0, -sn), dslip = ds - s.ds;
   Real e = s.ss;
-  s.friction += drop_to_cap(e, cap, p.ks);
-  Real trial = e + p.ks * (ds - s.ds);
-  if (std::abs(trial) > cap) {
-    s.friction += cap * (std::abs(trial) - cap) / p.ks;
-    trial = trial > 0 ? cap : -cap;
-  }
-  s.ds_plastic = ds - trial / p.ks;
-  return trial;
+  const bool dropped = drop_to_cap(e, cap, p.ks) > 0;
+  Real t = e + p.ks * dslip;
+  const bool slid = std::abs(t) > cap;
+  if (slid) t = t > 0 ? cap : -cap;
+  // An elastic step dissipates nothing; it is not computed there, where it is rounding.
+  if (dropped || slid) s.friction += std::max<Real>(0.0, 0.5 * (s.ss + t) * (dslip - (t - s.ss) / p.ks));
+  s.ds_plastic = ds - t / p.ks;
+  return t;
 }
 
 /// The paper's normal traction (eq. 3) at opening dn, with its history (the largest opening);
