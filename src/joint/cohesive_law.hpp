@@ -26,8 +26,9 @@
 //    changing its magnitude is not resisted: the contact issue's tangential history will be);
 //  - energy: the work of the tractions is integrated (trapezoid) per mode; dissipation is
 //    work minus the recoverable elastic energy (1/2 s dn on the secant), so at complete
-//    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n); residual friction dissipates
-//    exactly cap x plastic slip.
+//    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n); residual friction books, step
+//    by step, the trapezoid work less its stored energy's change, never negative
+//    (residual_friction).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -70,7 +71,7 @@ struct CohesiveState {
   Real damage = 0;
   /// Mode-II dissipation when the point failed [J/m^2]; paper_residual books it as it goes.
   Real diss_II_at_break = 0;
-  Real friction = 0;            ///< residual-friction dissipation since then, cap x plastic slip [J/m^2]
+  Real friction = 0;            ///< residual-friction dissipation since then (residual_friction) [J/m^2]
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
   Real sn = 0, ss = 0;          ///< last tractions [Pa]
   Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
