@@ -201,6 +201,7 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
     if (!js.released[j] && fragment_[js.ea[j]] != fragment_[js.eb[j]]) {
       if (joint_owned_.empty() || joint_owned_[j]) js.released_energy += joint::joint_elastic_energy(js, j);
       js.released[j] = 1;
+      js.newly_released.push_back(j);
     }
   surface_list_.clear();
   for (Index e = 0; e < ne; ++e)
@@ -637,6 +638,7 @@ void ContactSystem::wall_touches(const Wall& wl, const Prepared& A, Real r, std:
 }
 
 void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f) {
+  js.newly_released.clear();
   if (!enabled_) return;
   DSPDEM_CHECK(ex_ || node_global_.empty(), "internal: a distributed run's contact share without its exchange");
   bool again = needs_rebuild(js, x);

@@ -118,7 +118,9 @@ class ContactSystem {
   /// Adds contact forces to f (3 x nodes) at positions x and velocities v; dt for the
   /// tangential increment. Updates the tangential history (call once per step). Broken
   /// joints whose elements have come to lie in different fragments are released (they
-  /// stop acting: contact carries the pieces from then on).
+  /// stop acting: contact carries the pieces from then on) and listed in js.newly_released:
+  /// their forces already summed into f are the caller's to take back
+  /// (joint::remove_joint_forces).
   void add_forces(const Mesh& mesh, joint::JointSet& js, const Real* x, const Real* v, Real dt, Real* f);
 
   /// Kick and drift of the walls (free: from their contact force and gravity; prescribed:

@@ -396,6 +396,25 @@ void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& s
   }
 }
 
+Real remove_joint_forces(const JointSet& js, const std::vector<Index>& joints, const std::vector<Real>& slots,
+                         const Real* v, Real h, const std::vector<char>& owned, Real* f) {
+  Real work = 0;
+  for (Index j : joints) {
+    const Real* s = &slots[12 * static_cast<std::size_t>(j)];  // side A's forces; side B's are their opposite
+    Real p = 0;
+    for (int k = 0; k < js.npf[j]; ++k) {
+      const std::size_t a = 3 * static_cast<std::size_t>(js.a[4 * static_cast<std::size_t>(j) + k]);
+      const std::size_t b = 3 * static_cast<std::size_t>(js.b[4 * static_cast<std::size_t>(j) + k]);
+      for (int d = 0; d < 3; ++d) {
+        f[a + d] -= s[3 * k + d], f[b + d] += s[3 * k + d];
+        p += s[3 * k + d] * (v[a + d] - v[b + d]);
+      }
+    }
+    if (owned.empty() || owned[j]) work += 0.5 * h * p;
+  }
+  return work;
+}
+
 Real joint_elastic_energy(const JointSet& js, Index j) {
   double N[4][4], w[4];
   const int ng = face_quadrature(js.npf[j], js.rule(j), N, w);

@@ -22,6 +22,17 @@ struct JointTotals {
 /// over nodes); the result is bitwise that of add_joint_forces_reference on any thread count.
 void add_joint_forces(JointSet& js, const Real* x, Real* f, std::vector<Real>& slots);
 
+/// Takes back from f the forces that `joints` added in the evaluation whose slots these are
+/// (add_joint_forces): for joints released after the sum (contact releases a broken joint
+/// once its elements lie in different pieces, ContactSystem::add_forces), so that the kicks
+/// never apply them. Returns the half of those forces' trapezoid work over the step that
+/// ended here, 1/2 h f . v (v the nodes' mid-step velocity, h the step) that the kicks will
+/// therefore not apply either, summed over the joints flagged in `owned` (all when empty):
+/// the released energy's correction (see Integrator::compute_forces). Serial, in the list's
+/// order: the same bits on any thread count.
+Real remove_joint_forces(const JointSet& js, const std::vector<Index>& joints, const std::vector<Real>& slots,
+                         const Real* v, Real h, const std::vector<char>& owned, Real* f);
+
 /// The plain serial kernel, joint after joint: the test oracle of add_joint_forces.
 void add_joint_forces_reference(JointSet& js, const Real* x, Real* f);
 

@@ -43,6 +43,7 @@ struct JointSet {
   /// in different fragments. Energy still stored in it then is booked in released_energy.
   std::vector<char> released;
   Real released_energy = 0;
+  std::vector<Index> newly_released;  ///< scratch: joints released by the current force evaluation (contact's)
   /// Per joint: closed (extrinsic insertion, joint/ties.hpp): its two sides are still one
   /// material, their node pairs tied, and the joint applies no force. Empty: none closed.
   std::vector<char> closed;
