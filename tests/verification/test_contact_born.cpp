@@ -217,8 +217,9 @@ TEST(ContactBorn, AWallPairFoundOverlappingIsRecordedWithTheEnergyItPushesWith) 
 // their half of the last step's trapezoid +2.4e-4). Taken back, that half booked as released
 // energy (joint::remove_joint_forces): 1.7e-5, and 2.8e-6 at a third of this step, what is
 // left being the stiff joint's own error of the step. Bound 1e-4.
-// The contact is frictionless: sliding faces' friction has an error of its own (about 4 %
-// of its work here; the note of session 81), which this test is not about.
+// The contact is frictionless: faces that lie exactly on each other and slide hand their
+// touches' loaded springs over with an error of their own (4-6 % of the friction's work
+// here; src/scenes/sphere_impact/REFERENCE.md, session 81), which this test is not about.
 TEST(ContactBorn, AJointReleasedWhilePressedLeavesTheBooksClosed) {
   CaseConfig c = fracturable_contact_case();
   c.contact_materials[0].friction = 0;
