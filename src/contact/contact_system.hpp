@@ -203,8 +203,17 @@ class ContactSystem {
   /// Evaluates pair p (element pair or wall pair) at x, v into `out`.
   void evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,
                      std::vector<TouchOut>& out);
-  bool evaluate(Index p, Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v, Real dt,
-                Real offset, TouchOut& o) const;
+  /// Where a touch's tangential spring comes from: its own entry of the last step, or the
+  /// entry of a touch it takes over from (successor), or none (a new contact).
+  struct SpringFrom {
+    const HistoryEntry* entry = nullptr;
+    bool successor = false;
+  };
+  /// Pair p's touches' springs: each touch's own history entry; for a touch without one, the
+  /// entry of the pair that no touch continues whose point lies nearest, within r_a + r_b.
+  void springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb, std::vector<SpringFrom>& out) const;
+  bool evaluate(Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v, Real dt,
+                Real offset, TouchOut& o, const SpringFrom& spring) const;
   void gather(const TouchOut& o, Real* f);
   void cache_skeletons(const Real* x);
   const Prepared& cached(Index e) const { return skel_cache_[skel_slot_[e]]; }

@@ -51,7 +51,8 @@ Real released_spring_energy(const PairHistory& before, const PairHistory& after)
       bool goes_on = false;
       for (Index j = after.offset[p]; j < after.offset[p + 1] && !goes_on; ++j) {
         const HistoryEntry& g = after.entry[j];
-        goes_on = g.kind == h.kind && g.fa == h.fa && g.fb == h.fb;
+        goes_on = (g.kind == h.kind && g.fa == h.fa && g.fb == h.fb) ||
+                  (g.from_kind == h.kind && g.from_fa == h.fa && g.from_fb == h.fb);
       }
       if (!goes_on) sum += h.spring_energy;
     }

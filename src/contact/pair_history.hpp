@@ -22,9 +22,13 @@ struct HistoryEntry {
   Real spring_energy = 0;
   /// The touch's cluster share (Touch::share) when xi was stored: see carry.
   Real share = 1;
+  Vec3 c = Vec3::Zero();  ///< the touch's contact point when stored: where a successor takes its spring over
+  /// The feature pair whose spring this touch took over in this step (-1: none; not kept
+  /// in checkpoints, a step's own).
+  int from_kind = -1, from_fa = -1, from_fb = -1;
   template <class Ar>
   void persist(Ar& ar) {
-    ar(kind, fa, fb, xi, spring_energy, share);
+    ar(kind, fa, fb, xi, spring_energy, share, c);
   }
 };
 
@@ -58,8 +62,12 @@ struct PairHistory {
   /// energy kept, not force). The fade's part of the weight is not scaled here: its gradient
   /// is in the force (Touch::Fade).
   Vec3 carry(Index p, int kind, int fa, int fb, Real share) const {
-    const HistoryEntry* h = entry_of(p, kind, fa, fb);  // an unchanged share keeps xi's bits: x / x is exactly 1
-    return h ? Vec3(h->xi * std::sqrt(h->share / share)) : Vec3::Zero();
+    const HistoryEntry* h = entry_of(p, kind, fa, fb);
+    return h ? carry(*h, share) : Vec3::Zero();
+  }
+  /// Entry h's xi carried so to the share of the touch that goes on with it.
+  static Vec3 carry(const HistoryEntry& h, Real share) {
+    return h.xi * std::sqrt(h.share / share);  // an unchanged share keeps xi's bits: x / x is exactly 1
   }
   void clear(Index pairs) {
     offset.assign(static_cast<std::size_t>(pairs) + 1, 0);
@@ -72,13 +80,11 @@ struct PairHistory {
 /// and the spring energy of their entries is added to *released when given.
 PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& old_keys,
                           const std::vector<PairKey>& new_keys, Real* released = nullptr);
-/// The spring energy of the touches in `before` that are not in `after` (the same pair's entry
-/// of the same feature pair), over the pairs of both (the same list, or `before` empty).
-/// A touch ends loaded when its pair hands over to another feature pair (the contact goes
-/// on through a new touch whose spring starts at zero), so that energy leaves the contact's
-/// stored energy without work: the ledger books it as dissipated, as if the spring had
-/// slipped back. (The contact's force drops by kt |xi| there; carrying xi over to the
-/// successor touch would keep it, and is not done.)
+/// The spring energy of the touches in `before` that do not go on in `after` (the same
+/// pair's entry of the same feature pair, or one that took its spring over), over the pairs
+/// of both (the same list, or `before` empty). A touch that ends loaded with no successor
+/// (the contact opened there) takes that energy out of the contact's stored energy without
+/// work: the ledger books it as dissipated, as if the spring had slipped back.
 Real released_spring_energy(const PairHistory& before, const PairHistory& after);
 
 /// Values per pair carried over the same way (`absent` for new pairs).

@@ -100,3 +100,16 @@ TEST(PairHistory, ASpringThatEndsLoadedIsReleasedOnce) {
   short_list.offset = {0, 0};
   EXPECT_THROW(released_spring_energy(before, short_list), Error);  // not the same pairs
 }
+
+TEST(PairHistory, ASpringTakenOverByASuccessorIsNotReleased) {
+  // As in the last test, but the edge-edge touch (2, 1, 2) took over the spring of (4, 1, 2)
+  // (ContactSystem::springs_of): that spring goes on, so only pair 2's ends (4.5).
+  const PairHistory before = two_pairs();
+  PairHistory after;
+  after.offset = {0, 2, 2, 2};
+  after.entry = {{3, 0, 5, Vec3(0, 1, 0), 0.5}, {2, 1, 2, Vec3(1, 0, 0), 0.5}};
+  after.entry[1].from_kind = 4, after.entry[1].from_fa = 1, after.entry[1].from_fb = 2;
+  EXPECT_EQ(released_spring_energy(before, after), 4.5);
+  after.entry[1].from_fb = 3;  // taken over from a feature pair the pair did not have: (4, 1, 2) ends
+  EXPECT_EQ(released_spring_energy(before, after), 5.0);
+}
