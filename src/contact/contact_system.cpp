@@ -448,11 +448,12 @@ Vec3 contact_point(const Touch& t, Real ra, Real rb) { return 0.5 * (t.pa - ra *
 // with the touch that takes its place: dropped, the friction fell below mu N while the new
 // spring loaded again, and the old force's half of the step's trapezoid was booked nowhere
 // (4-6 % of the friction's work on a broken face sliding; test
-// ContactBorn.AJointReleasedWhilePressedLeavesTheBooksClosed). The successor is the touch
-// nearest the ended one's point within the pair's rounding r_a + r_b, matched greedily in
-// the touches' order (deterministic: one pair on one thread). Each touch's own entry is
-// found here too, once (evaluate takes it from here).
-void ContactSystem::springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb,
+// ContactBorn.AJointReleasedWhilePressedLeavesTheBooksClosed). The successor is a touch that
+// will push (its overlap past the pair's offset positive) and carries weight (a faded touch
+// of weight 0 would hold the spring's energy at none), nearest the ended one's point within
+// `reach`, matched greedily in the touches' order (deterministic: one pair on one thread).
+// Each touch's own entry is found here too, once (evaluate takes it from here).
+void ContactSystem::springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb, Real offset, Real reach,
                                std::vector<SpringFrom>& out) const {
   out.assign(touches.size(), SpringFrom{});
   if (p >= history_.pairs()) return;
@@ -471,13 +472,15 @@ void ContactSystem::springs_of(Index p, const std::vector<Touch>& touches, Real 
   }
   if (all_own) return;
   for (std::size_t i = 0; i < touches.size(); ++i) {
-    if (out[i].entry) continue;
-    const Vec3 c = contact_point(touches[i], ra, rb);
+    const Touch& t = touches[i];
+    if (out[i].entry || t.weight <= 0 || ra + rb - t.d - offset <= 0) continue;
+    const Vec3 c = contact_point(t, ra, rb);
     Index best = -1;
-    Real nearest = ra + rb;
+    Real nearest = reach;
     for (Index k = k0; k < k1; ++k) {
-      if (claimed[k - k0]) continue;
-      const Real d = (history_.entry[k].c - c).norm();
+      const HistoryEntry& h = history_.entry[k];
+      if (claimed[k - k0] || h.weight <= 0) continue;
+      const Real d = (h.c - c).norm();
       if (d < nearest) nearest = d, best = k;
     }
     if (best >= 0) claimed[best - k0] = 1, out[i] = SpringFrom{&history_.entry[best], true};
@@ -530,7 +533,12 @@ bool ContactSystem::evaluate(Index ea, Index eb, const Wall* wall, const Touch& 
   o.hist.kind = static_cast<int>(t.kind), o.hist.fa = t.fa, o.hist.fb = t.fb, o.hist.share = t.share;
   o.hist.c = c;
   o.hist.from_kind = o.hist.from_fa = o.hist.from_fb = -1;
-  o.hist.xi = spring.entry ? PairHistory::carry(*spring.entry, t.share) : Vec3::Zero();
+  o.hist.weight = t.weight;
+  // Its own spring is carried by the share alone (the fade's gradient is in the force); a
+  // successor takes the ended touch's stored energy whole, at its own weight.
+  o.hist.xi = !spring.entry      ? Vec3::Zero()
+              : spring.successor ? Vec3(spring.entry->xi * std::sqrt(spring.entry->weight / t.weight))
+                                 : PairHistory::carry(*spring.entry, t.share);
   if (spring.successor)
     o.hist.from_kind = spring.entry->kind, o.hist.from_fa = spring.entry->fa, o.hist.from_fb = spring.entry->fb;
   const LawParams law = pair_params(ea, wall ? -1 : eb, wall);
@@ -665,7 +673,7 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
       offset = born_offset_[p] = std::min(offset, worst);
     }
     thread_local std::vector<SpringFrom> from;
-    springs_of(p, touches, radius_[ea], radius_[eb], from);
+    springs_of(p, touches, radius_[ea], radius_[eb], offset, radius_[ea] + radius_[eb], from);
     for (std::size_t i = 0; i < touches.size(); ++i)
       if (evaluate(ea, eb, nullptr, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o);
     return;
@@ -674,7 +682,8 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   const Wall& wl = walls_[w];
   wall_touches(wl, cached(e), radius_[e], touches);
   thread_local std::vector<SpringFrom> from;
-  springs_of(p, touches, radius_[e], wl.type == Wall::Type::Cylinder ? wl.radius : 0.0, from);
+  // (Within the element's own rounding: a cylinder's radius is no measure of where its touches lie.)
+  springs_of(p, touches, radius_[e], wl.type == Wall::Type::Cylinder ? wl.radius : 0.0, 0.0, radius_[e], from);
   for (std::size_t i = 0; i < touches.size(); ++i)
     if (evaluate(e, -1 - w, &wl, touches[i], x, v, dt, 0.0, o, from[i])) out.push_back(o);
 }

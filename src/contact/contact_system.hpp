@@ -209,9 +209,11 @@ class ContactSystem {
     const HistoryEntry* entry = nullptr;
     bool successor = false;
   };
-  /// Pair p's touches' springs: each touch's own history entry; for a touch without one, the
-  /// entry of the pair that no touch continues whose point lies nearest, within r_a + r_b.
-  void springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb, std::vector<SpringFrom>& out) const;
+  /// Pair p's touches' springs: each touch's own history entry; for a touch without one that
+  /// will push (overlap past `offset` positive) and has weight, the entry of the pair that
+  /// no touch continues whose point lies nearest, within `reach`.
+  void springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb, Real offset, Real reach,
+                  std::vector<SpringFrom>& out) const;
   bool evaluate(Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v, Real dt,
                 Real offset, TouchOut& o, const SpringFrom& spring) const;
   void gather(const TouchOut& o, Real* f);

@@ -23,12 +23,13 @@ struct HistoryEntry {
   /// The touch's cluster share (Touch::share) when xi was stored: see carry.
   Real share = 1;
   Vec3 c = Vec3::Zero();  ///< the touch's contact point when stored: where a successor takes its spring over
+  Real weight = 1;        ///< the touch's weight (share x fade): a successor keeps weight x |xi|^2
   /// The feature pair whose spring this touch took over in this step (-1: none; not kept
   /// in checkpoints, a step's own).
   int from_kind = -1, from_fa = -1, from_fb = -1;
   template <class Ar>
   void persist(Ar& ar) {
-    ar(kind, fa, fb, xi, spring_energy, share, c);
+    ar(kind, fa, fb, xi, spring_energy, share, c, weight);
   }
 };
 
@@ -83,8 +84,9 @@ PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& ol
 /// The spring energy of the touches in `before` that do not go on in `after` (the same
 /// pair's entry of the same feature pair, or one that took its spring over), over the pairs
 /// of both (the same list, or `before` empty). A touch that ends loaded with no successor
-/// (the contact opened there) takes that energy out of the contact's stored energy without
-/// work: the ledger books it as dissipated, as if the spring had slipped back.
+/// (the contact opened there, or no touch that pushes lies near) takes that energy out of the
+/// contact's stored energy without work: the ledger books it as dissipated, as if the spring
+/// had slipped back.
 Real released_spring_energy(const PairHistory& before, const PairHistory& after);
 
 /// Values per pair carried over the same way (`absent` for new pairs).

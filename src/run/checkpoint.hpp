@@ -20,7 +20,7 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  // 12: the touches' contact points in the contacts' history (a successor takes a spring over); 11: the
+  // 12: the touches' contact points and weights in the contacts' history (a successor takes a spring over); 11: the
   // integrator's last step, the kick's term at the start and the damping's lag (the ledger), a joint
   // point's shear dropped by a forced break; 10: the touches' cluster shares in the contacts' history; 9: the
   // executable and the wall-time interval (8: the contacts' pairs first found overlapping; 7: no previous fragment ids

@@ -104,6 +104,8 @@ void Integrator::compute_forces(const std::vector<Real>& vel, Real dt_contact, b
   // J short of 292 J by 0.75 ms, growing with the pieces. Taken back, they are missing instead
   // from the step that ended here, whose trapezoid the joints' books hold whole: that half,
   // 1/2 h f . v, is booked with the released energy, so the books follow what the kicks did.
+  // (No step ended here when dt_contact is 0: at the start, or a retie after the step's
+  // whole kick, which applied those forces already.)
   if (!m_.joints.newly_released.empty())
     m_.joints.released_energy += joint::remove_joint_forces(m_.joints, m_.joints.newly_released, joint_slots_,
                                                             vel.data(), dt_contact, m_.joint_owned, f_.data());
