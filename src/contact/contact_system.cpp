@@ -436,57 +436,6 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
   return p;
 }
 
-namespace {
-// One contact point for both sides (the middle of the overlap), so the pair's forces are
-// equal, opposite and collinear: momentum and angular momentum are exact.
-Vec3 contact_point(const Touch& t, Real ra, Real rb) { return 0.5 * (t.pa - ra * t.n + t.pb + rb * t.n); }
-}  // namespace
-
-// A touch ends when its pair's contact moves on to another feature pair at the same place
-// (faces lying on each other, as a joint's two faces after it broke, trade vertex-on-face for
-// edge-on-edge touches along their rims from one step to the next). Its spring must go on
-// with the touch that takes its place: dropped, the friction fell below mu N while the new
-// spring loaded again, and the old force's half of the step's trapezoid was booked nowhere
-// (4-6 % of the friction's work on a broken face sliding; test
-// ContactBorn.AJointReleasedWhilePressedLeavesTheBooksClosed). The successor is a touch that
-// will push (its overlap past the pair's offset positive) and carries weight (a faded touch
-// of weight 0 would hold the spring's energy at none), nearest the ended one's point within
-// `reach`, matched greedily in the touches' order (deterministic: one pair on one thread).
-// Each touch's own entry is found here too, once (evaluate takes it from here).
-void ContactSystem::springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb, Real offset, Real reach,
-                               std::vector<SpringFrom>& out) const {
-  out.assign(touches.size(), SpringFrom{});
-  if (p >= history_.pairs()) return;
-  const Index k0 = history_.offset[p], k1 = history_.offset[p + 1];
-  if (k0 == k1) return;
-  thread_local std::vector<char> claimed;
-  claimed.assign(static_cast<std::size_t>(k1 - k0), 0);
-  bool all_own = true;
-  for (std::size_t i = 0; i < touches.size(); ++i) {
-    for (Index k = k0; k < k1 && !out[i].entry; ++k) {
-      const HistoryEntry& h = history_.entry[k];
-      if (h.kind == static_cast<int>(touches[i].kind) && h.fa == touches[i].fa && h.fb == touches[i].fb)
-        claimed[k - k0] = 1, out[i].entry = &h;
-    }
-    all_own = all_own && out[i].entry;
-  }
-  if (all_own) return;
-  for (std::size_t i = 0; i < touches.size(); ++i) {
-    const Touch& t = touches[i];
-    if (out[i].entry || t.weight <= 0 || ra + rb - t.d - offset <= 0) continue;
-    const Vec3 c = contact_point(t, ra, rb);
-    Index best = -1;
-    Real nearest = reach;
-    for (Index k = k0; k < k1; ++k) {
-      const HistoryEntry& h = history_.entry[k];
-      if (claimed[k - k0] || h.weight <= 0) continue;
-      const Real d = (h.c - c).norm();
-      if (d < nearest) nearest = d, best = k;
-    }
-    if (best >= 0) claimed[best - k0] = 1, out[i] = SpringFrom{&history_.entry[best], true};
-  }
-}
-
 bool ContactSystem::evaluate(Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v,
                              Real dt, Real offset, TouchOut& o, const SpringFrom& spring) const {
   const Real ra = radius_[ea], rb = wall ? (wall->type == Wall::Type::Cylinder ? wall->radius : 0.0) : radius_[eb];
@@ -532,15 +481,8 @@ bool ContactSystem::evaluate(Index ea, Index eb, const Wall* wall, const Touch& 
   vrel += (vn_rel - vrel).dot(t.n) * t.n;
   o.hist.kind = static_cast<int>(t.kind), o.hist.fa = t.fa, o.hist.fb = t.fb, o.hist.share = t.share;
   o.hist.c = c;
-  o.hist.from_kind = o.hist.from_fa = o.hist.from_fb = -1;
   o.hist.weight = t.weight;
-  // Its own spring is carried by the share alone (the fade's gradient is in the force); a
-  // successor takes the ended touch's stored energy whole, at its own weight.
-  o.hist.xi = !spring.entry      ? Vec3::Zero()
-              : spring.successor ? Vec3(spring.entry->xi * std::sqrt(spring.entry->weight / t.weight))
-                                 : PairHistory::carry(*spring.entry, t.share);
-  if (spring.successor)
-    o.hist.from_kind = spring.entry->kind, o.hist.from_fa = spring.entry->fa, o.hist.from_fb = spring.entry->fb;
+  o.hist.xi = starting_spring(spring, t);
   const LawParams law = pair_params(ea, wall ? -1 : eb, wall);
   LawResult r = contact_law(law, overlap, t.n, vrel, dt, o.hist.xi);
   // A faded touch's stored energy is weight x E: the weight's gradient is a force too (a
@@ -662,6 +604,13 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   const Index npair = static_cast<Index>(pairs_.size());
   touches.clear();
   TouchOut o;
+  // Every spring of the pair's last step has ended unless a touch that pushes goes on with it
+  // (its own or a successor; a touch that matched its own entry but no longer pushes ends it).
+  if (p < history_.pairs())
+    std::fill(ended_.begin() + history_.offset[p], ended_.begin() + history_.offset[p + 1], char{1});
+  auto goes_on = [&](const SpringFrom& s) {
+    if (s.entry) ended_[static_cast<std::size_t>(s.entry - history_.entry.data())] = 0;
+  };
   if (p < npair) {
     const auto [ea, eb] = pairs_[p];
     find_touches(cached(ea), radius_[ea], cached(eb), radius_[eb], touches);
@@ -673,9 +622,9 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
       offset = born_offset_[p] = std::min(offset, worst);
     }
     thread_local std::vector<SpringFrom> from;
-    springs_of(p, touches, radius_[ea], radius_[eb], offset, radius_[ea] + radius_[eb], from);
+    springs_of(history_, p, touches, radius_[ea], radius_[eb], offset, radius_[ea] + radius_[eb], from);
     for (std::size_t i = 0; i < touches.size(); ++i)
-      if (evaluate(ea, eb, nullptr, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o);
+      if (evaluate(ea, eb, nullptr, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o), goes_on(from[i]);
     return;
   }
   const auto [w, e] = wall_pairs_[p - npair];
@@ -683,9 +632,10 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   wall_touches(wl, cached(e), radius_[e], touches);
   thread_local std::vector<SpringFrom> from;
   // (Within the element's own rounding: a cylinder's radius is no measure of where its touches lie.)
-  springs_of(p, touches, radius_[e], wl.type == Wall::Type::Cylinder ? wl.radius : 0.0, 0.0, radius_[e], from);
+  springs_of(history_, p, touches, radius_[e], wl.type == Wall::Type::Cylinder ? wl.radius : 0.0, 0.0, radius_[e],
+             from);
   for (std::size_t i = 0; i < touches.size(); ++i)
-    if (evaluate(e, -1 - w, &wl, touches[i], x, v, dt, 0.0, o, from[i])) out.push_back(o);
+    if (evaluate(e, -1 - w, &wl, touches[i], x, v, dt, 0.0, o, from[i])) out.push_back(o), goes_on(from[i]);
 }
 
 void ContactSystem::wall_touches(const Wall& wl, const Prepared& A, Real r, std::vector<Touch>& out) {
@@ -727,6 +677,9 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
 
   // Evaluate every pair into its own records (any thread, any order)...
   const Index np = static_cast<Index>(pairs_.size() + wall_pairs_.size());
+  DSPDEM_CHECK(history_.entry.empty() || history_.pairs() == np, "contact history: {} pairs, the step has {}",
+               history_.pairs(), np);
+  ended_.assign(history_.entry.size(), 0);
   rec_thread_.resize(np), rec_off_.resize(np), rec_n_.resize(np);
   arena_.resize(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
 #pragma omp parallel if (np > 256)
@@ -750,10 +703,13 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
     history_next_.offset[p + 1] = static_cast<Index>(history_next_.entry.size());
   }
   // Touches that ended with their tangential spring loaded and no successor (springs_of):
-  // that energy is gone from the contacts without work, and is booked as dissipated (before
-  // successors took springs over, contact penalty 0.1 on the sphere at 7.5 m/s lost 6 J, 2 %
-  // of the impact energy, there).
-  totals_.friction += released_spring_energy(history_, history_next_);
+  // that energy is gone from the contacts without work, and is booked as dissipated, as if
+  // the spring had slipped back (before successors took springs over, contact penalty 0.1 on
+  // the sphere at 7.5 m/s lost 6 J, 2 % of the impact energy, there).
+  Real released = 0;
+  for (std::size_t k = 0; k < history_.entry.size(); ++k)
+    if (ended_[k]) released += history_.entry[k].spring_energy;
+  totals_.friction += released;
   std::swap(history_, history_next_);
   if (ex_) reduce_step();
   // Viscous dissipation over the drift just made (x moved by dt v): trapezoidal work of the

@@ -33,6 +33,7 @@
 #include "contact/narrow_phase.hpp"
 #include "contact/pair_history.hpp"
 #include "contact/skeleton.hpp"
+#include "contact/spring_handover.hpp"
 #include "contact/walls.hpp"
 #include "joint/joint_set.hpp"
 #include "mesh/mesh.hpp"
@@ -203,17 +204,6 @@ class ContactSystem {
   /// Evaluates pair p (element pair or wall pair) at x, v into `out`.
   void evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,
                      std::vector<TouchOut>& out);
-  /// Where a touch's tangential spring comes from: its own entry of the last step, or the
-  /// entry of a touch it takes over from (successor), or none (a new contact).
-  struct SpringFrom {
-    const HistoryEntry* entry = nullptr;
-    bool successor = false;
-  };
-  /// Pair p's touches' springs: each touch's own history entry; for a touch without one that
-  /// will push (overlap past `offset` positive) and has weight, the entry of the pair that
-  /// no touch continues whose point lies nearest, within `reach`.
-  void springs_of(Index p, const std::vector<Touch>& touches, Real ra, Real rb, Real offset, Real reach,
-                  std::vector<SpringFrom>& out) const;
   bool evaluate(Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v, Real dt,
                 Real offset, TouchOut& o, const SpringFrom& spring) const;
   void gather(const TouchOut& o, Real* f);
@@ -275,6 +265,9 @@ class ContactSystem {
   std::vector<std::pair<Index, Index>> wall_pairs_;  ///< (wall, element)
   GridBroadPhase grid_;
   PairHistory history_, history_next_;  ///< by index into pairs_ then wall_pairs_
+  /// Per entry of history_, set in a step: its touch ended with no touch going on with its
+  /// spring (springs_of), so its spring energy is released (booked in pair order).
+  std::vector<char> ended_;
   /// Per element: index into skel_cache_ (-1: in no pair). Only the elements some pair
   /// names have their skeleton computed each step: on the intact Brazilian disc, only the
   /// elements near its jaws, not its thousands of surface elements (issue 19).

@@ -1,7 +1,5 @@
 #include "contact/pair_history.hpp"
 
-#include "core/error.hpp"
-
 namespace dspdem::contact {
 
 namespace {
@@ -38,25 +36,6 @@ PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& ol
     h.offset[j + 1] = static_cast<Index>(h.entry.size());
   }
   return h;
-}
-
-Real released_spring_energy(const PairHistory& before, const PairHistory& after) {
-  if (before.entry.empty()) return 0;
-  DSPDEM_CHECK(before.pairs() == after.pairs(), "contact history: {} pairs before a step and {} after", before.pairs(),
-               after.pairs());
-  Real sum = 0;
-  for (Index p = 0; p < before.pairs(); ++p)
-    for (Index k = before.offset[p]; k < before.offset[p + 1]; ++k) {
-      const HistoryEntry& h = before.entry[k];
-      bool goes_on = false;
-      for (Index j = after.offset[p]; j < after.offset[p + 1] && !goes_on; ++j) {
-        const HistoryEntry& g = after.entry[j];
-        goes_on = (g.kind == h.kind && g.fa == h.fa && g.fb == h.fb) ||
-                  (g.from_kind == h.kind && g.from_fa == h.fa && g.from_fb == h.fb);
-      }
-      if (!goes_on) sum += h.spring_energy;
-    }
-  return sum;
 }
 
 std::vector<Real> remap_values(const std::vector<Real>& old, const std::vector<PairKey>& old_keys,

@@ -18,15 +18,13 @@ struct HistoryEntry {
   Vec3 xi = Vec3::Zero();
   /// The energy in the touch's tangential spring as the ledger holds it (weight x kt |xi|^2 / 2;
   /// 0 where this process does not count the touch): booked as dissipated when the touch
-  /// ends while its spring is loaded (released_spring_energy).
+  /// ends while its spring is loaded and no touch goes on with it (springs_of in
+  /// spring_handover.hpp; ContactSystem::add_forces).
   Real spring_energy = 0;
   /// The touch's cluster share (Touch::share) when xi was stored: see carry.
   Real share = 1;
   Vec3 c = Vec3::Zero();  ///< the touch's contact point when stored: where a successor takes its spring over
   Real weight = 1;        ///< the touch's weight (share x fade): a successor keeps weight x |xi|^2
-  /// The feature pair whose spring this touch took over in this step (-1: none; not kept
-  /// in checkpoints, a step's own).
-  int from_kind = -1, from_fa = -1, from_fb = -1;
   template <class Ar>
   void persist(Ar& ar) {
     ar(kind, fa, fb, xi, spring_energy, share, c, weight);
@@ -42,15 +40,7 @@ struct PairHistory {
   std::vector<HistoryEntry> entry;
 
   Index pairs() const { return static_cast<Index>(offset.size()) - 1; }
-  /// Pair p's entry of feature pair (kind, fa, fb), or null when it did not touch last step.
-  const HistoryEntry* entry_of(Index p, int kind, int fa, int fb) const {
-    for (Index k = offset[p]; k < offset[p + 1]; ++k) {
-      const HistoryEntry& h = entry[k];
-      if (h.kind == kind && h.fa == fa && h.fb == fb) return &h;
-    }
-    return nullptr;
-  }
-  /// xi of that touch carried to its cluster share `share` of this step: scaled by
+  /// Entry h's xi carried to the cluster share `share` of the touch that goes on with it: scaled by
   /// sqrt(share before / share now), so that the spring's stored energy, share x fade x kt
   /// |xi|^2 / 2, does not change with the share. Coincident touches share one contact by
   /// weight (weigh in narrow_phase.cpp) but keep their own springs, and the shares move
@@ -62,11 +52,6 @@ struct PairHistory {
   /// whose share rises falls below the cap until the motion loads it again (a model choice:
   /// energy kept, not force). The fade's part of the weight is not scaled here: its gradient
   /// is in the force (Touch::Fade).
-  Vec3 carry(Index p, int kind, int fa, int fb, Real share) const {
-    const HistoryEntry* h = entry_of(p, kind, fa, fb);
-    return h ? carry(*h, share) : Vec3::Zero();
-  }
-  /// Entry h's xi carried so to the share of the touch that goes on with it.
   static Vec3 carry(const HistoryEntry& h, Real share) {
     return h.xi * std::sqrt(h.share / share);  // an unchanged share keeps xi's bits: x / x is exactly 1
   }
@@ -81,13 +66,6 @@ struct PairHistory {
 /// and the spring energy of their entries is added to *released when given.
 PairHistory remap_history(const PairHistory& old, const std::vector<PairKey>& old_keys,
                           const std::vector<PairKey>& new_keys, Real* released = nullptr);
-/// The spring energy of the touches in `before` that do not go on in `after` (the same
-/// pair's entry of the same feature pair, or one that took its spring over), over the pairs
-/// of both (the same list, or `before` empty). A touch that ends loaded with no successor
-/// (the contact opened there, or no touch that pushes lies near) takes that energy out of the
-/// contact's stored energy without work: the ledger books it as dissipated, as if the spring
-/// had slipped back.
-Real released_spring_energy(const PairHistory& before, const PairHistory& after);
 
 /// Values per pair carried over the same way (`absent` for new pairs).
 std::vector<Real> remap_values(const std::vector<Real>& old, const std::vector<PairKey>& old_keys,
