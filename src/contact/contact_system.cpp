@@ -604,13 +604,8 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   const Index npair = static_cast<Index>(pairs_.size());
   touches.clear();
   TouchOut o;
-  // Every spring of the pair's last step has ended unless a touch that pushes goes on with it
-  // (its own or a successor; a touch that matched its own entry but no longer pushes ends it).
-  if (p < history_.pairs())
-    std::fill(ended_.begin() + history_.offset[p], ended_.begin() + history_.offset[p + 1], char{1});
-  auto goes_on = [&](const SpringFrom& s) {
-    if (s.entry) ended_[static_cast<std::size_t>(s.entry - history_.entry.data())] = 0;
-  };
+  thread_local std::vector<SpringFrom> from;  // per touch: the spring it goes on with
+  thread_local std::vector<char> pushes;      // per touch: its evaluation gave a force
   if (p < npair) {
     const auto [ea, eb] = pairs_[p];
     find_touches(cached(ea), radius_[ea], cached(eb), radius_[eb], touches);
@@ -621,21 +616,23 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
       for (const Touch& t : touches) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
       offset = born_offset_[p] = std::min(offset, worst);
     }
-    thread_local std::vector<SpringFrom> from;
     springs_of(history_, p, touches, radius_[ea], radius_[eb], offset, radius_[ea] + radius_[eb], from);
+    pushes.assign(touches.size(), 0);
     for (std::size_t i = 0; i < touches.size(); ++i)
-      if (evaluate(ea, eb, nullptr, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o), goes_on(from[i]);
+      if (evaluate(ea, eb, nullptr, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o), pushes[i] = 1;
+    mark_ended(history_, p, from, pushes, ended_);
     return;
   }
   const auto [w, e] = wall_pairs_[p - npair];
   const Wall& wl = walls_[w];
   wall_touches(wl, cached(e), radius_[e], touches);
-  thread_local std::vector<SpringFrom> from;
   // (Within the element's own rounding: a cylinder's radius is no measure of where its touches lie.)
   springs_of(history_, p, touches, radius_[e], wl.type == Wall::Type::Cylinder ? wl.radius : 0.0, 0.0, radius_[e],
              from);
+  pushes.assign(touches.size(), 0);
   for (std::size_t i = 0; i < touches.size(); ++i)
-    if (evaluate(e, -1 - w, &wl, touches[i], x, v, dt, 0.0, o, from[i])) out.push_back(o), goes_on(from[i]);
+    if (evaluate(e, -1 - w, &wl, touches[i], x, v, dt, 0.0, o, from[i])) out.push_back(o), pushes[i] = 1;
+  mark_ended(history_, p, from, pushes, ended_);
 }
 
 void ContactSystem::wall_touches(const Wall& wl, const Prepared& A, Real r, std::vector<Touch>& out) {

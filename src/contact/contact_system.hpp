@@ -265,8 +265,8 @@ class ContactSystem {
   std::vector<std::pair<Index, Index>> wall_pairs_;  ///< (wall, element)
   GridBroadPhase grid_;
   PairHistory history_, history_next_;  ///< by index into pairs_ then wall_pairs_
-  /// Per entry of history_, set in a step: its touch ended with no touch going on with its
-  /// spring (springs_of), so its spring energy is released (booked in pair order).
+  /// Per entry of history_, set in a step: no touch went on with its spring (mark_ended), so
+  /// its spring energy is released (booked in entry order).
   std::vector<char> ended_;
   /// Per element: index into skel_cache_ (-1: in no pair). Only the elements some pair
   /// names have their skeleton computed each step: on the intact Brazilian disc, only the

@@ -1,5 +1,9 @@
 #include "contact/spring_handover.hpp"
 
+#include <algorithm>
+
+#include "core/error.hpp"
+
 namespace dspdem::contact {
 
 void springs_of(const PairHistory& h, Index p, const std::vector<Touch>& touches, Real ra, Real rb, Real offset,
@@ -33,6 +37,19 @@ void springs_of(const PairHistory& h, Index p, const std::vector<Touch>& touches
       if (d < nearest) nearest = d, best = k;
     }
     if (best >= 0) claimed[best - k0] = 1, out[i] = SpringFrom{&h.entry[best], true};
+  }
+}
+
+void mark_ended(const PairHistory& h, Index p, const std::vector<SpringFrom>& from, const std::vector<char>& pushes,
+                std::vector<char>& ended) {
+  if (p >= h.pairs()) return;
+  const Index k0 = h.offset[p], k1 = h.offset[p + 1];
+  std::fill(ended.begin() + k0, ended.begin() + k1, char{1});
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    if (!from[i].entry || !pushes[i]) continue;
+    const Index k = static_cast<Index>(from[i].entry - h.entry.data());
+    DSPDEM_ASSERT(k >= k0 && k < k1);  // springs_of gives pair p's own entries of h only
+    ended[static_cast<std::size_t>(k)] = 0;
   }
 }
 

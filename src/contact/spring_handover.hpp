@@ -35,9 +35,18 @@ struct SpringFrom {
 ///   takes over the entry that no touch claimed and that has weight (a faded touch of weight
 ///   0 would hold the spring's energy at none) whose point lies nearest, within `reach`;
 ///   matched greedily in the touches' order (deterministic: one pair on one thread).
-/// An entry no touch takes has ended: the caller books its spring as released.
+/// Whether an entry goes on is settled by the evaluation: see mark_ended.
 void springs_of(const PairHistory& h, Index p, const std::vector<Touch>& touches, Real ra, Real rb, Real offset,
                 Real reach, std::vector<SpringFrom>& out);
+
+/// Marks pair p's entries of `h` in `ended` (one per entry of h, indexed as h.entry): 1 for
+/// each spring no touch goes on with, 0 for the others. A spring goes on with the touch that
+/// took it (springs_of, `from`) if that touch pushes this step (`pushes[i]`: its evaluation
+/// gave a force); so a touch that matched its own entry but has opened ends it. The caller
+/// books the ended springs' energy as released. Writes only pair p's entries: pairs may be
+/// marked on several threads at once.
+void mark_ended(const PairHistory& h, Index p, const std::vector<SpringFrom>& from, const std::vector<char>& pushes,
+                std::vector<char>& ended);
 
 /// The elongation a touch starts its law with: zero for a new contact; its own spring carried
 /// to its share (PairHistory::carry; the fade's gradient is in the force); a successor's

@@ -1,7 +1,8 @@
 // Which spring of the last step a pair's touch goes on with (contact/spring_handover): its
 // own feature pair's; else, for a touch that pushes and carries weight, the nearest spring no
-// touch claimed, within the reach, at the ended touch's stored energy; else none. Checked
-// against entries placed by hand, each case against the rule it tests.
+// touch claimed, within the reach, at the ended touch's stored energy; else none. And which
+// springs end (mark_ended), so that each is released once. Checked against entries placed by
+// hand, each case against the rule it tests.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -78,7 +79,7 @@ TEST(SpringHandover, ANewTouchTakesOverTheNearestSpringNoTouchClaimed) {
   EXPECT_EQ(out[0].entry, &h.entry[0]);
   EXPECT_EQ(out[1].entry, &h.entry[1]);
   EXPECT_EQ(out[2].entry, nullptr);
-  // Beyond the reach, nothing: 30 mm from both points, reach 20 mm.
+  // Beyond the reach, nothing: 28 and 32 mm from the two points, reach 20 mm.
   EXPECT_EQ(springs(h, 0, {touch(Feature::VE, 0, 0, Vec3(0.03, 0.01, 0), 1e-4)})[0].entry, nullptr);
 }
 
@@ -100,16 +101,74 @@ TEST(SpringHandover, OnlyATouchThatPushesAndCarriesWeightTakesASpringOver) {
 }
 
 TEST(SpringHandover, ASpringGoesOnAtItsStoredEnergy) {
-  // Own: carried to the touch's cluster share at constant share x |xi|^2. Successor: at the
-  // ended touch's weight x |xi|^2 (0.5 x 1), whatever the new touch's weight and share.
-  HistoryEntry e = entry(Feature::VF, 1, 2, Vec3::Zero(), Vec3(1, 0, 0), 0.5);
-  const Touch t = touch(Feature::EE, 0, 0, Vec3::Zero(), 1e-4, 0.25);
+  // The entry was stored at weight 0.5 (share 1 x fade 0.5), the touch now has weight 0.1
+  // and share 0.4. Own: carried by the share alone, share x |xi|^2 kept (1 x 1 = 0.4 x 2.5;
+  // the fade's gradient is in the force). Successor: the ended touch's stored energy whole,
+  // weight x |xi|^2 kept (0.5 x 1 = 0.1 x 5). The two rules give different lengths here.
+  HistoryEntry e = entry(Feature::VF, 1, 2, Vec3::Zero(), Vec3(1, 0, 0));
+  e.weight = 0.5;
+  Touch t = touch(Feature::EE, 0, 0, Vec3::Zero(), 1e-4);
+  t.weight = 0.1, t.share = 0.4;
   const Vec3 own = starting_spring(SpringFrom{&e, false}, t);
-  EXPECT_NEAR(t.share * own.squaredNorm(), e.share * e.xi.squaredNorm(), 1e-15);
+  EXPECT_NEAR(own.squaredNorm(), 2.5, 1e-14);
   const Vec3 taken = starting_spring(SpringFrom{&e, true}, t);
-  EXPECT_NEAR(t.weight * taken.squaredNorm(), 0.5, 1e-15);
-  EXPECT_GT(taken(0), 0.0);  // the same direction
-  EXPECT_EQ(taken(1), 0.0);
-  EXPECT_EQ(taken(2), 0.0);
+  EXPECT_NEAR(taken.squaredNorm(), 5.0, 1e-14);
+  for (const Vec3& xi : {own, taken}) {  // the same direction
+    EXPECT_GT(xi(0), 0.0);
+    EXPECT_EQ(xi(1), 0.0);
+    EXPECT_EQ(xi(2), 0.0);
+  }
   EXPECT_EQ(starting_spring(SpringFrom{}, t), Vec3::Zero());
+}
+
+TEST(SpringHandover, ASpringEndsUnlessATouchThatPushesGoesOnWithIt) {
+  // Two pairs: pair 0 with the two entries of last_step, pair 1 with one. In pair 0, (1, 2)
+  // goes on itself and pushes; a new touch took (3, 5) over but its evaluation gave no force
+  // (it stopped pushing within the step's tolerance): (3, 5) ends. Pair 1's only touch
+  // matched its own entry but has opened: it ends. Only pair p's entries are written.
+  PairHistory h = last_step();
+  h.offset = {0, 2, 3};
+  h.entry.push_back(entry(Feature::VV, 0, 0, Vec3::Zero(), Vec3(0, 1, 0)));
+  std::vector<char> ended(3, 7);
+  mark_ended(h, 0, {SpringFrom{&h.entry[0], false}, SpringFrom{&h.entry[1], true}}, {1, 0}, ended);
+  EXPECT_EQ(ended, (std::vector<char>{0, 1, 7}));
+  mark_ended(h, 0, {SpringFrom{&h.entry[0], false}, SpringFrom{&h.entry[1], true}}, {1, 1}, ended);
+  EXPECT_EQ(ended, (std::vector<char>{0, 0, 7}));  // the successor pushes: nothing ends
+  mark_ended(h, 1, {SpringFrom{&h.entry[2], false}}, {0}, ended);
+  EXPECT_EQ(ended, (std::vector<char>{0, 0, 1}));
+  mark_ended(h, 1, {SpringFrom{}}, {1}, ended);  // a new contact: the old spring ends
+  EXPECT_EQ(ended[2], 1);
+  mark_ended(h, 0, {}, {}, ended);  // no touches: both end
+  EXPECT_EQ(ended, (std::vector<char>{1, 1, 1}));
+  mark_ended(h, 2, {SpringFrom{}}, {1}, ended);  // a pair new since the rebuild has none
+  EXPECT_EQ(ended, (std::vector<char>{1, 1, 1}));
+}
+
+TEST(SpringHandover, ARebuildThenAStepReleaseEachSpringOnce) {
+  // springs_of, mark_ended and remap_history together, as ContactSystem uses them. A rebuild
+  // drops pair (10, 3), holding 4.5 (remap_history counts it); in the step after it, pair
+  // (1, 2)'s touch (1, 2) goes on and a new touch 1 mm from (3, 5)'s point takes that one
+  // over: nothing more is released. Had the contact gone in that step instead, both would
+  // have ended: 0.5 + 2.
+  PairHistory h = last_step();
+  h.offset = {0, 2, 2, 3};
+  h.entry.push_back(entry(Feature::VF, 0, 0, Vec3::Zero(), Vec3(0, 0, 3)));
+  h.entry[0].spring_energy = 0.5, h.entry[1].spring_energy = 2, h.entry[2].spring_energy = 4.5;
+  Real released = 0;
+  const PairHistory after = remap_history(h, {{1, 2}, {1, 7}, {10, 3}}, {{1, 2}, {1, 7}}, &released);
+  EXPECT_EQ(released, 4.5);
+  auto step = [&](const PairHistory& hist, const std::vector<std::vector<Touch>>& touches) {
+    std::vector<char> ended(hist.entry.size(), 0);
+    for (Index p = 0; p < hist.pairs(); ++p) {
+      std::vector<SpringFrom> from;
+      springs_of(hist, p, touches[p], kR, kR, 0, 2 * kR, from);
+      mark_ended(hist, p, from, std::vector<char>(touches[p].size(), 1), ended);
+    }
+    for (std::size_t k = 0; k < hist.entry.size(); ++k)
+      if (ended[k]) released += hist.entry[k].spring_energy;
+  };
+  step(after, {{touch(Feature::VF, 1, 2, Vec3::Zero(), 1e-4), touch(Feature::EE, 0, 1, Vec3(0.005, 0, 0), 1e-4)}, {}});
+  EXPECT_EQ(released, 4.5);
+  step(after, {{}, {}});
+  EXPECT_EQ(released, 7.0);
 }

@@ -223,7 +223,7 @@ TEST(ContactBorn, AWallPairFoundOverlappingIsRecordedWithTheEnergyItPushesWith) 
 //   booked as dissipated, the new touch's spring from zero) left the old force's half of the
 //   step's trapezoid booked nowhere and the friction short of mu N: 3.2e-3 at friction 0.5
 //   (4-6 % of the friction's work). Taken over by the touch that takes its place
-//   (ContactSystem::springs_of): 5.9e-5.
+//   (springs_of in contact/spring_handover.hpp): 5.9e-5.
 TEST(ContactBorn, AJointReleasedWhilePressedLeavesTheBooksClosed) {
   for (const Real mu : {0.0, 0.5}) {
     CaseConfig c = fracturable_contact_case();
