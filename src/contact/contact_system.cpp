@@ -699,7 +699,7 @@ void ContactSystem::add_forces(const Mesh& mesh, joint::JointSet& js, const Real
     for (Index k = 0; k < rec_n_[p]; ++k) gather(r[k], f);
     history_next_.offset[p + 1] = static_cast<Index>(history_next_.entry.size());
   }
-  // Touches that ended with their tangential spring loaded and no successor (springs_of):
+  // Touches that ended with their tangential spring loaded and no successor (mark_ended):
   // that energy is gone from the contacts without work, and is booked as dissipated, as if
   // the spring had slipped back (before successors took springs over, contact penalty 0.1 on
   // the sphere at 7.5 m/s lost 6 J, 2 % of the impact energy, there).

@@ -18,7 +18,7 @@ struct HistoryEntry {
   Vec3 xi = Vec3::Zero();
   /// The energy in the touch's tangential spring as the ledger holds it (weight x kt |xi|^2 / 2;
   /// 0 where this process does not count the touch): booked as dissipated when the touch
-  /// ends while its spring is loaded and no touch goes on with it (springs_of in
+  /// ends while its spring is loaded and no touch goes on with it (mark_ended in
   /// spring_handover.hpp; ContactSystem::add_forces).
   Real spring_energy = 0;
   /// The touch's cluster share (Touch::share) when xi was stored: see carry.

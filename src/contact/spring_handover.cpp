@@ -42,6 +42,7 @@ void springs_of(const PairHistory& h, Index p, const std::vector<Touch>& touches
 
 void mark_ended(const PairHistory& h, Index p, const std::vector<SpringFrom>& from, const std::vector<char>& pushes,
                 std::vector<char>& ended) {
+  DSPDEM_ASSERT(pushes.size() == from.size() && ended.size() == h.entry.size());
   if (p >= h.pairs()) return;
   const Index k0 = h.offset[p], k1 = h.offset[p + 1];
   std::fill(ended.begin() + k0, ended.begin() + k1, char{1});

@@ -123,9 +123,10 @@ TEST(SpringHandover, ASpringGoesOnAtItsStoredEnergy) {
 
 TEST(SpringHandover, ASpringEndsUnlessATouchThatPushesGoesOnWithIt) {
   // Two pairs: pair 0 with the two entries of last_step, pair 1 with one. In pair 0, (1, 2)
-  // goes on itself and pushes; a new touch took (3, 5) over but its evaluation gave no force
-  // (it stopped pushing within the step's tolerance): (3, 5) ends. Pair 1's only touch
-  // matched its own entry but has opened: it ends. Only pair p's entries are written.
+  // goes on itself and pushes; a new touch took (3, 5) over but gave no force (the function's
+  // contract: in ContactSystem springs_of hands a spring over only to a touch that pushes, by
+  // the same test as the evaluation's), so (3, 5) ends. Pair 1's only touch matched its own
+  // entry but has opened: it ends. Only pair p's entries are written (7: not written).
   PairHistory h = last_step();
   h.offset = {0, 2, 3};
   h.entry.push_back(entry(Feature::VV, 0, 0, Vec3::Zero(), Vec3(0, 1, 0)));
@@ -136,12 +137,14 @@ TEST(SpringHandover, ASpringEndsUnlessATouchThatPushesGoesOnWithIt) {
   EXPECT_EQ(ended, (std::vector<char>{0, 0, 7}));  // the successor pushes: nothing ends
   mark_ended(h, 1, {SpringFrom{&h.entry[2], false}}, {0}, ended);
   EXPECT_EQ(ended, (std::vector<char>{0, 0, 1}));
+  ended[2] = 7;
   mark_ended(h, 1, {SpringFrom{}}, {1}, ended);  // a new contact: the old spring ends
-  EXPECT_EQ(ended[2], 1);
+  EXPECT_EQ(ended, (std::vector<char>{0, 0, 1}));
   mark_ended(h, 0, {}, {}, ended);  // no touches: both end
   EXPECT_EQ(ended, (std::vector<char>{1, 1, 1}));
+  ended.assign(3, 7);
   mark_ended(h, 2, {SpringFrom{}}, {1}, ended);  // a pair new since the rebuild has none
-  EXPECT_EQ(ended, (std::vector<char>{1, 1, 1}));
+  EXPECT_EQ(ended, (std::vector<char>{7, 7, 7}));
 }
 
 TEST(SpringHandover, ARebuildThenAStepReleaseEachSpringOnce) {
