@@ -345,7 +345,7 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
       Prepared pe;
       prepare(skeleton_poly(e, x), pe);
       wall_touches(wl, pe, radius_[e], touches_);
-      const Real R = radius_[e] + (wl.type == Wall::Type::Cylinder ? wl.radius : 0.0);
+      const Real R = radius_[e] + wl.rounding();
       const auto [worst, energy] = overlap_of(touches_, R, pair_params(e, -1, &wl).kn);
       if (worst > 0) born_own_.wall.add(energy, worst / R);
     }
@@ -438,7 +438,7 @@ LawParams ContactSystem::pair_params(Index ea, Index eb, const Wall* w) const {
 
 bool ContactSystem::evaluate(Index ea, Index eb, const Wall* wall, const Touch& t, const Real* x, const Real* v,
                              Real dt, Real offset, TouchOut& o, const SpringFrom& spring) const {
-  const Real ra = radius_[ea], rb = wall ? (wall->type == Wall::Type::Cylinder ? wall->radius : 0.0) : radius_[eb];
+  const Real ra = radius_[ea], rb = wall ? wall->rounding() : radius_[eb];
   const Real overlap = ra + rb - t.d - offset;
   if (overlap <= 0) return false;
   o.ea = ea, o.eb = eb;
@@ -606,6 +606,15 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
   TouchOut o;
   thread_local std::vector<SpringFrom> from;  // per touch: the spring it goes on with
   thread_local std::vector<char> pushes;      // per touch: its evaluation gave a force
+  // The touches found, each with the spring it goes on with (within `reach` of its point),
+  // evaluated; then which springs of the last step ended.
+  auto evaluate_touches = [&](Index ea, Index eb, const Wall* wall, Real rb, Real offset, Real reach) {
+    springs_of(history_, p, touches, radius_[ea], rb, offset, reach, from);
+    pushes.assign(touches.size(), 0);
+    for (std::size_t i = 0; i < touches.size(); ++i)
+      if (evaluate(ea, eb, wall, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o), pushes[i] = 1;
+    mark_ended(history_, p, from, pushes, ended_);
+  };
   if (p < npair) {
     const auto [ea, eb] = pairs_[p];
     find_touches(cached(ea), radius_[ea], cached(eb), radius_[eb], touches);
@@ -616,23 +625,14 @@ void ContactSystem::evaluate_pair(Index p, const Real* x, const Real* v, Real dt
       for (const Touch& t : touches) worst = std::max(worst, radius_[ea] + radius_[eb] - t.d);
       offset = born_offset_[p] = std::min(offset, worst);
     }
-    springs_of(history_, p, touches, radius_[ea], radius_[eb], offset, radius_[ea] + radius_[eb], from);
-    pushes.assign(touches.size(), 0);
-    for (std::size_t i = 0; i < touches.size(); ++i)
-      if (evaluate(ea, eb, nullptr, touches[i], x, v, dt, offset, o, from[i])) out.push_back(o), pushes[i] = 1;
-    mark_ended(history_, p, from, pushes, ended_);
+    evaluate_touches(ea, eb, nullptr, radius_[eb], offset, radius_[ea] + radius_[eb]);
     return;
   }
   const auto [w, e] = wall_pairs_[p - npair];
   const Wall& wl = walls_[w];
   wall_touches(wl, cached(e), radius_[e], touches);
-  // (Within the element's own rounding: a cylinder's radius is no measure of where its touches lie.)
-  springs_of(history_, p, touches, radius_[e], wl.type == Wall::Type::Cylinder ? wl.radius : 0.0, 0.0, radius_[e],
-             from);
-  pushes.assign(touches.size(), 0);
-  for (std::size_t i = 0; i < touches.size(); ++i)
-    if (evaluate(e, -1 - w, &wl, touches[i], x, v, dt, 0.0, o, from[i])) out.push_back(o), pushes[i] = 1;
-  mark_ended(history_, p, from, pushes, ended_);
+  // (Reach: the element's own rounding; a cylinder's radius is no measure of where its touches lie.)
+  evaluate_touches(e, -1 - w, &wl, wl.rounding(), 0.0, radius_[e]);
 }
 
 void ContactSystem::wall_touches(const Wall& wl, const Prepared& A, Real r, std::vector<Touch>& out) {

@@ -49,6 +49,9 @@ struct Wall {
     ar(centre, q, velocity, omega, momentum_angular, force, torque);
   }
   Vec3 plane_normal() const { return q * normal0; }
+  /// The wall's own rounding in the contact (r_b against an element's r_a): a cylinder is its
+  /// axis dilated by its radius; the other walls are their surfaces.
+  Real rounding() const { return type == Type::Cylinder ? radius : 0.0; }
   Vec3 jaw_axis() const { return q * axis0; }
   /// Box as a polytope (hexahedron topology, corners in gmsh order).
   Poly box_poly() const;
