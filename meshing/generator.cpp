@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -125,8 +126,31 @@ Index group_count(const Mesh& m, const std::string& group) {
 }
 }  // namespace
 
+namespace {
+std::mutex g_now_mutex;
+std::string g_now;
+}  // namespace
+
+std::string meshing_now() {
+  const std::lock_guard<std::mutex> lock(g_now_mutex);
+  return g_now;
+}
+
 Mesh generate(const Params& p_in, const std::string& msh_path) {
   const Generator& g = find_generator(p_in.generator);
+  struct Now {
+    explicit Now(const Params& p) {
+      const std::lock_guard<std::mutex> lock(g_now_mutex);
+      const auto size = p.num.find("size");
+      g_now = size == p.num.end() ? fmt::format("[mesh] generator = '{}'", p.generator)
+                                  : fmt::format("[mesh] generator = '{}', mesh.{}.size = {:g} m", p.generator,
+                                                p.generator, size->second);
+    }
+    ~Now() {
+      const std::lock_guard<std::mutex> lock(g_now_mutex);
+      g_now.clear();
+    }
+  } now(p_in);
   GmshSession session;
   Params p = p_in;
   Mesh m = build_once(g, p);

@@ -46,6 +46,11 @@ const Generator& find_generator(const std::string& name);
 /// empty, also writes the gmsh file there (through a temporary name).
 Mesh generate(const Params& p, const std::string& msh_path = "");
 
+/// What generate() is meshing now ("" when nothing): gmsh throws some errors inside its own
+/// OpenMP regions, where no handler catches them and the process ends in std::terminate;
+/// the program's terminate handler names the mesh from this.
+std::string meshing_now();
+
 /// Returns the mesh from the cache when a file for the same generator, parameters and gmsh
 /// version exists in `cache_dir`, else generates and stores it. `cached` tells which.
 Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cached = nullptr,

@@ -5,7 +5,9 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 
 #include "app/figures_command.hpp"
@@ -15,6 +17,8 @@
 #include "core/log.hpp"
 #include "core/subprocess.hpp"
 #include "io/case_config.hpp"
+#include "io/staging.hpp"
+#include "meshing/generator.hpp"
 #include "par/mpi_world.hpp"
 #include "render/image_compare.hpp"
 #include "run/checkpoint.hpp"
@@ -26,6 +30,20 @@
 using namespace dspdem;
 
 namespace {
+// CLI11's number checks let NaN through (every comparison with it is false); these do not.
+const CLI::Validator kFiniteNonNegative(
+    [](std::string& v) {
+      const double x = std::strtod(v.c_str(), nullptr);
+      return std::isfinite(x) && x >= 0 ? std::string() : "must be a finite number >= 0, got " + v;
+    },
+    "NONNEGATIVE");
+const CLI::Validator kFinitePositive(
+    [](std::string& v) {
+      const double x = std::strtod(v.c_str(), nullptr);
+      return std::isfinite(x) && x > 0 ? std::string() : "must be a finite number > 0, got " + v;
+    },
+    "POSITIVE");
+
 int run_main(int argc, char** argv) {
   CLI::App app{"dspdem: deformable spheropolyhedral DEM with cohesive joints (batch, off-screen)"};
   app.require_subcommand(1);
@@ -59,7 +77,7 @@ int run_main(int argc, char** argv) {
       run->add_option("--checkpoint-every", checkpoint_every,
                       "Write DIR/checkpoint.bin every T of simulated time (atomically, over the last one); "
                       "SIGINT/SIGTERM/SIGHUP write one anyway. Default with --restart: the interrupted run's")
-          ->check(CLI::NonNegativeNumber)
+          ->check(kFiniteNonNegative)
           ->type_name("T");
   auto* wall_opt =
       run->add_option("--checkpoint-wall", checkpoint_wall,
@@ -67,10 +85,14 @@ int run_main(int argc, char** argv) {
                       "memory) loses at most that much: run --restart DIR goes on from it. One process only; 0: "
                       "never. Default with --restart: the interrupted run's")
           ->capture_default_str()
-          ->check(CLI::NonNegativeNumber)
+          ->check(kFiniteNonNegative)
           ->type_name("S");
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
+  bool discard_interrupted = false;
+  run->add_flag("--discard-interrupted", discard_interrupted,
+                "Start afresh in an output folder that holds an interrupted run (its checkpoint is removed when "
+                "this run finishes); without it such a run is refused, so that its checkpoint is not lost by mistake");
 
   auto* mesh = app.add_subcommand("mesh", "Mesh a case: writes DIR/<case>.msh and DIR/quality.json");
   std::string mesh_case_file, mesh_out;
@@ -100,7 +122,7 @@ int run_main(int argc, char** argv) {
   rend->add_option("--frames", ra.frames, "all (default), last, every:K, or indices i,j,k");
   rend->add_option("--camera", ra.camera, "front, back, top, side, iso");
   rend->add_option("--cut", ra.cut, "none, x, y, z: cut at the mid-plane");
-  rend->add_option("--magnify", ra.magnify, "Displacement magnification");
+  rend->add_option("--magnify", ra.magnify, "Displacement magnification (default: the case's)")->check(kFinitePositive);
   rend->add_option("--range", ra.range, "Colour range MIN:MAX");
   rend->add_option("--size", ra.size, "Image size WIDTHxHEIGHT (with --montage: of one panel)");
   rend->add_option("-j,--jobs", ra.jobs,
@@ -143,7 +165,7 @@ int run_main(int argc, char** argv) {
                   "Each run's checkpoints by wall time, as run --checkpoint-wall: a run killed outright goes on from "
                   "its last with --resume. 0: never")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFiniteNonNegative)
       ->type_name("S");
   rep->add_flag("--no-stress-check", rpa.no_stress_check,
                 "Skip the stress check (sigma along the diameter, elastic, on a mesh that resolves the loads)");
@@ -166,7 +188,7 @@ int run_main(int argc, char** argv) {
                 "Each report with --resume: the runs a stopped figures (or report --out DIR/<scene>) left are kept "
                 "when finished, continued from their checkpoints when stopped or killed");
   fig->add_option("--checkpoint-wall", fga.checkpoint_wall, "Each report with --checkpoint-wall S")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFiniteNonNegative)
       ->type_name("S");
 
   auto* imgdiff =
@@ -278,6 +300,13 @@ int run_main(int argc, char** argv) {
       const CaseConfig c = read_case(case_file, sets);
       opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;
+      // A finished run supersedes an interrupted one in its folder, checkpoint and all (Staging):
+      // the same command given again instead of --restart would lose hours of a long run.
+      const std::filesystem::path kept = std::filesystem::path(opt.out_dir) / interrupted_folder / "checkpoint.bin";
+      DSPDEM_CHECK(!restart_path.empty() || discard_interrupted || !std::filesystem::exists(kept),
+                   "run: {} holds an interrupted run ({}): continue it with `dspdem run --restart {}`, or start "
+                   "afresh with --discard-interrupted",
+                   opt.out_dir, kept.string(), opt.out_dir);
       const bool in_ci = std::getenv("CI") != nullptr;
       opt.progress = !no_progress && (progress || (isatty(STDERR_FILENO) && !in_ci && !quiet)) && par::rank() == 0;
       return run_case(c, opt);
@@ -302,10 +331,36 @@ int run_main(int argc, char** argv) {
 }
 }  // namespace
 
+namespace {
+// gmsh throws some of its errors (a mesh size far too small: "Identical points in
+// triangulation") inside its own OpenMP regions, which no handler can catch: the runtime
+// calls std::terminate, and the run would end in an abort and a core dump with no word of
+// what failed. Said here as an error, with the mesh being made.
+[[noreturn]] void on_terminate() {
+  const std::string what = meshing::meshing_now();
+  const std::string where = what.empty() ? std::string() : fmt::format(" (while meshing: {})", what);
+  if (const std::exception_ptr e = std::current_exception()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (const std::string& s) {
+      fmt::print(stderr, "error: gmsh: {}{}\n", s, where);
+      std::_Exit(2);
+    } catch (const std::exception& x) {
+      fmt::print(stderr, "error: unexpected failure: {}{}\n", x.what(), where);
+      std::_Exit(4);
+    } catch (...) {
+    }
+  }
+  fmt::print(stderr, "error: unexpected failure{}\n", where);
+  std::_Exit(4);
+}
+}  // namespace
+
 // Under mpirun each process runs the same command on its share (par/); a failure on one ends
 // them all, since the others would wait for it at the next exchange. An interruption is
 // agreed by all at the same step (run_case), so they end together and normally.
 int main(int argc, char** argv) {
+  std::set_terminate(on_terminate);
   stop_with_parent();  // a sweep's job: a SIGTERM if the report dies, even by SIGKILL
   par::init(&argc, &argv);
   const int code = run_main(argc, argv);

@@ -322,6 +322,13 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
   {
     Section s(ctx, sub_table(ctx, root, "case"), "case", "[case]");
     c.name = s.has("name") ? s.str("name") : fs::path(path).stem().string();
+    // The name is a folder under results/ (the run's default --out): one component, so that
+    // "../x" or "" cannot put a run's files beside other runs or outside results/.
+    DSPDEM_CHECK(!c.name.empty() && c.name != "." && c.name != ".." && c.name.front() != '.' &&
+                     c.name.find_first_of("/\\") == std::string::npos,
+                 "{}: case name '{}' is not a plain folder name (it names the run's folder under results/: no "
+                 "'/' or '\\', not empty, not starting with '.')",
+                 s.has("name") ? s.where("name") : path, c.name);
     c.description = s.str("description");
     if (s.has("scene")) c.scene = s.str("scene");
     s.finish();

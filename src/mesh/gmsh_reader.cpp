@@ -58,6 +58,9 @@ GmshSession::GmshSession() : omp_threads_(omp_get_max_threads()) {
   // and its threaded mesher is not deterministic: the same .geo gave 7758 nodes, then 7755
   // and 7672 in one process, and a restart found another model than its checkpoint's.
   gmsh::option::setNumber("General.NumThreads", 1);
+  // A batch tool: gmsh must not stop to ask on stdin (a size that gives a very large mesh
+  // asks whether to go on; with no popups it takes the default answer and goes on).
+  gmsh::option::setNumber("General.NoPopup", 1);
   gmsh::clear();
 }
 

@@ -31,6 +31,7 @@
 #endif
 #include "run/case_mesh.hpp"
 #include "run/checkpoint.hpp"
+#include "run/output_schedule.hpp"
 #include "time/balance_watch.hpp"
 #include "time/extrinsic.hpp"
 #include "time/integrator.hpp"
@@ -40,13 +41,22 @@ namespace dspdem {
 
 namespace {
 namespace fs = std::filesystem;
-volatile std::sig_atomic_t g_interrupted = 0;
+volatile std::sig_atomic_t g_interrupted = 0, g_setting_up = 0;
 // The first signal asks for a stop at the end of the step (checkpoint, outputs closed); a
 // second one exits at once. Every output file is written to a temporary name and renamed,
 // so what is on disk then is whole: the last checkpoint, frames and collections so far. A
 // hang-up is not a second signal: a closing terminal's job gets one from the kernel and one
 // from its shell, and must still write its checkpoint.
+// During the set-up (meshing, the model; until the staging folder exists) there is nothing
+// to keep, and gmsh cannot be asked to stop: any of the three exits at once. Waiting for the
+// first step instead kept a run meshing for minutes after a scheduler's or CI's SIGTERM.
 extern "C" void on_signal(int sig) {
+  if (g_setting_up) {
+    static const char msg[] = "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written\n";
+    const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)n;
+    _exit(kExitInterrupted);
+  }
   if (g_interrupted && sig != SIGHUP) _exit(kExitInterrupted);
   g_interrupted = 1;
 }
@@ -184,9 +194,10 @@ std::function<Real()> series_column(const CaseConfig& c, const Model& m, const I
 
 int run_case(const CaseConfig& c, const RunOptions& opt) {
   Timer wall;
-  // From the start: a signal during the set-up (meshing can take minutes) then stops the run
-  // after its first step, with a checkpoint, instead of killing it half-written.
+  // From the start: a signal during the set-up (meshing can take minutes) ends the process
+  // at once (on_signal), before anything is written.
   g_interrupted = 0;
+  g_setting_up = 1;
   ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_signal);
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
   Mesh mesh = load_case_mesh(c);
@@ -308,7 +319,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
 
   // Process 0 makes the staging folder and commits it; the others write their pieces into it.
   Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
-  par::barrier();  // the folder made before anyone writes into it
+  par::barrier();    // the folder made before anyone writes into it
+  g_setting_up = 0;  // from here a signal stops the run at the end of a step, with a checkpoint
   const fs::path sdir(stage.path());
   // Restarting from a killed run's staging folder of this very name: it was moved aside.
   std::string restart_file = opt.restart_file;
@@ -569,11 +581,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
           log::info("  {}", ls.stop_message);
         }
         series.row(it, model);
-        while (ls.next_series <= t + 1e-12 * c.t_end) ls.next_series += c.series_interval;
+        ls.next_series = next_output_time(ls.next_series, t, c.series_interval, 1e-12 * c.t_end);
       }
       if (t >= ls.next_frame - 1e-12 * c.t_end || last) {
         write_frame();
-        while (ls.next_frame <= t + 1e-12 * c.t_end) ls.next_frame += c.frame_interval;
+        ls.next_frame = next_output_time(ls.next_frame, t, c.frame_interval, 1e-12 * c.t_end);
       }
       if (last) break;
       if (it.steps() == opt.interrupt_at_step) g_interrupted = 1;
@@ -595,7 +607,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                           it.steps(), t);
       }
       if (opt.checkpoint_every > 0 && t >= ls.next_checkpoint - 1e-12 * c.t_end) {
-        while (ls.next_checkpoint <= t + 1e-12 * c.t_end) ls.next_checkpoint += opt.checkpoint_every;
+        ls.next_checkpoint = next_output_time(ls.next_checkpoint, t, opt.checkpoint_every, 1e-12 * c.t_end);
         write_ckpt();
         next_wall_checkpoint = loop.seconds() + opt.checkpoint_wall;
       } else if (opt.checkpoint_wall > 0 && !distributed && loop.seconds() >= next_wall_checkpoint) {

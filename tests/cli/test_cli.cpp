@@ -321,6 +321,64 @@ TEST_F(Cli, MeshCommandWritesMshAndQuality) {
   EXPECT_EQ(counts("geo"), counts("msh"));
 }
 
+TEST_F(Cli, AMeshSizeGmshCannotMeshIsAnErrorNamingTheKeyNotAnAbort) {
+  // gmsh throws this one inside its own OpenMP region, where nothing catches it: the process
+  // used to abort (134) with "terminate called after throwing an instance of 'std::string'".
+  // stdin from /dev/null: gmsh must not wait there for an answer to its large-mesh question.
+  const Result r = run("mesh " + std::string(DSPDEM_SOURCE_DIR) +
+                       "/cases/sphere_impact.toml --set mesh.sphere_plate.size=1e-6 --out " + (dir_ / "m").string() +
+                       " < /dev/null");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("error: gmsh:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mesh.sphere_plate.size = 1e-06 m"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "m" / "sphere_impact.msh"));
+}
+
+TEST_F(Cli, ASignalWhileMeshingEndsTheRunAtOnce) {
+  // gmsh cannot be asked to stop, and there is nothing to keep yet: a SIGTERM during the
+  // set-up ends the run there (exit 5), instead of after minutes of meshing and one step.
+  // A sphere of about 1.5 million tetrahedra: minutes of meshing; the signal comes once the
+  // run has said it started (its handlers are in by then).
+  const fs::path log = dir_ / "meshing.log", out = dir_ / "out";
+  const pid_t pid = start_job(fmt::format(
+      "exec env DSPDEM_MESH_CACHE={} {} -t 1 run {}/cases/sphere_impact.toml --set mesh.sphere_plate.size=0.002 "
+      "--out {} < /dev/null > {} 2>&1",
+      (dir_ / "cache").string(), DSPDEM_BIN, DSPDEM_SOURCE_DIR, out.string(), log.string()));
+  ASSERT_GT(pid, 0);
+  bool started = false;
+  for (int k = 0; k < 1200 && !started; ++k) {
+    started = slurp(log).find("dspdem run: case") != std::string::npos;
+    if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // into gmsh
+  const int st = stop_job(pid, SIGTERM);
+  const std::string text = slurp(log);
+  ASSERT_TRUE(started) << text;
+  ASSERT_TRUE(WIFEXITED(st)) << "wait status " << st << ": " << text;
+  EXPECT_EQ(WEXITSTATUS(st), 5) << text;
+  EXPECT_NE(text.find("stopped by a signal during the set-up"), std::string::npos) << text;
+  EXPECT_EQ(text.find("interrupted at step"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(out / "interrupted_run")) << text;
+}
+
+TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {
+  // The same command given again instead of --restart: a finished run would supersede the
+  // interrupted one, checkpoint and all. Refused unless asked for, and the checkpoint kept.
+  const fs::path c = write("good.toml", good_), out = dir_ / "out", kept = out / "interrupted_run" / "checkpoint.bin";
+  fs::create_directories(kept.parent_path());
+  std::ofstream(kept) << "a checkpoint";
+  const Result refused = run("run " + c.string() + " --out " + out.string());
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("--restart " + out.string()), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("--discard-interrupted"), std::string::npos) << refused.out;
+  EXPECT_EQ(slurp(kept), "a checkpoint");
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  const Result fresh = run("-q run " + c.string() + " --discard-interrupted --out " + out.string());
+  ASSERT_EQ(fresh.code, 0) << fresh.out;
+  EXPECT_FALSE(fs::exists(out / "interrupted_run"));
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+}
+
 TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   // tests/data/notched_bar.toml: a double-edge-notched bar pulled slowly; joints in the band
   // around the notch. It must end in two main fragments of about half the mass each (the

@@ -91,7 +91,8 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
       j.append_log = true;
       std::ofstream(j.log, std::ios::app) << "\n--- dspdem report --resume: continued from its checkpoint ---\n\n";
     } else {
-      j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--out", p.dir};
+      // Not resumed: the sweep starts this speed again, over any interrupted run of it.
+      j.args = {"-q", "-t", "1", "run", c.path, "--no-progress", "--discard-interrupted", "--out", p.dir};
       j.args.insert(j.args.end(), {"--checkpoint-wall", fmt::format("{}", runs.checkpoint_wall)});
       for (const auto& s : c.overrides) j.args.insert(j.args.end(), {"--set", s});
       for (const auto& s : p.sets) j.args.insert(j.args.end(), {"--set", s});
