@@ -49,10 +49,7 @@ void read_csv(const std::string& path, std::vector<std::string>& names, std::vec
 }
 
 namespace {
-// Tableau's first five, then black for references.
-const unsigned char colors[6][3] = {{31, 119, 180}, {214, 39, 40},   {44, 160, 44},
-                                    {255, 127, 14}, {148, 103, 189}, {0, 0, 0}};
-// A sweep may have more curves than the five: more distinct hues for those.
+// Tableau's ten: a run's energy plot has thirteen curves, a sweep one per run.
 const unsigned char many_colors[10][3] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
                                           {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {127, 127, 127},
                                           {188, 189, 34},  {23, 190, 207}};
@@ -73,6 +70,19 @@ struct ChartWindow {
     scene->SetRenderer(ren);
   }
 };
+
+// The k-th curve's colour; past ten, the colours again, dotted and then dash-dotted, so that no
+// two curves of a plot look alike (the energy plot's thirteen repeated every fifth colour).
+void set_style(vtkPlot* p, std::size_t k) {
+  const unsigned char* c = many_colors[k % 10];
+  p->SetColor(c[0], c[1], c[2], 255);
+  p->SetWidth(2.0);
+  const int again = static_cast<int>(k / 10) % 3;
+  if (again > 0) p->GetPen()->SetLineType(again == 1 ? vtkPen::DOT_LINE : vtkPen::DASH_DOT_LINE);
+}
+
+// An axis title with its unit where the column is known to have one.
+std::string axis_title(const std::string& column) { return column == "time" ? "time [s]" : column; }
 
 std::size_t column(const std::vector<std::string>& names, const std::string& name, const std::string& file) {
   for (std::size_t i = 0; i < names.size(); ++i)
@@ -107,9 +117,8 @@ void add_lines(vtkChartXY* chart, const std::string& csv, const PlotSpec& spec, 
   for (std::size_t k = 0; k < yi.size(); ++k) {
     vtkPlot* p = chart->AddPlot(vtkChart::LINE);
     p->SetInputData(t, 0, static_cast<vtkIdType>(k + 1));
-    const unsigned char* c = reference ? colors[5] : colors[k % 5];
-    p->SetColor(c[0], c[1], c[2], 255);
-    p->SetWidth(2.0);
+    set_style(p, k);
+    // A reference in its curve's colour, dashed: with several, each is told by its colour.
     if (reference) p->GetPen()->SetLineType(vtkPen::DASH_LINE);
   }
 }
@@ -122,7 +131,7 @@ void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& p
   add_lines(chart, csv, spec, false);
   if (!spec.reference_csv.empty()) add_lines(chart, spec.reference_csv, spec, true);
   chart->SetShowLegend(true);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(spec.x);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(axis_title(spec.x));
   chart->GetAxis(vtkAxis::LEFT)->SetTitle(spec.y.size() == 1 ? spec.y[0] : "");
   chart->SetTitle(spec.title.empty() ? csv : spec.title);
   cw.win.write_png(png);
@@ -153,9 +162,7 @@ void plot_curves(const std::vector<Curve>& curves, const std::string& x_title, c
     }
     vtkPlot* p = chart->AddPlot(vtkChart::LINE);
     p->SetInputData(t, 0, 1);
-    const unsigned char* col = many_colors[k % 10];
-    p->SetColor(col[0], col[1], col[2], 255);
-    p->SetWidth(2.0);
+    set_style(p, k);
     tables.push_back(t);
   }
   chart->SetShowLegend(true);

@@ -198,10 +198,11 @@ int run_main(int argc, char** argv) {
   int img_tol = 16;
   imgdiff->add_option("a", img_a, "First image")->required();
   imgdiff->add_option("b", img_b, "Second image (e.g. the baseline)")->required();
-  imgdiff->add_option(
-      "--threshold", img_threshold,
-      "Largest accepted fraction of changed pixels (after a one-pixel shift and the channel tolerance)");
-  imgdiff->add_option("--tolerance", img_tol, "Per-channel difference ignored (0-255)");
+  imgdiff
+      ->add_option("--threshold", img_threshold,
+                   "Largest accepted fraction of changed pixels (after a one-pixel shift and the channel tolerance)")
+      ->check(CLI::Range(0.0, 1.0));
+  imgdiff->add_option("--tolerance", img_tol, "Per-channel difference ignored (0-255)")->check(CLI::Range(0, 255));
   imgdiff->add_option("--diff", img_diff, "Where to write the difference image (default: <a>.diff.png)");
 
   auto* keys =

@@ -283,6 +283,7 @@ int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 :
 
 CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides) {
   DSPDEM_CHECK(fs::exists(path), "case file '{}' does not exist", path);
+  DSPDEM_CHECK(!fs::is_directory(path), "case file '{}' is a folder: give a case's .toml file", path);
   Ctx ctx{path};
   toml::table root;
   try {

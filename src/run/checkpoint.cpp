@@ -202,9 +202,13 @@ std::string without_origin(const std::string& s) {
 bool same_case(const std::string& a, const std::string& b) { return without_origin(a) == without_origin(b); }
 
 std::string first_difference(const std::string& a, const std::string& b) {
-  std::istringstream sa(a), sb(b);
+  // As same_case: the origin line names the case file as it was given (relative, or absolute
+  // after a restart) and is not a difference; the line numbers stay the files'.
+  const std::string ra = without_origin(a), rb = without_origin(b);
+  const int first = ra.size() != a.size() && rb.size() != b.size() ? 2 : 1;
+  std::istringstream sa(first == 2 ? ra : a), sb(first == 2 ? rb : b);
   std::string la, lb;
-  for (int line = 1;; ++line) {
+  for (int line = first;; ++line) {
     const bool ea = !std::getline(sa, la), eb = !std::getline(sb, lb);
     if (ea && eb) return "";
     if (ea != eb || la != lb)

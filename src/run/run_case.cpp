@@ -662,6 +662,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   par::barrier();                // every piece written before process 0 moves the folder into place
   if (my_rank != 0) return 0;
   stage.commit();
+  // Images drawn from the frames this run has replaced would sit beside its results as if
+  // they were its own (a frame_0040.png of t = 100 ms beside a run of 5 ms): they go with the
+  // frames they were drawn from; `dspdem render` draws this run's.
+  if (std::error_code ec; fs::remove_all(fs::path(opt.out_dir) / "images", ec) > 0)
+    log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)", opt.out_dir);
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.
   if (!restart_file.empty()) {

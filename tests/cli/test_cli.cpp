@@ -379,6 +379,20 @@ TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {
   EXPECT_TRUE(fs::exists(out / "summary.json"));
 }
 
+TEST_F(Cli, ARunThatReplacesAnotherTakesItsImagesAway) {
+  // Images are drawn from a run's frames: those of the run replaced are stale beside the new
+  // results. A failed run replaces nothing, and keeps them.
+  const fs::path c = write("good.toml", good_), out = dir_ / "out", old = out / "images" / "stress" / "frame_0040.png";
+  ASSERT_EQ(run("-q run " + c.string() + " --out " + out.string()).code, 0);
+  fs::create_directories(old.parent_path());
+  std::ofstream(old) << "drawn from the run before";
+  EXPECT_EQ(run("-q run " + c.string() + " --out " + out.string() + " --set time.dt=1.0").code, 2);
+  EXPECT_TRUE(fs::exists(old));
+  ASSERT_EQ(run("-q run " + c.string() + " --out " + out.string()).code, 0);
+  EXPECT_FALSE(fs::exists(out / "images"));
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+}
+
 TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   // tests/data/notched_bar.toml: a double-edge-notched bar pulled slowly; joints in the band
   // around the notch. It must end in two main fragments of about half the mass each (the

@@ -574,7 +574,13 @@ TEST(RestartCase, TheSameCaseGivenByARelativeOrAnAbsolutePathIsTheSameCase) {
   const std::string a = read_case(abs.string(), {}).resolved_toml, b = read_case(rel.string(), {}).resolved_toml;
   EXPECT_NE(a, b) << "the first comment names the file as given";
   EXPECT_TRUE(same_case(a, b));
-  EXPECT_FALSE(same_case(a, read_case(abs.string(), {"time.end=1e-4"}).resolved_toml));
+  const std::string changed = read_case(abs.string(), {"time.end=1e-4"}).resolved_toml;
+  EXPECT_FALSE(same_case(a, changed));
+  // The refusal's message names the key that changed, not the first comment.
+  EXPECT_EQ(first_difference(a, b), "");
+  const std::string d = first_difference(b, changed);
+  EXPECT_NE(d.find("end = "), std::string::npos) << d;
+  EXPECT_EQ(d.find("Resolved from"), std::string::npos) << d;
 }
 
 // A run's summary.json and its checkpoints name the build; its commit is the one of the code
