@@ -43,6 +43,12 @@ const CLI::Validator kFinitePositive(
       return std::isfinite(x) && x > 0 ? std::string() : "must be a finite number > 0, got " + v;
     },
     "POSITIVE");
+const CLI::Validator kFraction(
+    [](std::string& v) {
+      const double x = std::strtod(v.c_str(), nullptr);
+      return x >= 0 && x <= 1 ? std::string() : "must be a number in [0, 1], got " + v;
+    },
+    "FRACTION");
 
 int run_main(int argc, char** argv) {
   CLI::App app{"dspdem: deformable spheropolyhedral DEM with cohesive joints (batch, off-screen)"};
@@ -91,8 +97,9 @@ int run_main(int argc, char** argv) {
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
   bool discard_interrupted = false;
   run->add_flag("--discard-interrupted", discard_interrupted,
-                "Start afresh in an output folder that holds an interrupted run (its checkpoint is removed when "
-                "this run finishes); without it such a run is refused, so that its checkpoint is not lost by mistake");
+                "Start afresh in an output folder that holds the checkpoint of a run that was stopped or killed "
+                "(this run replaces it when it finishes or is itself stopped); without it such a run is refused, so "
+                "that the checkpoint is not lost by mistake");
 
   auto* mesh = app.add_subcommand("mesh", "Mesh a case: writes DIR/<case>.msh and DIR/quality.json");
   std::string mesh_case_file, mesh_out;
@@ -201,7 +208,7 @@ int run_main(int argc, char** argv) {
   imgdiff
       ->add_option("--threshold", img_threshold,
                    "Largest accepted fraction of changed pixels (after a one-pixel shift and the channel tolerance)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(kFraction);
   imgdiff->add_option("--tolerance", img_tol, "Per-channel difference ignored (0-255)")->check(CLI::Range(0, 255));
   imgdiff->add_option("--diff", img_diff, "Where to write the difference image (default: <a>.diff.png)");
 
@@ -301,13 +308,17 @@ int run_main(int argc, char** argv) {
       const CaseConfig c = read_case(case_file, sets);
       opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;
-      // A finished run supersedes an interrupted one in its folder, checkpoint and all (Staging):
-      // the same command given again instead of --restart would lose hours of a long run.
-      const std::filesystem::path kept = std::filesystem::path(opt.out_dir) / interrupted_folder / "checkpoint.bin";
-      DSPDEM_CHECK(!restart_path.empty() || discard_interrupted || !std::filesystem::exists(kept),
-                   "run: {} holds an interrupted run ({}): continue it with `dspdem run --restart {}`, or start "
-                   "afresh with --discard-interrupted",
-                   opt.out_dir, kept.string(), opt.out_dir);
+      // A finished run supersedes an interrupted or killed one in its folder, checkpoint and all
+      // (Staging::commit): the same command given again instead of --restart would lose hours of
+      // a long run. Continuing into the folder the checkpoint belongs to is what --restart is for.
+      namespace fs = std::filesystem;
+      const std::vector<std::string> left = checkpoints_left(opt.out_dir);
+      const bool continuing = !restart_path.empty() && fs::weakly_canonical(run_folder_of(opt.restart_file)) ==
+                                                           fs::weakly_canonical(opt.out_dir);
+      DSPDEM_CHECK(left.empty() || continuing || discard_interrupted,
+                   "run: {} holds the checkpoint of a run that was stopped or killed ({}): continue it with `dspdem "
+                   "run --restart {}`, or start afresh with --discard-interrupted",
+                   opt.out_dir, fmt::join(left, ", "), opt.out_dir);
       const bool in_ci = std::getenv("CI") != nullptr;
       opt.progress = !no_progress && (progress || (isatty(STDERR_FILENO) && !in_ci && !quiet)) && par::rank() == 0;
       return run_case(c, opt);
@@ -326,34 +337,34 @@ int run_main(int argc, char** argv) {
     return 4;
   } catch (const std::string& e) {  // the gmsh API throws its messages as strings
     fmt::print(stderr, "error: gmsh: {}\n", e);
-    return 4;
+    return 2;
   }
   return 0;
 }
 }  // namespace
 
 namespace {
+std::terminate_handler g_previous_terminate = nullptr;
+
 // gmsh throws some of its errors (a mesh size far too small: "Identical points in
-// triangulation") inside its own OpenMP regions, which no handler can catch: the runtime
-// calls std::terminate, and the run would end in an abort and a core dump with no word of
-// what failed. Said here as an error, with the mesh being made.
+// triangulation") as strings inside its own OpenMP regions, which no handler can catch: the
+// runtime calls std::terminate, and the run would end in an abort and a core dump with no
+// word of what failed. Those are said here as an error, with the mesh being made, and the
+// exit code of run_main's own gmsh errors; anything else is a bug and goes on to the
+// previous handler (the message with the exception's type, and the abort).
 [[noreturn]] void on_terminate() {
-  const std::string what = meshing::meshing_now();
-  const std::string where = what.empty() ? std::string() : fmt::format(" (while meshing: {})", what);
   if (const std::exception_ptr e = std::current_exception()) {
     try {
       std::rethrow_exception(e);
     } catch (const std::string& s) {
-      fmt::print(stderr, "error: gmsh: {}{}\n", s, where);
+      const std::string what = meshing::meshing_now();
+      fmt::print(stderr, "error: gmsh: {}{}\n", s, what.empty() ? "" : " (while meshing: " + what + ")");
       std::_Exit(2);
-    } catch (const std::exception& x) {
-      fmt::print(stderr, "error: unexpected failure: {}{}\n", x.what(), where);
-      std::_Exit(4);
     } catch (...) {
     }
   }
-  fmt::print(stderr, "error: unexpected failure{}\n", where);
-  std::_Exit(4);
+  if (g_previous_terminate) g_previous_terminate();
+  std::abort();
 }
 }  // namespace
 
@@ -361,7 +372,7 @@ namespace {
 // them all, since the others would wait for it at the next exchange. An interruption is
 // agreed by all at the same step (run_case), so they end together and normally.
 int main(int argc, char** argv) {
-  std::set_terminate(on_terminate);
+  g_previous_terminate = std::set_terminate(on_terminate);
   stop_with_parent();  // a sweep's job: a SIGTERM if the report dies, even by SIGKILL
   par::init(&argc, &argv);
   const int code = run_main(argc, argv);

@@ -33,7 +33,7 @@ const std::vector<const char*>& sections() {
 namespace {
 const std::vector<Key>& general_keys() {
   static const std::vector<Key> k = {
-    {"case", "name", T::String, "auto", 0, 0, false, false, "", nullptr, "Case name used in outputs (the run's folder under results/: no '/' or '\\', not empty, not starting with '.'); defaults to the file name without extension."},
+    {"case", "name", T::String, "auto", 0, 0, false, false, "", nullptr, "Case name used in outputs (the run's folder under results/: no `/` or `\\`, not empty, not starting with `.`); defaults to the file name without extension."},
     {"case", "scene", T::String, "auto", 0, 0, false, false, "", nullptr, "Benchmark scene whose report `dspdem report` writes (`dspdem scenes` lists them); default: the one made for the mesh generator, if any."},
     {"case", "description", T::String, "\"\"", 0, 0, false, false, "", nullptr, "Free text: what the case checks, sources of its numbers and choices made."},
     {"mesh", "file", T::String, "auto", 0, 0, false, false, "", nullptr, "Mesh file (.msh v2/v4, or a .geo script that gmsh meshes in 3D), relative to the case file. Give either file or generator."},

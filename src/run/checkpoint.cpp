@@ -4,6 +4,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -131,6 +132,21 @@ CheckpointHeader read_checkpoint(const std::string& path, StateArchive& body) {
   CheckpointHeader h = open_checked(path, body);
   require_this_build(h, path);
   return h;
+}
+
+std::vector<std::string> checkpoints_left(const std::string& run_dir) {
+  std::vector<std::string> left;
+  std::error_code ec;
+  if (!fs::is_directory(run_dir, ec)) return left;
+  if (const fs::path p = fs::path(run_dir) / interrupted_folder / "checkpoint.bin"; fs::is_regular_file(p, ec))
+    left.push_back(p.string());
+  for (fs::directory_iterator it(run_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path p = it->path() / "checkpoint.bin";
+    if (is_staging_folder(it->path().string()) && left_by_killed_run(it->path().string()) && fs::is_regular_file(p))
+      left.push_back(p.string());
+  }
+  std::sort(left.begin(), left.end());
+  return left;
 }
 
 FoundCheckpoint find_checkpoint(const std::string& run_dir) {

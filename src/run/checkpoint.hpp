@@ -90,6 +90,11 @@ struct FoundCheckpoint {
 /// later run of the folder, of another case perhaps, is the one to go on with.
 FoundCheckpoint find_checkpoint(const std::string& run_dir);
 
+/// The checkpoint files in `run_dir` that `run --restart` could go on from and that a run
+/// finishing there would remove: an interrupted run's (interrupted_run/) and killed runs'
+/// (.staging-*/ whose process is gone). Not read: a damaged one is still someone's hours.
+std::vector<std::string> checkpoints_left(const std::string& run_dir);
+
 /// What `dspdem run --restart PATH` goes on from: a run folder's newest checkpoint
 /// (find_checkpoint), or the checkpoint file PATH itself, which must be process 0's (a
 /// distributed run's other files are found beside it) and, in a staging folder, a killed

@@ -47,7 +47,7 @@ volatile std::sig_atomic_t g_interrupted = 0, g_setting_up = 0;
 // so what is on disk then is whole: the last checkpoint, frames and collections so far. A
 // hang-up is not a second signal: a closing terminal's job gets one from the kernel and one
 // from its shell, and must still write its checkpoint.
-// During the set-up (meshing, the model; until the staging folder exists) there is nothing
+// During the set-up (meshing, the model; until the staging folder is made) there is nothing
 // to keep, and gmsh cannot be asked to stop: any of the three exits at once. Waiting for the
 // first step instead kept a run meshing for minutes after a scheduler's or CI's SIGTERM.
 extern "C" void on_signal(int sig) {
@@ -317,10 +317,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
 #endif
   }
 
+  // From here a signal stops the run at the end of a step, with a checkpoint: the staging
+  // folder is made whole (and cleared by a later run if this one is killed) or not at all.
+  g_setting_up = 0;
   // Process 0 makes the staging folder and commits it; the others write their pieces into it.
   Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
-  par::barrier();    // the folder made before anyone writes into it
-  g_setting_up = 0;  // from here a signal stops the run at the end of a step, with a checkpoint
+  par::barrier();  // the folder made before anyone writes into it
   const fs::path sdir(stage.path());
   // Restarting from a killed run's staging folder of this very name: it was moved aside.
   std::string restart_file = opt.restart_file;
@@ -661,11 +663,15 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   fs::remove(ckpt);              // a finished run needs none (each process its own file)
   par::barrier();                // every piece written before process 0 moves the folder into place
   if (my_rank != 0) return 0;
+  const fs::path images = fs::path(opt.out_dir) / "images";
+  const bool replaces =
+      fs::exists(fs::path(opt.out_dir) / "run.pvd") || fs::exists(fs::path(opt.out_dir) / "summary.json");
   stage.commit();
   // Images drawn from the frames this run has replaced would sit beside its results as if
   // they were its own (a frame_0040.png of t = 100 ms beside a run of 5 ms): they go with the
-  // frames they were drawn from; `dspdem render` draws this run's.
-  if (std::error_code ec; fs::remove_all(fs::path(opt.out_dir) / "images", ec) > 0)
+  // frames they were drawn from; `dspdem render` draws this run's. Only where a run was
+  // replaced: a first run into a folder leaves an images/ it did not make alone.
+  if (std::error_code ec; replaces && fs::remove_all(images, ec) > 0 && !ec)
     log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)", opt.out_dir);
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.

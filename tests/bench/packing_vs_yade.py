@@ -140,7 +140,7 @@ def dspdem_rate(a, case, threads, steps, dt, out):
     walls = []
     for n in (steps, 3 * steps):
         d = out / f"n{n}"
-        sh([a.dspdem, "-q", "-t", threads, "run", case, "--set", f"time.end={n * dt:.9g}", "--set", f"output.frame_interval={n * dt:.9g}", "--out", d], out / f"n{n}.log")
+        sh([a.dspdem, "-q", "-t", threads, "run", case, "--discard-interrupted", "--set", f"time.end={n * dt:.9g}", "--set", f"output.frame_interval={n * dt:.9g}", "--out", d], out / f"n{n}.log")
         s = json.loads((d / "summary.json").read_text())
         walls.append((s["steps"], s["wall_s"], s["elements"]))
         contacts = int(read_series(d / "series.csv")[-1]["contacts"])
@@ -181,7 +181,7 @@ def main():
     nodes, tets = read_msh_tets(out / "mesh" / "packing.msh")
     initial = [[nodes[t] for t in tet] for tet in tets]
     settle = out / "dspdem_settle"
-    sh([a.dspdem, "-q", "-t", "1", "run", CASE, "--set", f"mesh.packing.count={a.count}", "--set",
+    sh([a.dspdem, "-q", "-t", "1", "run", CASE, "--discard-interrupted", "--set", f"mesh.packing.count={a.count}", "--set",
         f"time.end={a.settle_end}", "--set", f"output.frame_interval={a.settle_end}", "--out", settle],
        out / "dspdem_settle.log")
     summ = json.loads((settle / "summary.json").read_text())

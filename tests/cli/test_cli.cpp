@@ -377,6 +377,15 @@ TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {
   ASSERT_EQ(fresh.code, 0) << fresh.out;
   EXPECT_FALSE(fs::exists(out / "interrupted_run"));
   EXPECT_TRUE(fs::exists(out / "summary.json"));
+  // A run killed outright leaves its last checkpoint by wall time in its staging folder (no
+  // lock held, its pid gone): the same.
+  const fs::path killed = out / ".staging-999999999" / "checkpoint.bin";
+  fs::create_directories(killed.parent_path());
+  std::ofstream(killed) << "a checkpoint by wall time";
+  const Result again = run("run " + c.string() + " --out " + out.string());
+  EXPECT_EQ(again.code, 2) << again.out;
+  EXPECT_NE(again.out.find(killed.string()), std::string::npos) << again.out;
+  EXPECT_TRUE(fs::exists(killed));
 }
 
 TEST_F(Cli, ARunThatReplacesAnotherTakesItsImagesAway) {
@@ -391,6 +400,12 @@ TEST_F(Cli, ARunThatReplacesAnotherTakesItsImagesAway) {
   ASSERT_EQ(run("-q run " + c.string() + " --out " + out.string()).code, 0);
   EXPECT_FALSE(fs::exists(out / "images"));
   EXPECT_TRUE(fs::exists(out / "summary.json"));
+  // A first run into a folder replaces no run: an images/ there is not its to remove.
+  const fs::path other = dir_ / "other" / "images" / "photo.png";
+  fs::create_directories(other.parent_path());
+  std::ofstream(other) << "someone's";
+  ASSERT_EQ(run("-q run " + c.string() + " --out " + (dir_ / "other").string()).code, 0);
+  EXPECT_TRUE(fs::exists(other));
 }
 
 TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
