@@ -17,7 +17,6 @@
 #include "core/log.hpp"
 #include "core/subprocess.hpp"
 #include "io/case_config.hpp"
-#include "io/staging.hpp"
 #include "meshing/generator.hpp"
 #include "par/mpi_world.hpp"
 #include "render/image_compare.hpp"
