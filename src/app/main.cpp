@@ -30,24 +30,20 @@ using namespace dspdem;
 
 namespace {
 // CLI11's number checks let NaN through (every comparison with it is false); these do not.
-const CLI::Validator kFiniteNonNegative(
-    [](std::string& v) {
-      const double x = std::strtod(v.c_str(), nullptr);
-      return std::isfinite(x) && x >= 0 ? std::string() : "must be a finite number >= 0, got " + v;
-    },
-    "NONNEGATIVE");
-const CLI::Validator kFinitePositive(
-    [](std::string& v) {
-      const double x = std::strtod(v.c_str(), nullptr);
-      return std::isfinite(x) && x > 0 ? std::string() : "must be a finite number > 0, got " + v;
-    },
-    "POSITIVE");
-const CLI::Validator kFraction(
-    [](std::string& v) {
-      const double x = std::strtod(v.c_str(), nullptr);
-      return x >= 0 && x <= 1 ? std::string() : "must be a number in [0, 1], got " + v;
-    },
-    "FRACTION");
+CLI::Validator number_check(const std::string& name, bool (*ok)(double), const std::string& what) {
+  return CLI::Validator(
+      [ok, what](std::string& v) {
+        const double x = std::strtod(v.c_str(), nullptr);
+        return std::isfinite(x) && ok(x) ? std::string() : "must be " + what + ", got " + v;
+      },
+      name);
+}
+const CLI::Validator kFiniteNonNegative = number_check(
+    "NONNEGATIVE", [](double x) { return x >= 0; }, "a finite number >= 0");
+const CLI::Validator kFinitePositive = number_check(
+    "POSITIVE", [](double x) { return x > 0; }, "a finite number > 0");
+const CLI::Validator kFraction = number_check(
+    "FRACTION", [](double x) { return x >= 0 && x <= 1; }, "a number in [0, 1]");
 
 int run_main(int argc, char** argv) {
   CLI::App app{"dspdem: deformable spheropolyhedral DEM with cohesive joints (batch, off-screen)"};

@@ -4,7 +4,6 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -140,23 +139,19 @@ std::vector<std::string> checkpoints_left(const std::string& run_dir) {
   if (!fs::is_directory(run_dir, ec)) return left;
   if (const fs::path p = fs::path(run_dir) / interrupted_folder / "checkpoint.bin"; fs::is_regular_file(p, ec))
     left.push_back(p.string());
+  // A killed run's staging folder, not a live run's: that one is still writing its outputs.
   for (fs::directory_iterator it(run_dir, ec), end; !ec && it != end; it.increment(ec)) {
     const fs::path p = it->path() / "checkpoint.bin";
     if (is_staging_folder(it->path().string()) && left_by_killed_run(it->path().string()) && fs::is_regular_file(p))
       left.push_back(p.string());
   }
-  std::sort(left.begin(), left.end());
   return left;
 }
 
 FoundCheckpoint find_checkpoint(const std::string& run_dir) {
   DSPDEM_CHECK(fs::is_directory(run_dir), "--restart {}: no such run folder", run_dir);
-  std::vector<fs::path> cands = {fs::path(run_dir) / "checkpoint.bin",
-                                 fs::path(run_dir) / interrupted_folder / "checkpoint.bin"};
-  // A killed run's staging folder, not a live run's: that one is still writing its outputs.
-  for (const auto& e : fs::directory_iterator(run_dir))
-    if (e.is_directory() && is_staging_folder(e.path().string()) && left_by_killed_run(e.path().string()))
-      cands.push_back(e.path() / "checkpoint.bin");
+  std::vector<fs::path> cands = {fs::path(run_dir) / "checkpoint.bin"};
+  for (const std::string& p : checkpoints_left(run_dir)) cands.emplace_back(p);
   FoundCheckpoint best;
   std::string errors;
   fs::file_time_type best_time = fs::file_time_type::min();
