@@ -213,6 +213,14 @@ int run_main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A misspelt command reads to CLI11 as a stray argument and a missing command; say what it is.
+    if (app.get_subcommands().empty() && !app.remaining().empty() && app.remaining().front()[0] != '-') {
+      std::vector<std::string> names;
+      for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+      fmt::print(stderr, "error: unknown command '{}'; the commands are {}\nRun with --help for more information.\n",
+                 app.remaining().front(), fmt::join(names, ", "));
+      return 1;
+    }
     const int code = app.exit(e);  // prints help or the message
     return code == 0 ? 0 : 1;      // README: 1 is a command-line error, whatever CLI11 calls it
   }
@@ -276,6 +284,11 @@ int run_main(int argc, char** argv) {
                           mesh_out.empty() ? (std::filesystem::path("results") / c.name / "mesh").string() : mesh_out);
     }
     if (*run) {
+      if (case_file.empty() && restart_path.empty()) {  // a command-line error (exit 1), as CLI11's own
+        fmt::print(stderr,
+                   "error: run: give a case file, or --restart RUN_DIR\nRun with --help for more information.\n");
+        return 1;
+      }
       RunOptions opt;
       opt.checkpoint_every = checkpoint_every;
       opt.checkpoint_wall = checkpoint_wall;
@@ -294,7 +307,7 @@ int run_main(int argc, char** argv) {
         if (out_dir.empty()) out_dir = run_folder_of(f.path);
         log::info("dspdem run --restart: {} (step {}, t = {:.6g} s)", opt.restart_file, h.steps, h.time);
       }
-      DSPDEM_CHECK(!case_file.empty(), "run: give a case file, or --restart RUN_DIR");
+
       if (par::size() > 1 && wall_opt->count() > 0 && checkpoint_wall > 0)
         log::warn(
             "--checkpoint-wall {} is not used in a distributed run (mpirun -n {}): its processes would not agree on "

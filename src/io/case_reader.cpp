@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -178,8 +179,10 @@ class Section {
   }
   static std::string type_of(const toml::node& n) {
     switch (n.type()) {
-      case toml::node_type::string:
-        return "a string";
+      case toml::node_type::string: {
+        const std::string v = *n.value<std::string>();
+        return fmt::format("the string \"{}\"", v.size() > 40 ? v.substr(0, 37) + "..." : v);
+      }
       case toml::node_type::integer:
         return "an integer";
       case toml::node_type::floating_point:
@@ -231,7 +234,13 @@ void apply_override(toml::table& root, const std::string& ov) {
   toml::table holder;
   try {
     holder = toml::parse("v = " + text, kOverrideSource);
-  } catch (const toml::parse_error&) {
+  } catch (const toml::parse_error& e) {
+    // Something written as a number that TOML cannot read (1e400, .5, 2^64) would otherwise
+    // become a string, and the key would then say "got a string" of what was meant as a number.
+    char* end = nullptr;
+    std::strtod(text.c_str(), &end);
+    DSPDEM_CHECK(text.empty() || end != text.c_str() + text.size(), "--set '{}': {} is not a number TOML reads: {}", ov,
+                 text, e.description());
     holder = toml::parse("v = \"\"", kOverrideSource);  // a bare word is a string
     *holder.get_as<std::string>("v") = text;
   }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "commit_id.hpp"  // generated at every build: DSPDEM_COMMIT
@@ -209,6 +210,14 @@ std::string without_origin(const std::string& s) {
   return nl == std::string::npos ? std::string() : s.substr(nl + 1);
 }
 }  // namespace
+
+std::string case_origin(const std::string& resolved) {
+  constexpr std::string_view head = "# Resolved from ", tail = " (every default filled in)";
+  if (resolved.rfind(head, 0) != 0) return {};
+  const std::string line = resolved.substr(0, resolved.find('\n'));
+  const std::size_t end = line.rfind(tail);
+  return end == std::string::npos || end < head.size() ? std::string() : line.substr(head.size(), end - head.size());
+}
 
 bool same_case(const std::string& a, const std::string& b) { return without_origin(a) == without_origin(b); }
 

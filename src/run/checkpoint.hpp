@@ -111,6 +111,9 @@ std::string run_folder_of(const std::string& checkpoint_file);
 /// The first line where two case texts differ, for messages ("" if equal).
 std::string first_difference(const std::string& a, const std::string& b);
 
+/// The case file as a resolved case text names it in its first comment ("" if it has none).
+std::string case_origin(const std::string& resolved);
+
 /// Whether two resolved case texts are the same case: equal but for their first comment,
 /// which names the file as it was given (`cases/x.toml` at the start, the absolute path the
 /// checkpoint recorded at a restart).

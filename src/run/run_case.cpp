@@ -364,6 +364,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   ls.next_frame = c.frame_interval, ls.next_series = c.series_interval, ls.next_checkpoint = opt.checkpoint_every;
   ls.n_steps = last_step(0, 0.0, dt);
 
+  std::string case_file = c.path;  // as the run was started (a restart reads it by its absolute path)
   CheckpointHeader head;
   head.build = checkpoint_build_id();
   head.executable = executable_id();
@@ -407,6 +408,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
                  "restart: checkpoint '{}' was written for case {} as it was then; it has changed since ({}): run it "
                  "again, or restore the case",
                  restart_file, h.case_path, first_difference(h.resolved_toml, c.resolved_toml));
+    // The same case, but read now by the absolute path the checkpoint keeps: the record keeps
+    // the path the run was started with.
+    head.resolved_toml = h.resolved_toml;
+    if (const std::string o = case_origin(h.resolved_toml); !o.empty()) case_file = o;
+    if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), h.resolved_toml);
     DSPDEM_CHECK(h.nodes == whole_nodes && h.elements == whole_elements && h.joints == whole_joints && h.dt == dt,
                  "restart: checkpoint '{}' is of a model with {} nodes, {} elements, {} joints and dt {:.17g}; the "
                  "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
@@ -508,7 +514,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     const Energy e = it.energy();  // on every process: its sums are collective
     if (my_rank != 0) return;
     RunSummary s;
-    s.case_name = c.name, s.case_file = c.path, s.status = status, s.message = message;
+    s.case_name = c.name, s.case_file = case_file, s.status = status, s.message = message;
     s.build = executable_id();
     s.steps = it.steps(), s.dt = it.dt(), s.dt_start = dt, s.dt_critical = crit.dt, s.dt_limiter = crit.limiter;
     s.dt_limiting_element = static_cast<long>(crit.element >= 0 ? fem.elem_tag[crit.element] : 0);

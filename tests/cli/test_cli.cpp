@@ -211,6 +211,10 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
        {"inverted", "element tags: 1"}},
       {"stop_series", good_, "--set time.stop_series=plate_fy", {"stop_series = \"plate_fy\"", "known:"}},
       {"stop_reach", good_, "--set time.stop_reach=1e3", {"[time] stop_reach", "needs stop_series"}},
+      // Written as numbers but not numbers TOML reads: said so, not "must be a number, got a string".
+      {"set_huge", good_, "--set time.end=1e400", {"1e400 is not a number TOML reads", "could not be interpreted"}},
+      {"set_bare_point", good_, "--set time.end=.5", {".5 is not a number TOML reads", "expected decimal digit"}},
+      {"string_for_number", good_, "--set time.end=soon", {"'end' must be a number, got the string \"soon\""}},
       {"unknown_group",
        replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""),
        "",
@@ -498,6 +502,19 @@ TEST_F(Cli, HelpListsSubcommands) {
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.out.find("run"), std::string::npos);
   EXPECT_NE(r.out.find("keys"), std::string::npos);
+}
+
+// Command-line errors exit 1 (README) and say what was wrong in the words of the tool.
+TEST_F(Cli, AMisspeltCommandOrAMissingCaseIsACommandLineError) {
+  const Result bogus = run("-q rnu case.toml");
+  EXPECT_EQ(bogus.code, 1) << bogus.out;
+  EXPECT_NE(bogus.out.find("unknown command 'rnu'"), std::string::npos) << bogus.out;
+  EXPECT_NE(bogus.out.find("run, "), std::string::npos) << "lists the commands: " << bogus.out;
+  const Result none = run("run");
+  EXPECT_EQ(none.code, 1) << none.out;
+  EXPECT_NE(none.out.find("give a case file, or --restart RUN_DIR"), std::string::npos) << none.out;
+  const Result no_command = run("-q");
+  EXPECT_EQ(no_command.code, 1) << no_command.out;
 }
 
 TEST(Docs, CasesReadmeHoldsTheSchemaTable) {

@@ -151,18 +151,23 @@ TEST_F(Restart, FracturingRunWithContactStoppedTwiceEndsBitwiseAsTheUninterrupte
   ASSERT_TRUE(fs::exists(dir / "interrupted_run" / "checkpoint.bin"));
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "interrupted_run" / "summary.json"))["status"], "interrupted");
 
-  // Second leg, on one thread (results do not depend on the thread count), stopped again.
+  // Second leg, on one thread (results do not depend on the thread count), stopped again. The
+  // case read by another spelling of its path (`dspdem run --restart` reads it by the absolute
+  // path the checkpoint keeps): the record still names it as the run was started with, so
+  // case.resolved.toml is compared with the uninterrupted run's below.
+  const CaseConfig c_again = read_case(fs::relative(kCase).string(), kSets);
+  ASSERT_NE(c_again.resolved_toml, c.resolved_toml);
   opt.restart_file = find_checkpoint(dir.string()).path;
   opt.interrupt_at_step = 9000;
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  EXPECT_THROW(run_case(c, opt), Interrupted);
+  EXPECT_THROW(run_case(c_again, opt), Interrupted);
   omp_set_num_threads(threads);
   EXPECT_EQ(find_checkpoint(dir.string()).header.steps, 9000);
 
   opt.restart_file = find_checkpoint(dir.string()).path;
   opt.interrupt_at_step = -1;
-  EXPECT_EQ(run_case(c, opt), 0);
+  EXPECT_EQ(run_case(c_again, opt), 0);
   EXPECT_FALSE(fs::exists(dir / "interrupted_run"));  // superseded by the results
   EXPECT_FALSE(fs::exists(dir / "checkpoint.bin"));   // a finished run needs none
   expect_same_outputs(full(), dir);
@@ -574,6 +579,9 @@ TEST(RestartCase, TheSameCaseGivenByARelativeOrAnAbsolutePathIsTheSameCase) {
   const std::string a = read_case(abs.string(), {}).resolved_toml, b = read_case(rel.string(), {}).resolved_toml;
   EXPECT_NE(a, b) << "the first comment names the file as given";
   EXPECT_TRUE(same_case(a, b));
+  EXPECT_EQ(case_origin(a), abs.string());  // what a restart records as the case file
+  EXPECT_EQ(case_origin(b), rel.string());
+  EXPECT_EQ(case_origin("[case]\n"), "");
   const std::string changed = read_case(abs.string(), {"time.end=1e-4"}).resolved_toml;
   EXPECT_FALSE(same_case(a, changed));
   // The refusal's message names the key that changed, not the first comment.
