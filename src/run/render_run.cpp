@@ -1,5 +1,6 @@
 #include "run/render_run.hpp"
 
+#include <omp.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vtkCellData.h>
@@ -184,7 +185,9 @@ int render_command(const RenderArgs& in) {
   if (worker)
     DSPDEM_CHECK(std::sscanf(a.worker.c_str(), "%d/%d", &k, &n) == 2 && n > 0 && k >= 0 && k < n, "--worker {}",
                  a.worker);
-  int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+  // By default as many as the solver's threads (-t, else OMP_NUM_THREADS, else the cores): a
+  // report given -t 1 on a shared machine renders on one core too.
+  int jobs = a.jobs > 0 ? a.jobs : std::max(1, omp_get_max_threads());
   jobs = std::min<int>(jobs, static_cast<int>(sel.size()));
   std::vector<pid_t> pids;
   if (!worker && jobs > 1) {

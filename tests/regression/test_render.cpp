@@ -136,9 +136,11 @@ TEST(Render, WritesFramesAnimationAndPlotsWithoutDisplay) {
     EXPECT_EQ(frames_in(out2 / "images" / (std::string(view) + ".mp4")), 5) << view;
     EXPECT_EQ(frames_in(out2 / "images" / (std::string(view) + ".gif")), 5) << view;
   }
-  // One job: the encodings one after the other.
-  const Result r3 = sh(bin() + " render " + out2.string() + " --frames every:2 --jobs 1");
+  // One job, as the global -t 1 asks of a render without -j (a report's figures on a shared
+  // machine): the encodings one after the other.
+  const Result r3 = sh(bin() + " -t 1 render " + out2.string() + " --frames every:2");
   ASSERT_EQ(r3.code, 0) << r3.out;
+  EXPECT_NE(r3.out.find("with 1 process(es)"), std::string::npos) << r3.out;
   EXPECT_EQ(frames_in(out2 / "images/stress.mp4"), 3);
   EXPECT_EQ(frames_in(out2 / "images/stress.gif"), 3);
   const Result codec = sh("ffprobe -v error -select_streams v:0 -show_entries stream=codec_name,pix_fmt -of csv=p=0 " +
