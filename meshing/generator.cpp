@@ -1,11 +1,14 @@
 #include "meshing/generator.hpp"
 
 #include <gmsh.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -184,7 +187,13 @@ Mesh generate(const Params& p_in, const std::string& msh_path) {
     // A name of this process's own: runs started together (a study, parallel jobs) may
     // generate the same mesh at once; each renames its complete file into place.
     const std::string tmp = fmt::format("{}.{}.tmp.msh", msh_path, static_cast<long>(::getpid()));
-    gmsh::write(tmp);
+    try {
+      gmsh::write(tmp);
+    } catch (...) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw;
+    }
     fs::rename(tmp, msh_path);
   }
   return m;
@@ -207,6 +216,31 @@ std::string default_cache_dir() {
   return (fs::temp_directory_path() / "dspdem-meshes").string();
 }
 
+namespace {
+// A process killed while gmsh wrote into the cache (a signal during the set-up exits at once,
+// SIGKILL, a power cut) leaves its NAME.PID.tmp.msh behind; nothing else would ever remove it.
+// Those of processes that no longer exist are removed by the next run that meshes into the
+// folder; a live process's file (a study's parallel job meshing now) is left alone.
+void remove_dead_writers_files(const fs::path& cache_dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(cache_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    constexpr std::string_view tail = ".tmp.msh";
+    if (name.size() <= tail.size() || name.compare(name.size() - tail.size(), tail.size(), tail) != 0) continue;
+    const std::string stem = name.substr(0, name.size() - tail.size());
+    const std::size_t dot = stem.rfind('.');
+    if (dot == std::string::npos) continue;
+    char* e = nullptr;
+    const long pid = std::strtol(stem.c_str() + dot + 1, &e, 10);
+    if (*e != '\0' || pid <= 0) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code rm;
+      fs::remove(it->path(), rm);
+    }
+  }
+}
+}  // namespace
+
 Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cached, std::string* path) {
   const std::string key = p.canonical() + ";gmsh=" + GMSH_API_VERSION + ";generators=" + kGeneratorsVersion;
   const fs::path file = fs::path(cache_dir) / fmt::format("{}-{:016x}.msh", p.generator, fnv1a(key));
@@ -227,6 +261,7 @@ Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cache
     log::warn("mesh cache folder '{}' cannot be created ({}); not caching", cache_dir, ec.message());
     return generate(p);
   }
+  remove_dead_writers_files(cache_dir);
   // The run gets the mesh as read back from the file, exactly as every later (cached) run
   // will: the in-memory mesh carries more digits than the file, and the same input must give
   // the same result whether the cache was warm or not.

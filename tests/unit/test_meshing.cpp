@@ -180,9 +180,18 @@ TEST(Generators, FirstAndCachedRunsGetTheSameMesh) {
   const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_cache_test";
   fs::remove_all(dir);
   const auto p = params("brazilian_disc", {"size=0.03", "plate_size=0.03"});
+  // What writers killed mid-write left (NAME.PID.tmp.msh): a dead process's is removed by the
+  // next run that meshes here, a live one's (this process's: a parallel job meshing now) kept.
+  fs::create_directories(dir);
+  const fs::path dead = dir / "x-0123.msh.999999999.tmp.msh",
+                 live = dir / fmt::format("x-0123.msh.{}.tmp.msh", getpid());
+  std::ofstream(dead) << "half a mesh";
+  std::ofstream(live) << "half a mesh";
   bool cached = true;
   const Mesh first = meshing::load_or_generate(p, dir.string(), &cached);
   EXPECT_FALSE(cached);
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));
   const Mesh second = meshing::load_or_generate(p, dir.string(), &cached);
   EXPECT_TRUE(cached);
   ASSERT_EQ(first.x.size(), second.x.size());
