@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
+#include "run/run_case.hpp"
 #include "scenes/registry.hpp"
 
 namespace dspdem {
@@ -27,6 +28,9 @@ int report_command(const report::ReportArgs& a) {
   DSPDEM_CHECK(!a.runs.resume || a.from_run.empty(),
                "--resume and --from-run: --from-run analyses an earlier report's runs without running any; --resume "
                "keeps those of this report's folder that are still this report's runs and runs the rest");
+  set_setup_stop_hint(
+      " (in the report's run then starting); the same report with --resume keeps the runs that finished and "
+      "runs the rest");
   try {
     return scene.report(c, a);
   } catch (const Interrupted& e) {

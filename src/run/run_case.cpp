@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -42,6 +43,7 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0, g_setting_up = 0;
+const char* volatile g_setup_hint = nullptr;
 // The first signal asks for a stop at the end of the step (checkpoint, outputs closed); a
 // second one exits at once. Every output file is written to a temporary name and renamed,
 // so what is on disk then is whole: the last checkpoint, frames and collections so far. A
@@ -52,14 +54,22 @@ volatile std::sig_atomic_t g_interrupted = 0, g_setting_up = 0;
 // first step instead kept a run meshing for minutes after a scheduler's or CI's SIGTERM.
 extern "C" void on_signal(int sig) {
   if (g_setting_up) {
-    static const char msg[] = "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written\n";
-    const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+    static const char msg[] = "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written";
+    ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+    if (const char* hint = g_setup_hint) n = write(STDERR_FILENO, hint, std::strlen(hint));
+    n = write(STDERR_FILENO, "\n", 1);
     (void)n;
     _exit(kExitInterrupted);
   }
   if (g_interrupted && sig != SIGHUP) _exit(kExitInterrupted);
   g_interrupted = 1;
 }
+
+}  // namespace
+
+void set_setup_stop_hint(const char* hint) { g_setup_hint = hint; }
+
+namespace {
 
 /// Where the time loop is, besides the model: output schedule, the files' lengths, the stop
 /// rule. Saved in checkpoints with the model's state.

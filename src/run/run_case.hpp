@@ -33,6 +33,11 @@ constexpr double kCheckpointWallDefault = 600;
 /// Exit status of `dspdem run` stopped by SIGINT, SIGTERM or SIGHUP (after its checkpoint).
 constexpr int kExitInterrupted = 5;
 
+/// What a signal during a run's set-up (which exits at once, nothing of that run written)
+/// adds to its message: a report that runs its case in its own process says how to keep the
+/// runs it finished before. `hint` must outlive the process (a string literal); nullptr: none.
+void set_setup_stop_hint(const char* hint);
+
 /// Runs the case and writes DIR/{run.pvd, frames/, series.csv, summary.json,
 /// case.resolved.toml}. Returns 0 on success. Throws Error for bad input; on numerical
 /// trouble writes the partial results to DIR/failed_run and throws NumericalError. Stopped

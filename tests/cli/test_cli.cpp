@@ -363,6 +363,29 @@ TEST_F(Cli, ASignalWhileMeshingEndsTheRunAtOnce) {
   EXPECT_NE(text.find("stopped by a signal during the set-up"), std::string::npos) << text;
   EXPECT_EQ(text.find("interrupted at step"), std::string::npos) << text;
   EXPECT_FALSE(fs::exists(out / "interrupted_run")) << text;
+  EXPECT_EQ(text.find("--resume"), std::string::npos) << "a lone run has nothing to resume: " << text;
+
+  // A report that runs its case in its own process (the disc) says how to keep what it had
+  // finished before the run it was setting up.
+  const fs::path rlog = dir_ / "report_meshing.log";
+  const pid_t rpid = start_job(
+      fmt::format("exec env DSPDEM_MESH_CACHE={} {} -t 1 report {}/cases/brazilian_disc.toml --no-render "
+                  "--set mesh.brazilian_disc.size=0.001 --out {} < /dev/null > {} 2>&1",
+                  (dir_ / "cache").string(), DSPDEM_BIN, DSPDEM_SOURCE_DIR, (dir_ / "report").string(), rlog.string()));
+  ASSERT_GT(rpid, 0);
+  started = false;
+  for (int k = 0; k < 1200 && !started; ++k) {
+    started = slurp(rlog).find("dspdem run: case") != std::string::npos;
+    if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const int rst = stop_job(rpid, SIGTERM);
+  const std::string rtext = slurp(rlog);
+  ASSERT_TRUE(started) << rtext;
+  ASSERT_TRUE(WIFEXITED(rst)) << "wait status " << rst << ": " << rtext;
+  EXPECT_EQ(WEXITSTATUS(rst), 5) << rtext;
+  EXPECT_NE(rtext.find("stopped by a signal during the set-up"), std::string::npos) << rtext;
+  EXPECT_NE(rtext.find("the same report with --resume"), std::string::npos) << rtext;
 }
 
 TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {
