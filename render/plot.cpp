@@ -81,6 +81,16 @@ void set_style(vtkPlot* p, std::size_t k) {
   if (again > 0) p->GetPen()->SetLineType(again == 1 ? vtkPen::DOT_LINE : vtkPen::DASH_DOT_LINE);
 }
 
+// The legend beside the plot, right of it, not on it: inside, VTK puts it in the top right
+// corner, where a load curve has its peak (the disc's) and a ledger its largest terms.
+void show_legend_beside(vtkChartXY* chart) {
+  chart->SetShowLegend(true);
+  vtkChartLegend* l = chart->GetLegend();
+  l->SetInline(false);
+  l->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  l->SetVerticalAlignment(vtkChartLegend::TOP);
+}
+
 // An axis title with its unit where the column is known to have one.
 std::string axis_title(const std::string& column) { return column == "time" ? "time [s]" : column; }
 
@@ -130,9 +140,9 @@ void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& p
   vtkChartXY* chart = cw.chart;
   add_lines(chart, csv, spec, false);
   if (!spec.reference_csv.empty()) add_lines(chart, spec.reference_csv, spec, true);
-  chart->SetShowLegend(true);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(axis_title(spec.x));
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle(spec.y.size() == 1 ? spec.y[0] : "");
+  show_legend_beside(chart);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(spec.x_title.empty() ? axis_title(spec.x) : spec.x_title);
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(!spec.y_title.empty() ? spec.y_title : spec.y.size() == 1 ? spec.y[0] : "");
   chart->SetTitle(spec.title.empty() ? csv : spec.title);
   cw.win.write_png(png);
 }
@@ -165,7 +175,7 @@ void plot_curves(const std::vector<Curve>& curves, const std::string& x_title, c
     set_style(p, k);
     tables.push_back(t);
   }
-  chart->SetShowLegend(true);
+  show_legend_beside(chart);
   chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(x_title);
   chart->GetAxis(vtkAxis::LEFT)->SetTitle(y_title);
   if (log_x) chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);

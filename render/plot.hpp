@@ -11,6 +11,7 @@ struct PlotSpec {
   std::string reference_csv;   ///< optional: CSV with the same x and y column names, drawn dashed
   std::string title;
   int width = 1000, height = 600;
+  std::string x_title = {}, y_title = {};  ///< axis titles with units; default: the column names
 };
 
 /// Plots from `csv` into `png`; throws Error naming the file and column if one is missing.

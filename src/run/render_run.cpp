@@ -23,6 +23,7 @@
 #include "render/plot.hpp"
 #include "render/series.hpp"
 #include "render/views.hpp"
+#include "run/series_units.hpp"
 #include "run/wall_shapes.hpp"
 
 namespace dspdem {
@@ -256,6 +257,7 @@ int render_command(const RenderArgs& in) {
     std::vector<std::vector<double>> cols;
     render::read_csv(csv.string(), names, cols);
     render::PlotSpec energy{"time", {"kinetic", "internal", "external_work", "damping"}, "", "energy ledger [J]"};
+    energy.y_title = "energy [J]";
     if (std::find(names.begin(), names.end(), "fracture_I") != names.end())
       energy.y.insert(energy.y.end(), {"joint_elastic", "fracture_I", "fracture_II"});
     if (std::find(names.begin(), names.end(), "contact_elastic") != names.end())
@@ -266,6 +268,7 @@ int render_command(const RenderArgs& in) {
         static_cast<std::size_t>(std::find(names.begin(), names.end(), "balance_error") - names.begin() + 1);
     for (std::size_t i = first_monitor; i < names.size(); ++i) {
       render::PlotSpec m{"time", {names[i]}, "", names[i]};
+      m.y_title = series_axis_title(c, names[i]);
       render::plot_csv(csv.string(), m, (pdir / (names[i] + ".png")).string());
     }
     for (const auto& p : rc.plots) {
@@ -275,6 +278,13 @@ int render_command(const RenderArgs& in) {
       for (std::string y; std::getline(ys, y, ',');) s.y.push_back(y);
       s.reference_csv = rc.plot_reference;
       s.title = p;
+      s.x_title = series_axis_title(c, s.x);
+      // One unit for all the curves on the axis, or none named.
+      const std::string u = series_unit(c, s.y.front());
+      if (std::all_of(s.y.begin(), s.y.end(), [&](const std::string& y) { return series_unit(c, y) == u; }))
+        s.y_title = s.y.size() == 1             ? series_axis_title(c, s.y.front())
+                    : u.empty() || u == "count" ? ""
+                                                : "[" + u + "]";
       std::string name = p;
       std::replace(name.begin(), name.end(), ':', '_');
       std::replace(name.begin(), name.end(), ',', '_');

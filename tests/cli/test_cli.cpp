@@ -24,6 +24,7 @@
 #include "io/run_summary.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "report/run_data.hpp"
+#include "run/series_units.hpp"
 #include "support/cli.hpp"
 
 namespace fs = std::filesystem;
@@ -604,6 +605,17 @@ TEST_F(Cli, FreeCylinderWallStrikesTheBeamAndIsTracedInTheSeries) {
     return static_cast<std::size_t>(std::find(names.begin(), names.end(), n) - names.begin());
   };
   for (const char* n : {"roller_fy", "roller_x", "roller_y", "roller_vy"}) ASSERT_LT(col(n), names.size()) << n;
+  // Every column the run writes has the unit its plot's axis names (run/series_units.hpp).
+  const dspdem::CaseConfig cc = dspdem::read_case(a.string());
+  for (const auto& n : names) EXPECT_NE(dspdem::series_unit(cc, n), "") << n;
+  EXPECT_EQ(dspdem::series_unit(cc, "roller_fy"), "N");
+  EXPECT_EQ(dspdem::series_unit(cc, "roller_y"), "m");
+  EXPECT_EQ(dspdem::series_unit(cc, "roller_vy"), "m/s");
+  EXPECT_EQ(dspdem::series_unit(cc, "kinetic"), "J");
+  EXPECT_EQ(dspdem::series_axis_title(cc, "tip_uy"), "tip_uy [m]");
+  EXPECT_EQ(dspdem::series_axis_title(cc, "clamp_reaction_y"), "clamp_reaction_y [N]");
+  EXPECT_EQ(dspdem::series_axis_title(cc, "contacts"), "contacts");
+  EXPECT_EQ(dspdem::series_unit(cc, "no_such_column"), "");
   while (std::getline(f, line)) last = line;
   // The impact lasts less than the series interval (0.1 ms), so its force is not sampled
   // here; its effect is: the cylinder has bounced (the beam is far heavier than it).
@@ -637,6 +649,9 @@ TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
                           "| band_0.2D |", "| split_plane |", "| paper_law |", "| paper_joints |", "| bearing_inter |",
                           "| bearing_joint_free |", "| flat_plates |", "| extrinsic |"})
     EXPECT_NE(md.find(row), std::string::npos) << row;
+  // The case loads through curved jaws: the report says so, not the paper's plates.
+  EXPECT_NE(md.find("Peak jaw load P ="), std::string::npos) << md;
+  EXPECT_EQ(md.find("Peak plate load"), std::string::npos) << md;
   const auto row = md.find("| elastic_fine |");
   ASSERT_NE(row, std::string::npos);
   EXPECT_NE(md.substr(row, md.find('\n', row) - row).find("| no joints |"), std::string::npos);
