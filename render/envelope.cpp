@@ -1,9 +1,11 @@
 #include "render/envelope.hpp"
 
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCleanPolyData.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 
 #include <algorithm>
@@ -36,13 +38,15 @@ vtkSmartPointer<vtkPolyData> unmatched_faces(vtkPolyData* surface, double tolera
     ++count[k];
   }
   vtkNew<vtkCellArray> keep;
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->GetCellData()->CopyAllocate(pd->GetCellData());  // a face keeps its colour or field value
   for (vtkIdType c = 0; c < n; ++c)
     if (count[keys[static_cast<std::size_t>(c)]] == 1) {
       pd->GetCellPoints(c, ids);  // in the face's own order: its orientation
-      keep->InsertNextCell(ids);
+      out->GetCellData()->CopyData(pd->GetCellData(), c, keep->InsertNextCell(ids));
     }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
   out->SetPoints(pd->GetPoints());
+  out->GetPointData()->PassData(pd->GetPointData());
   out->SetPolys(keep);
   return out;
 }

@@ -1,4 +1,5 @@
-// The cracks view's envelope: the faces of a jointed body's surface that no other face covers.
+// A jointed body's envelope: the faces of its surface that no other face covers (every view
+// draws it; the cracks view translucent).
 #pragma once
 #include <vtkSmartPointer.h>
 
@@ -11,7 +12,8 @@ namespace dspdem::render {
 /// element; what is left is the outer envelope and the faces of opened cracks. Points closer
 /// than `tolerance` (a fraction of the bounds' diagonal) count as one, so a joint that has
 /// opened less than that (an intact one) still pairs its two faces. Deterministic: the same
-/// input gives the same faces in the same order, whatever the threads.
+/// input gives the same faces in the same order, whatever the threads. The faces keep their
+/// cell data (colours, field values) and share the merged points.
 vtkSmartPointer<vtkPolyData> unmatched_faces(vtkPolyData* surface, double tolerance);
 
 }  // namespace dspdem::render

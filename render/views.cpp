@@ -134,7 +134,7 @@ struct FrameRenderer::Impl {
   vtkNew<vtkFeatureEdges> wall_edges;
   vtkNew<vtkLookupTable> lut;
   vtkNew<vtkScalarBarActor> bar;
-  vtkNew<vtkTextActor> time_text, scale_text, bar_title;
+  vtkNew<vtkTextActor> time_text, scale_text, bar_title, key_cracks, key_bodies;
   vtkNew<vtkActor2D> scale_actor;
   vtkNew<vtkPolyDataMapper2D> scale_mapper;
   FieldDisplay display;
@@ -248,6 +248,19 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.context_actor->SetMapper(s.context_mapper);
     s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
     s.ren->AddActor(s.context_actor);
+    // The key, bottom left, each line in the colour it names (a panel of a montage too: a
+    // figure is cut from it on its own).
+    const int font = std::max(10, o.height / 40);
+    s.key_cracks->SetInput("broken joints");
+    s.key_bodies->SetInput("bodies and open cracks (translucent)");
+    int line = 0;
+    for (vtkTextActor* key : {s.key_bodies.GetPointer(), s.key_cracks.GetPointer()}) {
+      key->GetTextProperty()->SetFontSize(font);
+      key->SetPosition(10, 10 + (line++) * 1.4 * font);
+      s.ren->AddViewProp(key);
+    }
+    s.key_cracks->GetTextProperty()->SetColor(0.8, 0.05, 0.05);
+    s.key_bodies->GetTextProperty()->SetColor(0.45, 0.45, 0.45);
   }
   s.wall_mapper->ScalarVisibilityOff();
   s.wall_actor->SetMapper(s.wall_mapper);
@@ -415,15 +428,14 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     surf->SetInputData(g);
   }
   surf->Update();
-  if (o.view == "cracks") {
-    // Joints split every element from its neighbours, so the surface holds every element
-    // face twice; stacked translucent layers would hide the cracks. Keep only faces that
-    // are not matched by a coincident face: the outer envelope and the opened cracks. Points
-    // within 1e-4 of the diagonal are one: joint openings before failure are smaller.
-    s.mapper->SetInputData(unmatched_faces(surf->GetOutput(), 1e-4));
-  } else {
-    s.mapper->SetInputConnection(surf->GetOutputPort());
-  }
+  // Joints split every element from its neighbours, so the surface holds every element face
+  // twice. Keep only faces that are not matched by a coincident face: the outer envelope and
+  // the opened cracks. Points within 1e-4 of the diagonal are one: joint openings before
+  // failure are smaller. In the cracks view stacked translucent layers would hide the cracks;
+  // in the others the hidden faces showed through the hair-wide seams between the outer
+  // faces of neighbouring elements (each with its own nodes) as stray dark pixels, which
+  // merged points close.
+  s.mapper->SetInputData(unmatched_faces(surf->GetOutput(), 1e-4));
   const std::string t = fmt::format("t = {:.4g} ms", time * 1e3);
   const std::string& who = o.label.empty() ? o.title : o.label;
   s.time_text->SetInput((who.empty() ? t : who + "   " + t).c_str());
