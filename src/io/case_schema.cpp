@@ -144,7 +144,7 @@ const std::vector<Key>& general_keys() {
     {"render", "plot_reference", T::String, "\"\"", 0, 0, false, false, "", nullptr, "CSV with the same column names, drawn dashed over the extra plots (e.g. a test curve)."},
     {"checks", "contact_overlap_limit", T::Real, "1.0", 0, 2, false, true, "", nullptr, "Stop, naming the step, time and both elements, when a contact's overlap exceeds this fraction of the two contact radii r_a + r_b. Beyond 1 the contact skeletons cross: a vertex inside the other piece's skeleton (measured up to 2) or through a wall; a crossing of two edges is not measured (their distance stays >= 0), so it is not caught. 0: no check."},
     {"checks", "energy_blowup_factor", T::Real, "10.0", 1, inf, true, false, "", nullptr, "Stop when kinetic + internal energy exceeds this factor times (initial energy + work done on the body + a floor)."},
-    {"checks", "energy_balance_warn", T::Real, "0.01", 0, inf, false, false, "", nullptr, "Warn once, naming the step, time and energy terms, at the first series row whose energy ledger error (the balance's size over its largest term: series.csv's balance_error) exceeds this; the run goes on. 0: no warning."},
+    {"checks", "energy_balance_warn", T::Real, "0.01", 0, inf, false, false, "", nullptr, "Warn once, naming the step, time and energy terms, when the energy ledger error (the balance's size over its largest term: series.csv's balance_error) has exceeded this on two series rows in a row (or on the last), at the first of them; the run goes on. 0: no warning."},
   };
   return k;
 }

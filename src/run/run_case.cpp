@@ -582,7 +582,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       const Real t = it.time();
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {
         const Energy e = it.check_energy(c.energy_blowup_factor);
-        if (auto w = balance_watch.update(e, it.steps(), t)) log::warn("{}", *w);
+        if (auto w = balance_watch.update(e, it.steps(), t, last)) log::warn("{}", *w);
         if (stop_value && ls.stop_at < 0) {
           const Real v = stop_value();
           if (stop_rule.update(v))
