@@ -1,10 +1,10 @@
 #include "meshing/generator.hpp"
 
+#include <fcntl.h>
 #include <gmsh.h>
-#include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -187,14 +187,20 @@ Mesh generate(const Params& p_in, const std::string& msh_path) {
     // A name of this process's own: runs started together (a study, parallel jobs) may
     // generate the same mesh at once; each renames its complete file into place.
     const std::string tmp = fmt::format("{}.{}.tmp.msh", msh_path, static_cast<long>(::getpid()));
+    // Held locked while gmsh writes it (gmsh truncates the same file): a run that finds it
+    // unlocked knows its writer has gone, whatever host or PID namespace it ran in.
+    const int fd = ::open(tmp.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    if (fd >= 0) (void)::flock(fd, LOCK_EX);
     try {
       gmsh::write(tmp);
     } catch (...) {
       std::error_code ec;
       fs::remove(tmp, ec);
+      if (fd >= 0) ::close(fd);
       throw;
     }
     fs::rename(tmp, msh_path);
+    if (fd >= 0) ::close(fd);
   }
   return m;
 }
@@ -219,24 +225,22 @@ std::string default_cache_dir() {
 namespace {
 // A process killed while gmsh wrote into the cache (a signal during the set-up exits at once,
 // SIGKILL, a power cut) leaves its NAME.PID.tmp.msh behind; nothing else would ever remove it.
-// Those of processes that no longer exist are removed by the next run that meshes into the
-// folder; a live process's file (a study's parallel job meshing now) is left alone.
-void remove_dead_writers_files(const fs::path& cache_dir) {
+// The next run that meshes into the folder removes those no writer holds locked: a writer
+// holds its file's lock until it has renamed it into place (its PID says nothing across
+// hosts sharing a home folder, or across containers), and the lock ends with its process.
+void remove_abandoned_writes(const fs::path& cache_dir) {
   std::error_code ec;
   for (fs::directory_iterator it(cache_dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     constexpr std::string_view tail = ".tmp.msh";
     if (name.size() <= tail.size() || name.compare(name.size() - tail.size(), tail.size(), tail) != 0) continue;
-    const std::string stem = name.substr(0, name.size() - tail.size());
-    const std::size_t dot = stem.rfind('.');
-    if (dot == std::string::npos) continue;
-    char* e = nullptr;
-    const long pid = std::strtol(stem.c_str() + dot + 1, &e, 10);
-    if (*e != '\0' || pid <= 0) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+    const int fd = ::open(it->path().c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) {
       std::error_code rm;
       fs::remove(it->path(), rm);
     }
+    ::close(fd);
   }
 }
 }  // namespace
@@ -261,7 +265,7 @@ Mesh load_or_generate(const Params& p, const std::string& cache_dir, bool* cache
     log::warn("mesh cache folder '{}' cannot be created ({}); not caching", cache_dir, ec.message());
     return generate(p);
   }
-  remove_dead_writers_files(cache_dir);
+  remove_abandoned_writes(cache_dir);
   // The run gets the mesh as read back from the file, exactly as every later (cached) run
   // will: the in-memory mesh carries more digits than the file, and the same input must give
   // the same result whether the cache was warm or not.

@@ -248,11 +248,12 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.context_actor->SetMapper(s.context_mapper);
     s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
     s.ren->AddActor(s.context_actor);
-    // The key, bottom left, each line in the colour it names (a panel of a montage too: a
-    // figure is cut from it on its own).
+    // The key, bottom left, each line in the colour it names, the grey darker than the
+    // translucent bodies look, to be read (a panel of a montage too: a figure is cut from it
+    // on its own).
     const int font = std::max(10, o.height / 40);
     s.key_cracks->SetInput("broken joints");
-    s.key_bodies->SetInput("bodies and open cracks (translucent)");
+    s.key_bodies->SetInput("bodies and open cracks (translucent grey)");
     int line = 0;
     for (vtkTextActor* key : {s.key_bodies.GetPointer(), s.key_cracks.GetPointer()}) {
       key->GetTextProperty()->SetFontSize(font);

@@ -127,9 +127,9 @@ int run_main(int argc, char** argv) {
   rend->add_option("--magnify", ra.magnify, "Displacement magnification (default: the case's)")->check(kFinitePositive);
   rend->add_option("--range", ra.range, "Colour range MIN:MAX");
   rend->add_option("--size", ra.size, "Image size WIDTHxHEIGHT (with --montage: of one panel)");
-  rend->add_option(
-      "-j,--jobs", ra.jobs,
-      "Render processes, then views whose animations are encoded at once (default: -t's count, else one per core)");
+  rend->add_option("-j,--jobs", ra.jobs,
+                   "Render processes, then views whose animations are encoded at once (default: -t's count, else "
+                   "OMP_NUM_THREADS, else one per core)");
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
   rend->add_flag("--edges", ra.edges, "Draw the element edges (stress and fragments views)");
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
@@ -308,7 +308,6 @@ int run_main(int argc, char** argv) {
         if (out_dir.empty()) out_dir = run_folder_of(f.path);
         log::info("dspdem run --restart: {} (step {}, t = {:.6g} s)", opt.restart_file, h.steps, h.time);
       }
-
       if (par::size() > 1 && wall_opt->count() > 0 && checkpoint_wall > 0)
         log::warn(
             "--checkpoint-wall {} is not used in a distributed run (mpirun -n {}): its processes would not agree on "

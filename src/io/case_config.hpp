@@ -4,6 +4,7 @@
 #pragma once
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "contact/contact_params.hpp"
@@ -85,6 +86,9 @@ struct RenderConfig {
   std::vector<std::string> plots;
 };
 
+/// A resolved case's first line: kResolvedFrom, the case file as it was given, kResolvedFromEnd.
+inline constexpr std::string_view kResolvedFrom = "# Resolved from ", kResolvedFromEnd = " (every default filled in)";
+
 struct CaseConfig {
   std::string path;  ///< the case file
   std::string dir;   ///< its directory (relative paths are resolved against it)
@@ -123,7 +127,7 @@ struct CaseConfig {
   // checks
   Real energy_blowup_factor = 10;
   Real energy_balance_warn = 0.01;     ///< [checks]: time/balance_watch.hpp
-  std::string resolved_toml;           ///< the case with every default filled in
+  std::string resolved_toml;           ///< the case with every default filled in, under kResolvedFrom's line
   std::vector<std::string> overrides;  ///< the "section.key=value" strings it was read with
 };
 

@@ -50,6 +50,24 @@ std::string allowed_keys(const std::string& section) {
 
 /// Reads the keys of one table against the schema section `pattern`; `label` is how the
 /// table is named in messages ("[materials.rock]", "[[bodies]] #2").
+// A --set value written as a number that TOML cannot read (1e400, .5, 2^64) is kept as a
+// string (a bare word is one); a number key read from it says why, not "got a string": TOML's
+// own words on it, or "" if it is not from --set or does not read as a number at all.
+std::string unreadable_number(const toml::node& n) {
+  const auto* str = n.as_string();
+  if (!str || !n.source().path || *n.source().path != kOverrideSource) return {};
+  const std::string& text = str->get();
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) return {};
+  try {
+    (void)toml::parse("v = " + text);
+  } catch (const toml::parse_error& e) {
+    return fmt::format("{} is not a number TOML reads: {}", text, e.description());
+  }
+  return {};
+}
+
 class Section {
  public:
   Section(const Ctx& ctx, toml::table& t, std::string pattern, std::string label)
@@ -73,15 +91,22 @@ class Section {
     if (!v && n->is_integer())
       fail("{}: {} key '{}' = {} is too large an integer to convert exactly: write it as a float (e.g. {:.3e})",
            where(key), label_, key, *n->value<int64_t>(), static_cast<double>(*n->value<int64_t>()));
-    if (!v || !(n->is_integer() || n->is_floating_point()))
+    if (!v || !(n->is_integer() || n->is_floating_point())) {
+      if (const std::string why = unreadable_number(*n); !why.empty())
+        fail("{}: {} key '{}' must be a number; {}", where(key), label_, key, why);
       fail("{}: {} key '{}' must be a number, got {}", where(key), label_, key, type_of(*n));
+    }
     check_range(k, *v, key);
     return *v;
   }
   long integer(const std::string& key) {
     const auto& k = spec(key, Type::Int);
     const toml::node* n = get_or_default(k);
-    if (!n->is_integer()) fail("{}: {} key '{}' must be an integer, got {}", where(key), label_, key, type_of(*n));
+    if (!n->is_integer()) {
+      if (const std::string why = unreadable_number(*n); !why.empty())
+        fail("{}: {} key '{}' must be an integer; {}", where(key), label_, key, why);
+      fail("{}: {} key '{}' must be an integer, got {}", where(key), label_, key, type_of(*n));
+    }
     const long v = static_cast<long>(*n->value<int64_t>());
     check_range(k, static_cast<double>(v), key);
     return v;
@@ -234,13 +259,7 @@ void apply_override(toml::table& root, const std::string& ov) {
   toml::table holder;
   try {
     holder = toml::parse("v = " + text, kOverrideSource);
-  } catch (const toml::parse_error& e) {
-    // Something written as a number that TOML cannot read (1e400, .5, 2^64) would otherwise
-    // become a string, and the key would then say "got a string" of what was meant as a number.
-    char* end = nullptr;
-    std::strtod(text.c_str(), &end);
-    DSPDEM_CHECK(text.empty() || end != text.c_str() + text.size(), "--set '{}': {} is not a number TOML reads: {}", ov,
-                 text, e.description());
+  } catch (const toml::parse_error&) {
     holder = toml::parse("v = \"\"", kOverrideSource);  // a bare word is a string
     *holder.get_as<std::string>("v") = text;
   }
@@ -782,7 +801,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     s.finish();
   }
   std::ostringstream os;
-  os << "# Resolved from " << path << " (every default filled in)\n" << root << "\n";
+  os << kResolvedFrom << path << kResolvedFromEnd << "\n" << root << "\n";
   c.resolved_toml = os.str();
   return c;
 }

@@ -15,6 +15,7 @@
 #include "commit_id.hpp"  // generated at every build: DSPDEM_COMMIT
 #include "core/error.hpp"
 #include "core/file.hpp"
+#include "io/case_config.hpp"
 #include "io/staging.hpp"
 
 namespace dspdem {
@@ -205,18 +206,19 @@ std::string run_folder_of(const std::string& checkpoint_file) {
 
 namespace {
 std::string without_origin(const std::string& s) {
-  if (s.rfind("# Resolved from ", 0) != 0) return s;
+  if (s.rfind(kResolvedFrom, 0) != 0) return s;
   const std::size_t nl = s.find('\n');
   return nl == std::string::npos ? std::string() : s.substr(nl + 1);
 }
 }  // namespace
 
 std::string case_origin(const std::string& resolved) {
-  constexpr std::string_view head = "# Resolved from ", tail = " (every default filled in)";
-  if (resolved.rfind(head, 0) != 0) return {};
+  if (resolved.rfind(kResolvedFrom, 0) != 0) return {};
   const std::string line = resolved.substr(0, resolved.find('\n'));
-  const std::size_t end = line.rfind(tail);
-  return end == std::string::npos || end < head.size() ? std::string() : line.substr(head.size(), end - head.size());
+  const std::size_t end = line.rfind(kResolvedFromEnd);
+  return end == std::string::npos || end < kResolvedFrom.size()
+             ? std::string()
+             : line.substr(kResolvedFrom.size(), end - kResolvedFrom.size());
 }
 
 bool same_case(const std::string& a, const std::string& b) { return without_origin(a) == without_origin(b); }

@@ -115,8 +115,8 @@ std::string first_difference(const std::string& a, const std::string& b);
 std::string case_origin(const std::string& resolved);
 
 /// Whether two resolved case texts are the same case: equal but for their first comment,
-/// which names the file as it was given (`cases/x.toml` at the start, the absolute path the
-/// checkpoint recorded at a restart).
+/// which names the file as it was given (`cases/x.toml` at the start; the absolute path the
+/// checkpoint keeps when a restart reads the case again).
 bool same_case(const std::string& a, const std::string& b);
 
 }  // namespace dspdem

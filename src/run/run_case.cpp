@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -33,6 +34,7 @@
 #include "run/case_mesh.hpp"
 #include "run/checkpoint.hpp"
 #include "run/output_schedule.hpp"
+#include "run/series_units.hpp"
 #include "time/balance_watch.hpp"
 #include "time/extrinsic.hpp"
 #include "time/integrator.hpp"
@@ -43,7 +45,12 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0, g_setting_up = 0;
-const char* volatile g_setup_hint = nullptr;
+// The set-up's stop message, whole (one write: a report's parallel jobs share its stderr);
+// a lock-free atomic, so the handler may read it.
+constexpr const char* kSetupStopped =
+    "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written";
+std::atomic<const char*> g_setup_message{nullptr};
+static_assert(std::atomic<const char*>::is_always_lock_free);
 // The first signal asks for a stop at the end of the step (checkpoint, outputs closed); a
 // second one exits at once. Every output file is written to a temporary name and renamed,
 // so what is on disk then is whole: the last checkpoint, frames and collections so far. A
@@ -54,10 +61,8 @@ const char* volatile g_setup_hint = nullptr;
 // first step instead kept a run meshing for minutes after a scheduler's or CI's SIGTERM.
 extern "C" void on_signal(int sig) {
   if (g_setting_up) {
-    static const char msg[] = "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written";
-    ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
-    if (const char* hint = g_setup_hint) n = write(STDERR_FILENO, hint, std::strlen(hint));
-    n = write(STDERR_FILENO, "\n", 1);
+    const char* msg = g_setup_message.load();
+    const ssize_t n = msg ? write(STDERR_FILENO, msg, std::strlen(msg)) : 0;
     (void)n;
     _exit(kExitInterrupted);
   }
@@ -67,7 +72,10 @@ extern "C" void on_signal(int sig) {
 
 }  // namespace
 
-void set_setup_stop_hint(const char* hint) { g_setup_hint = hint; }
+void set_setup_stop_hint(const std::string& hint) {
+  // Never freed: the handler may hold the pointer of the one it replaces.
+  g_setup_message.store((new std::string(fmt::format("{}{}\n", kSetupStopped, hint)))->c_str());
+}
 
 namespace {
 
@@ -140,18 +148,19 @@ class Series {
       : f_(path, append ? std::ios::app | std::ios::binary : std::ios::out | std::ios::binary) {
     DSPDEM_CHECK(f_.good(), "cannot write '{}'", path);
     if (append) return;
-    f_ << "time,step,kinetic,internal,external_work,damping,joint_elastic,fracture_I,fracture_II,broken_joints,"
-          "crack_area";
-    // born_*_energy: the spring energy of pairs first found overlapping after the first build,
-    // so far (contact/contact_system.hpp, BornTotals).
-    if (m.contact.enabled())
-      f_ << ",contact_elastic,friction,contact_damping,contacts,born_split_energy,born_unseen_energy,born_wall_energy";
-    f_ << ",kick,balance_error";  // monitors follow this column (dspdem render plots each)
+    // The columns and their units: run/series_units (the plots' axes read the units there).
+    std::string head;
+    auto add = [&head](const auto& cols, const std::string& prefix) {
+      for (const SeriesColumn& col : cols) head += (head.empty() ? "" : ",") + prefix + std::string(col.name);
+    };
+    add(kSeriesColumns, "");
+    if (m.contact.enabled()) add(kSeriesContactColumns, "");
+    add(kSeriesLastColumns, "");  // monitors follow balance_error (dspdem render plots each)
     for (const auto& w : m.contact.walls()) {
-      f_ << ',' << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
-      if (w.free)  // a free wall's motion: its centre and velocity
-        for (const char* q : {"_x", "_y", "_z", "_vx", "_vy", "_vz"}) f_ << ',' << w.name << q;
+      add(kWallForceColumns, w.name);
+      if (w.free) add(kFreeWallColumns, w.name);  // a free wall's motion: its centre and velocity
     }
+    f_ << head;
     for (const auto& ms : m.monitors) f_ << ',' << ms.cfg.name;
     f_ << '\n';
   }
@@ -207,6 +216,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // From the start: a signal during the set-up (meshing can take minutes) ends the process
   // at once (on_signal), before anything is written.
   g_interrupted = 0;
+  if (!g_setup_message.load()) set_setup_stop_hint("");
   g_setting_up = 1;
   ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_signal);
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
@@ -582,7 +592,6 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       const Real t = it.time();
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {
         const Energy e = it.check_energy(c.energy_blowup_factor);
-        if (auto w = balance_watch.update(e, it.steps(), t, last)) log::warn("{}", *w);
         if (stop_value && ls.stop_at < 0) {
           const Real v = stop_value();
           if (stop_rule.update(v))
@@ -598,6 +607,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
           ls.stop_message += fmt::format("t = {:.6g} s", t);
           log::info("  {}", ls.stop_message);
         }
+        // After the stop rule, which may make this row the last.
+        if (auto w = balance_watch.update(e, it.steps(), t, last)) log::warn("{}", *w);
         series.row(it, model);
         ls.next_series = next_output_time(ls.next_series, t, c.series_interval, 1e-12 * c.t_end);
       }

@@ -35,8 +35,8 @@ constexpr int kExitInterrupted = 5;
 
 /// What a signal during a run's set-up (which exits at once, nothing of that run written)
 /// adds to its message: a report that runs its case in its own process says how to keep the
-/// runs it finished before. `hint` must outlive the process (a string literal); nullptr: none.
-void set_setup_stop_hint(const char* hint);
+/// runs it finished before. Set before the run, for the rest of the process.
+void set_setup_stop_hint(const std::string& hint);
 
 /// Runs the case and writes DIR/{run.pvd, frames/, series.csv, summary.json,
 /// case.resolved.toml}. Returns 0 on success. Throws Error for bad input; on numerical

@@ -21,50 +21,46 @@ const char* monitor_unit(MonitorConfig::Type t) {
   return "";
 }
 
+const std::array<SeriesColumn, 11> kSeriesColumns = {{{"time", "s"},
+                                                      {"step", "count"},
+                                                      {"kinetic", "J"},
+                                                      {"internal", "J"},
+                                                      {"external_work", "J"},
+                                                      {"damping", "J"},
+                                                      {"joint_elastic", "J"},
+                                                      {"fracture_I", "J"},
+                                                      {"fracture_II", "J"},
+                                                      {"broken_joints", "count"},
+                                                      {"crack_area", "m^2"}}};
+const std::array<SeriesColumn, 7> kSeriesContactColumns = {{{"contact_elastic", "J"},
+                                                            {"friction", "J"},
+                                                            {"contact_damping", "J"},
+                                                            {"contacts", "count"},
+                                                            {"born_split_energy", "J"},
+                                                            {"born_unseen_energy", "J"},
+                                                            {"born_wall_energy", "J"}}};
+const std::array<SeriesColumn, 2> kSeriesLastColumns = {{{"kick", "J"}, {"balance_error", "1"}}};
+const std::array<SeriesColumn, 3> kWallForceColumns = {{{"_fx", "N"}, {"_fy", "N"}, {"_fz", "N"}}};
+const std::array<SeriesColumn, 6> kFreeWallColumns = {
+    {{"_x", "m"}, {"_y", "m"}, {"_z", "m"}, {"_vx", "m/s"}, {"_vy", "m/s"}, {"_vz", "m/s"}}};
+
 std::string series_unit(const CaseConfig& c, const std::string& column) {
-  struct Fixed {
-    std::string_view name, unit;
+  auto in = [&](const auto& table) -> std::string {
+    for (const auto& f : table)
+      if (column == f.name) return std::string(f.unit);
+    return {};
   };
-  static constexpr std::array<Fixed, 20> fixed = {{{"time", "s"},
-                                                   {"step", "count"},
-                                                   {"kinetic", "J"},
-                                                   {"internal", "J"},
-                                                   {"external_work", "J"},
-                                                   {"damping", "J"},
-                                                   {"joint_elastic", "J"},
-                                                   {"fracture_I", "J"},
-                                                   {"fracture_II", "J"},
-                                                   {"broken_joints", "count"},
-                                                   {"crack_area", "m^2"},
-                                                   {"contact_elastic", "J"},
-                                                   {"friction", "J"},
-                                                   {"contact_damping", "J"},
-                                                   {"contacts", "count"},
-                                                   {"born_split_energy", "J"},
-                                                   {"born_unseen_energy", "J"},
-                                                   {"born_wall_energy", "J"},
-                                                   {"kick", "J"},
-                                                   {"balance_error", "1"}}};
-  for (const auto& f : fixed)
-    if (column == f.name) return std::string(f.unit);
+  for (std::string u : {in(kSeriesColumns), in(kSeriesContactColumns), in(kSeriesLastColumns)})
+    if (!u.empty()) return u;
   for (const auto& m : c.monitors)
     if (column == m.name) return monitor_unit(m.type);
-  // A wall's force, and a free wall's centre and velocity: <name>_fx ... <name>_vz.
-  struct Suffix {
-    std::string_view suffix, unit;
-  };
-  static constexpr std::array<Suffix, 9> walls = {{{"_fx", "N"},
-                                                   {"_fy", "N"},
-                                                   {"_fz", "N"},
-                                                   {"_x", "m"},
-                                                   {"_y", "m"},
-                                                   {"_z", "m"},
-                                                   {"_vx", "m/s"},
-                                                   {"_vy", "m/s"},
-                                                   {"_vz", "m/s"}}};
-  for (const auto& w : c.walls)
-    for (const auto& s : walls)
-      if (column == w.wall.name + std::string(s.suffix)) return std::string(s.unit);
+  for (const auto& w : c.walls) {
+    for (const auto& s : kWallForceColumns)
+      if (column == w.wall.name + std::string(s.name)) return std::string(s.unit);
+    if (w.wall.free)
+      for (const auto& s : kFreeWallColumns)
+        if (column == w.wall.name + std::string(s.name)) return std::string(s.unit);
+  }
   return "";
 }
 

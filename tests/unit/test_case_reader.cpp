@@ -96,6 +96,13 @@ TEST(CaseReader, OverrideIsValidated) {
   const CaseConfig c = read_case(write_case(kGood), {"time.end=2e-3", "case.name=renamed"});
   EXPECT_DOUBLE_EQ(c.t_end, 2e-3);
   EXPECT_EQ(c.name, "renamed");
+  // A value TOML cannot read as a number is a bare word, a string: a string key takes it, a
+  // number key says what TOML made of it.
+  EXPECT_EQ(read_case(write_case(kGood), {"case.name=007"}).name, "007");
+  EXPECT_EQ(read_case(write_case(kGood), {"case.description=1."}).description, "1.");
+  expect_error(kGood, {"'end' must be a number; 1e400 is not a number TOML reads", "could not be interpreted"},
+               {"time.end=1e400"});
+  expect_error(kGood, {"'end' must be a number, got the string \"soon\""}, {"time.end=soon"});
 }
 TEST(CaseReader, JointParametersComeTogetherAndStayConsistent) {
   expect_error(replace(kGood, "nu = 0.2", "nu = 0.2\ntensile_strength = 3.0e6"), {"joint parameters come together"});

@@ -1,7 +1,9 @@
 // Generators: volumes against the analytic ones (tighter on a finer mesh), named groups
 // present, no inverted elements, default element counts near the paper's, packing without
 // overlaps and reproducible, and parameter errors that name the key.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -180,18 +182,22 @@ TEST(Generators, FirstAndCachedRunsGetTheSameMesh) {
   const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_cache_test";
   fs::remove_all(dir);
   const auto p = params("brazilian_disc", {"size=0.03", "plate_size=0.03"});
-  // What writers killed mid-write left (NAME.PID.tmp.msh): a dead process's is removed by the
-  // next run that meshes here, a live one's (this process's: a parallel job meshing now) kept.
+  // What writers killed mid-write left (NAME.PID.tmp.msh, no longer locked): removed by the
+  // next run that meshes here; a file a writer holds locked (a parallel job meshing now, on
+  // this host or another) is kept.
   fs::create_directories(dir);
-  const fs::path dead = dir / "x-0123.msh.999999999.tmp.msh",
-                 live = dir / fmt::format("x-0123.msh.{}.tmp.msh", getpid());
+  const fs::path dead = dir / "x-0123.msh.4242.tmp.msh", live = dir / "x-0456.msh.4343.tmp.msh";
   std::ofstream(dead) << "half a mesh";
   std::ofstream(live) << "half a mesh";
+  const int held = ::open(live.c_str(), O_RDWR | O_CLOEXEC);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
   bool cached = true;
   const Mesh first = meshing::load_or_generate(p, dir.string(), &cached);
   EXPECT_FALSE(cached);
   EXPECT_FALSE(fs::exists(dead));
   EXPECT_TRUE(fs::exists(live));
+  ::close(held);
   const Mesh second = meshing::load_or_generate(p, dir.string(), &cached);
   EXPECT_TRUE(cached);
   ASSERT_EQ(first.x.size(), second.x.size());
