@@ -339,54 +339,60 @@ TEST_F(Cli, AMeshSizeGmshCannotMeshIsAnErrorNamingTheKeyNotAnAbort) {
   EXPECT_FALSE(fs::exists(dir_ / "m" / "sphere_impact.msh"));
 }
 
+namespace {
+// Starts `command` (its output into `log`), and once it has said that its run started (its
+// signal handlers are in by then) and half a second more, into gmsh, sends it SIGTERM.
+// Returns the wait status and the log; `started` says whether it got that far.
+struct Stopped {
+  bool started = false;
+  int status = 0;
+  std::string log;
+};
+Stopped stop_while_meshing(const std::string& command, const fs::path& log) {
+  Stopped r;
+  const pid_t pid = start_job(fmt::format("exec {} < /dev/null > {} 2>&1", command, log.string()));
+  if (pid <= 0) return r;
+  for (int k = 0; k < 1200 && !r.started; ++k) {
+    r.started = slurp(log).find("dspdem run: case") != std::string::npos;
+    if (!r.started) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  r.status = stop_job(pid, SIGTERM);
+  r.log = slurp(log);
+  return r;
+}
+}  // namespace
+
 TEST_F(Cli, ASignalWhileMeshingEndsTheRunAtOnce) {
   // gmsh cannot be asked to stop, and there is nothing to keep yet: a SIGTERM during the
   // set-up ends the run there (exit 5), instead of after minutes of meshing and one step.
-  // A sphere of about 1.5 million tetrahedra: minutes of meshing; the signal comes once the
-  // run has said it started (its handlers are in by then).
-  const fs::path log = dir_ / "meshing.log", out = dir_ / "out";
-  const pid_t pid = start_job(fmt::format(
-      "exec env DSPDEM_MESH_CACHE={} {} -t 1 run {}/cases/sphere_impact.toml --set mesh.sphere_plate.size=0.002 "
-      "--out {} < /dev/null > {} 2>&1",
-      (dir_ / "cache").string(), DSPDEM_BIN, DSPDEM_SOURCE_DIR, out.string(), log.string()));
-  ASSERT_GT(pid, 0);
-  bool started = false;
-  for (int k = 0; k < 1200 && !started; ++k) {
-    started = slurp(log).find("dspdem run: case") != std::string::npos;
-    if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // into gmsh
-  const int st = stop_job(pid, SIGTERM);
-  const std::string text = slurp(log);
-  ASSERT_TRUE(started) << text;
-  ASSERT_TRUE(WIFEXITED(st)) << "wait status " << st << ": " << text;
-  EXPECT_EQ(WEXITSTATUS(st), 5) << text;
-  EXPECT_NE(text.find("stopped by a signal during the set-up"), std::string::npos) << text;
-  EXPECT_EQ(text.find("interrupted at step"), std::string::npos) << text;
-  EXPECT_FALSE(fs::exists(out / "interrupted_run")) << text;
-  EXPECT_EQ(text.find("--resume"), std::string::npos) << "a lone run has nothing to resume: " << text;
+  // A sphere of about 1.5 million tetrahedra: minutes of meshing.
+  const fs::path out = dir_ / "out";
+  const Stopped run = stop_while_meshing(
+      fmt::format("env DSPDEM_MESH_CACHE={} {} -t 1 run {}/cases/sphere_impact.toml --set mesh.sphere_plate.size=0.002 "
+                  "--out {}",
+                  (dir_ / "cache").string(), DSPDEM_BIN, DSPDEM_SOURCE_DIR, out.string()),
+      dir_ / "meshing.log");
+  ASSERT_TRUE(run.started) << run.log;
+  ASSERT_TRUE(WIFEXITED(run.status)) << "wait status " << run.status << ": " << run.log;
+  EXPECT_EQ(WEXITSTATUS(run.status), 5) << run.log;
+  EXPECT_NE(run.log.find("stopped by a signal during the set-up"), std::string::npos) << run.log;
+  EXPECT_EQ(run.log.find("interrupted at step"), std::string::npos) << run.log;
+  EXPECT_FALSE(fs::exists(out / "interrupted_run")) << run.log;
+  EXPECT_EQ(run.log.find("--resume"), std::string::npos) << "a lone run has nothing to resume: " << run.log;
 
   // A report that runs its case in its own process (the disc) says how to keep what it had
   // finished before the run it was setting up.
-  const fs::path rlog = dir_ / "report_meshing.log";
-  const pid_t rpid = start_job(
-      fmt::format("exec env DSPDEM_MESH_CACHE={} {} -t 1 report {}/cases/brazilian_disc.toml --no-render "
-                  "--set mesh.brazilian_disc.size=0.001 --out {} < /dev/null > {} 2>&1",
-                  (dir_ / "cache").string(), DSPDEM_BIN, DSPDEM_SOURCE_DIR, (dir_ / "report").string(), rlog.string()));
-  ASSERT_GT(rpid, 0);
-  started = false;
-  for (int k = 0; k < 1200 && !started; ++k) {
-    started = slurp(rlog).find("dspdem run: case") != std::string::npos;
-    if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  const int rst = stop_job(rpid, SIGTERM);
-  const std::string rtext = slurp(rlog);
-  ASSERT_TRUE(started) << rtext;
-  ASSERT_TRUE(WIFEXITED(rst)) << "wait status " << rst << ": " << rtext;
-  EXPECT_EQ(WEXITSTATUS(rst), 5) << rtext;
-  EXPECT_NE(rtext.find("stopped by a signal during the set-up"), std::string::npos) << rtext;
-  EXPECT_NE(rtext.find("the same report with --resume"), std::string::npos) << rtext;
+  const Stopped report = stop_while_meshing(
+      fmt::format("env DSPDEM_MESH_CACHE={} {} -t 1 report {}/cases/brazilian_disc.toml --no-render "
+                  "--set mesh.brazilian_disc.size=0.001 --out {}",
+                  (dir_ / "cache").string(), DSPDEM_BIN, DSPDEM_SOURCE_DIR, (dir_ / "report").string()),
+      dir_ / "report_meshing.log");
+  ASSERT_TRUE(report.started) << report.log;
+  ASSERT_TRUE(WIFEXITED(report.status)) << "wait status " << report.status << ": " << report.log;
+  EXPECT_EQ(WEXITSTATUS(report.status), 5) << report.log;
+  EXPECT_NE(report.log.find("stopped by a signal during the set-up"), std::string::npos) << report.log;
+  EXPECT_NE(report.log.find("the same report with --resume"), std::string::npos) << report.log;
 }
 
 TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {

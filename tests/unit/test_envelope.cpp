@@ -112,36 +112,29 @@ TEST(Envelope, SameSurfaceGivesTheSameFacesInTheSameOrder) {
 
 TEST(Envelope, AKeptFaceKeepsItsOwnColourAndFieldValue) {
   // The stress and fragments views colour faces by their cell data: a face left must carry
-  // the value of the face it was, not its neighbour's or none.
-  const auto surface = jointed_block_surface(kN / 2, 1e-3 * std::sqrt(3.0) * kN * kH);
-  vtkNew<vtkDoubleArray> field;
-  field->SetName("field");
-  for (vtkIdType c = 0; c < surface->GetNumberOfCells(); ++c) {
+  // the value of the face it was, not its neighbour's or none. Each face's value is a sum
+  // weighted over its centre's coordinates, which no two faces share.
+  auto value_at_centre = [](vtkPolyData* pd, vtkIdType c) {
     double centre[3] = {0, 0, 0}, x[3];
     const vtkIdType* p = nullptr;
     vtkIdType n = 0;
-    surface->GetCellPoints(c, n, p);
+    pd->GetCellPoints(c, n, p);
     for (vtkIdType v = 0; v < n; ++v) {
-      surface->GetPoint(p[v], x);
+      pd->GetPoint(p[v], x);
       for (int d = 0; d < 3; ++d) centre[d] += x[d] / static_cast<double>(n);
     }
-    field->InsertNextValue(centre[0] + 10 * centre[1] + 100 * centre[2]);  // a face's own value
-  }
+    return centre[0] + 10 * centre[1] + 100 * centre[2];
+  };
+  const auto surface = jointed_block_surface(kN / 2, 1e-3 * std::sqrt(3.0) * kN * kH);
+  vtkNew<vtkDoubleArray> field;
+  field->SetName("field");
+  for (vtkIdType c = 0; c < surface->GetNumberOfCells(); ++c) field->InsertNextValue(value_at_centre(surface, c));
   surface->GetCellData()->AddArray(field);
   const auto env = unmatched_faces(surface, 1e-4);
   auto* kept = vtkDoubleArray::SafeDownCast(env->GetCellData()->GetArray("field"));
   ASSERT_NE(kept, nullptr) << "the faces lost their cell data";
   ASSERT_EQ(kept->GetNumberOfTuples(), env->GetNumberOfCells());
-  for (vtkIdType c = 0; c < env->GetNumberOfCells(); ++c) {
-    double centre[3] = {0, 0, 0}, x[3];
-    const vtkIdType* p = nullptr;
-    vtkIdType n = 0;
-    env->GetCellPoints(c, n, p);
-    for (vtkIdType v = 0; v < n; ++v) {
-      env->GetPoint(p[v], x);
-      for (int d = 0; d < 3; ++d) centre[d] += x[d] / static_cast<double>(n);
-    }
-    // Merged points move a face by the jitter at most (1e-6 kH).
-    EXPECT_NEAR(kept->GetValue(c), centre[0] + 10 * centre[1] + 100 * centre[2], 1e-3 * kH) << "face " << c;
-  }
+  // Merged points move a face by the jitter at most (1e-6 kH).
+  for (vtkIdType c = 0; c < env->GetNumberOfCells(); ++c)
+    EXPECT_NEAR(kept->GetValue(c), value_at_centre(env, c), 1e-3 * kH) << "face " << c;
 }
