@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "core/error.hpp"
@@ -73,8 +74,11 @@ extern "C" void on_signal(int sig) {
 }  // namespace
 
 void set_setup_stop_hint(const std::string& hint) {
-  // Never freed: the handler may hold the pointer of the one it replaces.
-  g_setup_message.store((new std::string(fmt::format("{}{}\n", kSetupStopped, hint)))->c_str());
+  // Kept to the end of the process (reachable from here, never freed): the handler may hold
+  // the pointer of the one a later call replaces.
+  static auto* const kept = new std::vector<std::unique_ptr<const std::string>>;
+  kept->push_back(std::make_unique<const std::string>(fmt::format("{}{}\n", kSetupStopped, hint)));
+  g_setup_message.store(kept->back()->c_str());
 }
 
 namespace {
