@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -48,9 +49,11 @@ namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0, g_setting_up = 0;
 // The set-up's stop message, whole (one write: a report's parallel jobs share its stderr);
 // a lock-free atomic, so the handler may read it.
-constexpr const char* kSetupStopped =
-    "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written";
-std::atomic<const char*> g_setup_message{nullptr};
+// Without a hint (a lone run's), the message itself; set_setup_stop_hint puts a hint before its
+// newline.
+constexpr std::string_view kSetupStopped =
+    "dspdem: stopped by a signal during the set-up (meshing, the model): nothing written\n";
+std::atomic<const char*> g_setup_message{kSetupStopped.data()};
 static_assert(std::atomic<const char*>::is_always_lock_free);
 // The first signal asks for a stop at the end of the step (checkpoint, outputs closed); a
 // second one exits at once. Every output file is written to a temporary name and renamed,
@@ -63,7 +66,7 @@ static_assert(std::atomic<const char*>::is_always_lock_free);
 extern "C" void on_signal(int sig) {
   if (g_setting_up) {
     const char* msg = g_setup_message.load();
-    const ssize_t n = msg ? write(STDERR_FILENO, msg, std::strlen(msg)) : 0;
+    const ssize_t n = write(STDERR_FILENO, msg, std::strlen(msg));
     (void)n;
     _exit(kExitInterrupted);
   }
@@ -77,7 +80,8 @@ void set_setup_stop_hint(const std::string& hint) {
   // Kept to the end of the process (reachable from here, never freed): the handler may hold
   // the pointer of the one a later call replaces.
   static auto* const kept = new std::vector<std::unique_ptr<const std::string>>;
-  kept->push_back(std::make_unique<const std::string>(fmt::format("{}{}\n", kSetupStopped, hint)));
+  kept->push_back(std::make_unique<const std::string>(
+      fmt::format("{}{}\n", kSetupStopped.substr(0, kSetupStopped.size() - 1), hint)));
   g_setup_message.store(kept->back()->c_str());
 }
 
@@ -220,7 +224,6 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // From the start: a signal during the set-up (meshing can take minutes) ends the process
   // at once (on_signal), before anything is written.
   g_interrupted = 0;
-  if (!g_setup_message.load()) set_setup_stop_hint("");
   g_setting_up = 1;
   ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_signal);
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
