@@ -91,22 +91,14 @@ class Section {
     if (!v && n->is_integer())
       fail("{}: {} key '{}' = {} is too large an integer to convert exactly: write it as a float (e.g. {:.3e})",
            where(key), label_, key, *n->value<int64_t>(), static_cast<double>(*n->value<int64_t>()));
-    if (!v || !(n->is_integer() || n->is_floating_point())) {
-      if (const std::string why = unreadable_number(*n); !why.empty())
-        fail("{}: {} key '{}' must be a number; {}", where(key), label_, key, why);
-      fail("{}: {} key '{}' must be a number, got {}", where(key), label_, key, type_of(*n));
-    }
+    if (!v || !(n->is_integer() || n->is_floating_point())) wrong_type(key, "a number", *n);
     check_range(k, *v, key);
     return *v;
   }
   long integer(const std::string& key) {
     const auto& k = spec(key, Type::Int);
     const toml::node* n = get_or_default(k);
-    if (!n->is_integer()) {
-      if (const std::string why = unreadable_number(*n); !why.empty())
-        fail("{}: {} key '{}' must be an integer; {}", where(key), label_, key, why);
-      fail("{}: {} key '{}' must be an integer, got {}", where(key), label_, key, type_of(*n));
-    }
+    if (!n->is_integer()) wrong_type(key, "an integer", *n);
     const long v = static_cast<long>(*n->value<int64_t>());
     check_range(k, static_cast<double>(v), key);
     return v;
@@ -182,6 +174,12 @@ class Section {
     toml::table parsed = toml::parse(std::string("v = ") + k.def);
     t_.insert(k.key, *parsed.get("v"));
     return t_.get(k.key);
+  }
+  // A number key given something else: a --set number TOML cannot read says why, not "got a string".
+  [[noreturn]] void wrong_type(const std::string& key, const char* what, const toml::node& n) const {
+    if (const std::string why = unreadable_number(n); !why.empty())
+      fail("{}: {} key '{}' must be {}; {}", where(key), label_, key, what, why);
+    fail("{}: {} key '{}' must be {}, got {}", where(key), label_, key, what, type_of(n));
   }
   void check_range(const schema::Key& k, double v, const std::string& key) const {
     const bool lo_ok = k.lo_open ? v > k.lo : v >= k.lo;

@@ -359,7 +359,6 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     restart_file = (fs::path(stage.path() + "." + std::to_string(aside)) / fs::path(restart_file).filename()).string();
   const std::string frames_dir = (sdir / "frames").string();
   fs::create_directories(frames_dir);
-  if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), c.resolved_toml);
   const std::string pvd = (sdir / "run.pvd").string();
   const std::string joints_pvd = (sdir / "joints.pvd").string();
   const std::string ckpt = checkpoint_piece((sdir / "checkpoint.bin").string(), my_rank);  // this process's
@@ -439,7 +438,6 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     // the path the run was started with.
     head.resolved_toml = h.resolved_toml;
     if (const std::string o = case_origin(h.resolved_toml); !o.empty()) case_file = o;
-    if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), h.resolved_toml);
     DSPDEM_CHECK(h.nodes == whole_nodes && h.elements == whole_elements && h.joints == whole_joints && h.dt == dt,
                  "restart: checkpoint '{}' is of a model with {} nodes, {} elements, {} joints and dt {:.17g}; the "
                  "case gives {}, {}, {} and {:.17g} (its mesh changed?)",
@@ -456,6 +454,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     log::info("  restarted from {} at step {}, t = {:.6g} s ({} frames so far)", restart_file, it.steps(), it.time(),
               ls.frames.size());
   }
+  // Once the restart (if any) has said which text ran: the checkpoint's, which keeps the origin.
+  if (my_rank == 0) write_file_atomic((sdir / "case.resolved.toml").string(), head.resolved_toml);
   // Every process computes each row (its reductions are collective); process 0 writes it.
   Series series(my_rank == 0 ? (sdir / "series.csv").string() : "/dev/null", model, !restart_file.empty());
   // fragments.csv: per frame the count and the largest pieces (mass, size, where), so that
