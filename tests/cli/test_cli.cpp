@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -774,6 +775,27 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
     const double bal = std::stod(lines[k].substr(lines[k].rfind(',') + 1));
     EXPECT_TRUE(bal >= 0 && bal < 0.01) << lines[k];
   }
+  // Per mesh, the paper's pattern at every speed run: the meshes whose rows all have
+  // paper_pattern 1, counted in the report and in the headline.
+  std::map<std::string, bool> every;
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<std::string> f;
+    std::stringstream ss(lines[k]);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    ASSERT_GE(f.size(), 10u) << lines[k];
+    every.try_emplace(f[1], true).first->second &= f[9] == "1";
+  }
+  const auto whole = std::count_if(every.begin(), every.end(), [](const auto& e) { return e.second; });
+  const std::string count = fmt::format("{} of 3 (95 %: ", whole);
+  EXPECT_NE(md.find("The paper's pattern at every speed run (2.5, 7.5 m/s), mesh by mesh: " + count), std::string::npos)
+      << md;
+  const auto headline = nlohmann::json::parse(slurp(dir_ / "rep" / "headline.json"));
+  bool in_headline = false;
+  for (const auto& row : headline["rows"])
+    if (row["quantity"] == "meshes with the paper's pattern at every speed run")
+      in_headline =
+          row["dspdem"].get<std::string>().rfind(count, 0) == 0 && row["agrees"] == (2 * whole > 3 ? "yes" : "no");
+  EXPECT_TRUE(in_headline) << headline.dump(1);
   // --from-run analyses those runs again without running any; it needs every realisation asked for.
   const auto from_run = [&](const std::string& out, int realisations) {
     return report("sphere_impact",
@@ -795,6 +817,9 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   ASSERT_EQ(lost.code, 0) << lost.out;
   const std::string md2 = slurp(dir_ / "again2" / "report.md");
   EXPECT_NE(md2.find("- 2.5 m/s, orientation 1: no finished run"), std::string::npos) << md2;
+  // The mesh with a failed run is left out of the every-speed count, and named.
+  EXPECT_NE(md2.find(" of 2 (95 %: "), std::string::npos) << md2;
+  EXPECT_NE(md2.find("; not counted, a run failed: orientation 1."), std::string::npos) << md2;
   EXPECT_NE(md2.find("| 2.5 | no through crack | 2 |"), std::string::npos) << md2;
   EXPECT_NE(md2.find("0: 1, 2: 1 |"), std::string::npos) << md2;
   // Its first speeds are then upper bounds only, and say so; the others' do not.
