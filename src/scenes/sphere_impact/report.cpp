@@ -664,18 +664,19 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       for (const auto& [o, ok] : met_every)
         if (ok) whole.push_back(o);
       const int known = static_cast<int>(met_every.size() - failed_mesh.size());
-      every_speed = of_n(static_cast<int>(whole.size()), known);
+      if (known > 0) every_speed = of_n(static_cast<int>(whole.size()), known);
       every_speed_most = 2 * static_cast<int>(whole.size()) > known;
       std::string speeds_run;
       for (double v : speeds) speeds_run += fmt::format("{}{:g}", speeds_run.empty() ? "" : ", ", v);
-      doc.para(fmt::format(
-          "The paper's pattern at every speed run ({} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
-          "pattern is dspdem's typical outcome when most meshes show it.",
-          speeds_run, every_speed,
-          whole.empty() ? "" : fmt::format(", orientation{} {}", whole.size() > 1 ? "s" : "", fmt::join(whole, ", ")),
-          failed_mesh.empty() ? ""
-                              : fmt::format("; not counted, a run failed: orientation{} {}",
-                                            failed_mesh.size() > 1 ? "s" : "", fmt::join(failed_mesh, ", "))));
+      if (known > 0)
+        doc.para(fmt::format(
+            "The paper's pattern at every speed run ({} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
+            "pattern is dspdem's typical outcome when most meshes show it.",
+            speeds_run, every_speed,
+            whole.empty() ? "" : fmt::format(", orientation{} {}", whole.size() > 1 ? "s" : "", fmt::join(whole, ", ")),
+            failed_mesh.empty() ? ""
+                                : fmt::format("; not counted, a run failed: orientation{} {}",
+                                              failed_mesh.size() > 1 ? "s" : "", fmt::join(failed_mesh, ", "))));
       onset_table(doc, through_at, few_at);
     }
   }
