@@ -4,7 +4,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <thread>
 
 #include "core/archive.hpp"
@@ -15,8 +14,6 @@
 #include "io/run_summary.hpp"
 #include "render/plot.hpp"
 #include "report/document.hpp"
-#include "report/onsets.hpp"
-#include "report/proportion.hpp"
 #include "report/resume.hpp"
 #include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
@@ -24,6 +21,8 @@
 #include "run/process_pool.hpp"
 #include "run/render_run.hpp"
 #include "scenes/sphere_impact/analysis.hpp"
+#include "scenes/sphere_impact/pattern.hpp"
+#include "scenes/sphere_impact/realisations.hpp"
 #include "scenes/sphere_impact/scene.hpp"
 
 namespace dspdem {
@@ -148,62 +147,6 @@ std::vector<std::string> energy_row(const SphereImpactResult& r) {
           pct(r.damping / e0),          fmt::format("{:.2f}", r.fracture)};
 }
 
-// The paper's speed bands: it describes up to 5 m/s, 7.5 m/s, and 20 m/s and above. A speed
-// between 5 and 20 m/s other than 7.5 is held to 7.5 m/s's pattern, and its row says that
-// this is an assumption, not the paper's. One definition for the expected and the met.
-enum class SpeedBand { Whole, FewLarge, FewLargeAssumed, Crushed };
-
-SpeedBand speed_band(double v) {
-  if (v <= 5.0 + 1e-9) return SpeedBand::Whole;
-  if (std::abs(v - 7.5) < 1e-9) return SpeedBand::FewLarge;
-  if (v < 20.0 - 1e-9) return SpeedBand::FewLargeAssumed;
-  return SpeedBand::Crushed;
-}
-
-// The paper's description, speed by speed: what dspdem should show.
-std::string expected_pattern(double v) {
-  switch (speed_band(v)) {
-    case SpeedBand::Whole:
-      return "no through crack";
-    case SpeedBand::FewLarge:
-      return "a few large pieces";
-    case SpeedBand::FewLargeAssumed:
-      return "a few large pieces (assumed from 7.5 m/s: the paper describes <= 5, 7.5 and >= 20 m/s)";
-    case SpeedBand::Crushed:
-      break;
-  }
-  return "crushed base, many small pieces";
-}
-
-// "A few large pieces": 2 to 6 of at least 10 % (the paper's Fig. 22 shows three or four at
-// 7.5 m/s; REFERENCE.md, "Not found, and what the case and the scene chose"). Two pieces of
-// 10 % make a through crack by its definition (a second piece of 1 %), so that is not
-// tested again.
-bool a_few_large_pieces(const SphereImpactResult& r) {
-  static_assert(SphereImpactResult::through_piece_fraction <= SphereImpactResult::large_piece_fraction);
-  return r.pieces_10pct >= 2 && r.pieces_10pct <= 6;
-}
-
-bool pattern_met(const SphereImpactResult& r) {
-  switch (speed_band(r.speed)) {
-    case SpeedBand::Whole:
-      return !r.through_crack;
-    case SpeedBand::FewLarge:
-    case SpeedBand::FewLargeAssumed:
-      return a_few_large_pieces(r);
-    case SpeedBand::Crushed:
-      break;
-  }
-  return r.fragments.largest_fraction() < SphereImpactResult::intact_fraction && r.fragments.single_element() >= 20;
-}
-
-// "k of n (95 %: lo-hi)": a count over realisations with its Wilson interval, so that two
-// reports' counts can be read against each other (report/proportion.hpp).
-std::string of_n(int k, int n) {
-  const report::ProportionInterval i = report::wilson_interval(k, n);
-  return fmt::format("{} of {} (95 %: {:.2f}-{:.2f})", k, n, i.lo, i.hi);
-}
-
 // Where a sequence is not monotonic: the speeds at which it turns.
 std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(const SphereImpactResult&), int sign) {
   std::string breaks;
@@ -211,55 +154,6 @@ std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(c
     if (sign * (key(rs[i]) - key(rs[i - 1])) < 0)
       breaks += fmt::format("{}{:g} -> {:g} m/s", breaks.empty() ? "" : ", ", rs[i - 1].speed, rs[i].speed);
   return breaks;
-}
-
-// Per mesh, the lowest speed of the sweep with a through crack and with a few large pieces,
-// and the middle of those over the meshes: where dspdem's thresholds lie. The paper shows no
-// crack through at 5 m/s and several large regions at 7.5, and no speed between: its first
-// speed for both lies above 5 and at most 7.5 m/s.
-void onset_table(report::Document& doc, const std::vector<report::SweepPoint>& through_at,
-                 const std::vector<report::SweepPoint>& few_at) {
-  const std::vector<report::Onset> t = report::first_onsets(through_at), f = report::first_onsets(few_at);
-  // Both come from the same runs, one point each: the same meshes in the same order.
-  DSPDEM_CHECK(t.size() == f.size(), "internal: the two onset lists differ in length");
-  auto speed = [](double v, double top) {
-    return std::isinf(v) ? (std::isnan(top) ? std::string("none run") : fmt::format("none by {:g}", top))
-                         : fmt::format("{:g}", v);
-  };
-  auto cell = [&](const report::Onset& o) {
-    return speed(o.first, o.highest_known) + (o.failed_below ? " (a run below failed)" : "");
-  };
-  auto mid = [&](const std::vector<report::Onset>& o) {
-    std::vector<double> v;
-    double top = -INFINITY;
-    for (const auto& x : o) {
-      v.push_back(x.first);
-      if (x.highest_known > top) top = x.highest_known;
-    }
-    const report::Middle m = report::middle(v);
-    return m.low == m.high ? speed(m.low, top) : speed(m.low, top) + " to " + speed(m.high, top);
-  };
-  std::vector<std::vector<std::string>> rows;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    DSPDEM_CHECK(t[k].realisation == f[k].realisation, "internal: the two onset lists pair different meshes");
-    rows.push_back({std::to_string(t[k].realisation), cell(t[k]), cell(f[k])});
-  }
-  rows.push_back({"median", mid(t), mid(f)});
-  doc.para(
-      "Where each mesh first shows a through crack and a few large pieces (2 to 6 of at least 10 %), over the "
-      "speeds run [m/s]: the lowest speed at which it shows (at the lowest speed run: at or below it). A run is "
-      "chaotic, so a higher speed need not show it again. With an even number of meshes the median lies between "
-      "the two values given. The paper shows no crack through at 5 m/s and several fairly large regions at 7.5, "
-      "and no speed between: its first speed for both lies above 5 and at most 7.5 m/s.");
-  doc.table({"orientation", "first through crack", "first a few large pieces"}, rows);
-}
-
-// The first frame with two large pieces, in ms after the first contact: "-" when none by
-// the compared time, `unknown` for a run without history (older than fragments.csv).
-std::string two_large_ms(const SphereImpactResult& r, const char* unknown) {
-  if (r.history.empty()) return unknown;
-  const double t = r.t_two_large();
-  return t >= 0 ? fmt::format("{:.3f}", 1e3 * t) : std::string("-");
 }
 
 // When the sphere came apart, not only whether it had by the compared time: near the
@@ -583,102 +477,18 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                          nb.empty() ? "never falls" : "falls between " + nb,
                          lb.empty() ? "never rises" : "rises between " + lb));
   }
-  // Over the realisations, per mesh: the paper's pattern at every speed run (the issue's
-  // "typical outcome" is a pattern on most meshes, not on the case's one).
-  std::string every_speed;  // "k of n (95 %: lo-hi)", empty unless several speeds and meshes
-  bool every_speed_most = false;
+  // Over the realisations: per speed and per mesh (realisations.hpp).
+  EverySpeed every;
   if (a.realisations > 1) {
-    // Each speed over its realisations, by orientation: the case's own run (k0) first, then
-    // the turned meshes; a failed run is listed, not counted, and labels stay with their runs.
-    std::vector<std::string> failed;
-    std::ofstream csv(fs::path(dir) / "orientations.csv");
-    csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
-           "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top,balance_max\n";
-    // two_large_after_contact_ms -1: not by the compared time, nan: no history; crack_reach
-    // and crack_top -1: no joints frames paired with the run's frames.
-    std::vector<std::vector<std::string>> rows_o;
-    std::vector<report::SweepPoint> through_at, few_at;  // per run: does it show the property
-    std::map<int, bool> met_every;                       // orientation: the pattern at each of its runs so far
-    std::vector<int> failed_mesh;                        // orientations with a failed run: not counted
+    std::vector<std::vector<RealisationRun>> by_speed(speeds.size());
     for (std::size_t si = 0; si < speeds.size(); ++si) {
-      std::vector<std::size_t> runs = {si};
+      std::vector<std::size_t> runs = {si};  // the case's own run (k0) first, then the turned meshes
       for (std::size_t i = first_realisation; i < plan.size(); ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) runs.push_back(i);
-      int n = 0, through = 0, met = 0;
-      std::string largest, pieces, split;
-      for (std::size_t i : runs) {
-        const int o = plan[i].orientation;
-        if (!errors[i].empty()) {
-          failed.push_back(fmt::format("{} m/s, orientation {}: {}", speeds[si], o, errors[i]));
-          through_at.push_back({o, speeds[si], false, false});
-          few_at.push_back({o, speeds[si], false, false});
-          if (std::find(failed_mesh.begin(), failed_mesh.end(), o) == failed_mesh.end()) failed_mesh.push_back(o);
-          met_every.try_emplace(o, true).first->second = false;
-          continue;
-        }
-        const SphereImpactResult& r = res[i];
-        through += r.through_crack, met += pattern_met(r);
-        met_every.try_emplace(o, true).first->second &= pattern_met(r);
-        through_at.push_back({o, r.speed, r.through_crack});
-        few_at.push_back({o, r.speed, a_few_large_pieces(r)});
-        largest += fmt::format("{}{}: {:.2f}", n ? ", " : "", o, r.fragments.largest_fraction());
-        pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
-        split += fmt::format("{}{}: {}", n ? ", " : "", o, two_large_ms(r, "?"));
-        ++n;
-        // -1: none by the compared time; nan: no history.
-        const std::string t2 = two_large_ms(r, "nan");
-        csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{},{:.4f},{:.4f},{:.3e}\n", r.speed, o, r.elements,
-                           r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
-                           r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
-                           t2 == "-" ? std::string("-1.000") : t2, r.crack_reach, r.crack_top, r.balance_max);
-      }
-      rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
-                        of_n(through, n), pieces.empty() ? "-" : pieces, largest.empty() ? "-" : largest,
-                        split.empty() ? "-" : split, of_n(met, n)});
+      for (std::size_t i : runs)
+        by_speed[si].push_back({plan[i].orientation, errors[i].empty() ? &res[i] : nullptr, errors[i]});
     }
-    const int last = k0 + a.realisations - 1;
-    doc.subsection(fmt::format("The pattern over {} orientations of the mesh", a.realisations));
-    doc.para(fmt::format(
-        "Fracture at an impact is chaotic: which elements meet the plate first decides where cracks run. Each speed "
-        "was run again with the sphere turned before meshing (`mesh.sphere_plate.orientation` {}: gmsh meshes each "
-        "differently at the same size), so the pattern can be told from one mesh's chance. Per run, by "
-        "orientation ({}, the orientation the case was given, is the sweep's own runs in `speeds/`). Folders: `{}`; "
-        "every run in `orientations.csv`.",
-        last == k0 + 1 ? std::to_string(last) : fmt::format("{} to {}", k0 + 1, last), k0,
-        fs::relative(fs::path(sweep_root) / "orientations", dir).string()));
-    if (!failed.empty()) {
-      std::string f;
-      for (const auto& e : failed) f += "\n- " + e;
-      doc.para("Runs that failed:" + f);
-    }
-    doc.table(
-        {"speed [m/s]", "paper", "runs", "through crack", "pieces >= 10 %, by orientation", "largest, by orientation",
-         "two pieces >= 10 % first [ms after contact; -: not by the compared time; ?: no history], by orientation",
-         "matches the paper"},
-        rows_o);
-    doc.para(
-        "In brackets, the 95 % interval of the share of meshes that show it (Wilson's score interval): which meshes "
-        "show a pattern near its threshold is a draw, and with few meshes a count is read with that spread.");
-    if (speeds.size() > 1) {
-      std::vector<int> whole;
-      for (const auto& [o, ok] : met_every)
-        if (ok) whole.push_back(o);
-      const int known = static_cast<int>(met_every.size() - failed_mesh.size());
-      if (known > 0) every_speed = of_n(static_cast<int>(whole.size()), known);
-      every_speed_most = 2 * static_cast<int>(whole.size()) > known;
-      std::string speeds_run;
-      for (double v : speeds) speeds_run += fmt::format("{}{:g}", speeds_run.empty() ? "" : ", ", v);
-      if (known > 0)
-        doc.para(fmt::format(
-            "The paper's pattern at every speed run ({} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
-            "pattern is dspdem's typical outcome when most meshes show it.",
-            speeds_run, every_speed,
-            whole.empty() ? "" : fmt::format(", orientation{} {}", whole.size() > 1 ? "s" : "", fmt::join(whole, ", ")),
-            failed_mesh.empty() ? ""
-                                : fmt::format("; not counted, a run failed: orientation{} {}",
-                                              failed_mesh.size() > 1 ? "s" : "", fmt::join(failed_mesh, ", "))));
-      onset_table(doc, through_at, few_at);
-    }
+    every = realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_root});
   }
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");
@@ -758,9 +568,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
          fmt::format("{} fragments, {} of at least 10 %, largest {:.2f}{}", r.fragments.count(), r.pieces_10pct,
                      r.fragments.largest_fraction(), r.through_crack ? ", through crack" : ", no through crack"),
          report::agrees(pattern_met(r)), "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
-  if (!every_speed.empty())
-    h.rows.push_back({"meshes with the paper's pattern at every speed run", "the pattern (one mesh)", every_speed,
-                      report::agrees(every_speed_most), "Cli.ReportRealisationsRunEachSpeedAgainOnTurnedMeshes"});
+  if (!every.count.empty())
+    h.rows.push_back({"meshes with the paper's pattern at every speed run", "the pattern (one mesh)", every.count,
+                      report::agrees(every.most), "Cli.ReportRealisationsRunEachSpeedAgainOnTurnedMeshes"});
   {
     double worst = 0;
     for (const auto& r : sweep) worst = std::max(worst, r.balance_max);

@@ -1,0 +1,25 @@
+// The paper's pattern at the sphere impact (section 2.5, Fig. 22) speed by speed, and one
+// run read against it: pure functions of a run's numbers, shared by the sweep's table, the
+// realisations and the headline.
+#pragma once
+#include <string>
+
+#include "scenes/sphere_impact/analysis.hpp"
+
+namespace dspdem {
+
+/// The paper's speed bands: it describes up to 5 m/s, 7.5 m/s, and 20 m/s and above.
+enum class SpeedBand { Whole, FewLarge, FewLargeAssumed, Crushed };
+
+SpeedBand speed_band(double v);
+/// The paper's description at a speed: what dspdem should show.
+std::string expected_pattern(double v);
+/// 2 to 6 pieces of at least 10 % of the mass.
+bool a_few_large_pieces(const SphereImpactResult& r);
+/// The run shows what the paper describes at its speed.
+bool pattern_met(const SphereImpactResult& r);
+/// The first frame with two large pieces, in ms after the first contact: "-" when none by
+/// the compared time, `unknown` for a run without history (older than fragments.csv).
+std::string two_large_ms(const SphereImpactResult& r, const char* unknown);
+
+}  // namespace dspdem

@@ -1,0 +1,39 @@
+// A velocity sweep run again on turned meshes (`--realisations`): per speed how many meshes
+// show the paper's pattern, every run in orientations.csv, each mesh's first speed with a
+// through crack and with a few large pieces, and how many show the pattern at every speed.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "report/document.hpp"
+#include "scenes/sphere_impact/analysis.hpp"
+
+namespace dspdem {
+
+/// One run of a speed: its mesh's orientation, and its result (null when it failed: `error`).
+struct RealisationRun {
+  int orientation = 0;
+  const SphereImpactResult* result = nullptr;
+  std::string error;
+};
+
+/// Where the runs are: the case's own orientation, the meshes per speed, the report's folder
+/// and the folder the runs are in (an earlier report's with --from-run).
+struct RealisationSetup {
+  int k0 = 0, realisations = 1;
+  std::string dir, sweep_root;
+};
+
+/// The meshes with the paper's pattern at every speed run: "k of n (95 %: lo-hi)" (empty
+/// unless several speeds and a mesh whose runs all finished), and whether that is most.
+struct EverySpeed {
+  std::string count;
+  bool most = false;
+};
+
+/// Writes the section into `doc` and orientations.csv into setup.dir; by_speed[s]: the runs at
+/// speeds[s], the case's own mesh first.
+EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& speeds,
+                              const std::vector<std::vector<RealisationRun>>& by_speed, const RealisationSetup& where);
+
+}  // namespace dspdem
