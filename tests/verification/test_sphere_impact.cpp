@@ -24,6 +24,7 @@
 #include <filesystem>
 
 #include "scenes/sphere_impact/analysis.hpp"
+#include "scenes/sphere_impact/pattern.hpp"
 #include "support/cli.hpp"
 #include "support/golden.hpp"
 #include "support/quick_report.hpp"
@@ -106,4 +107,38 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
   const fs::path img = out / "images/montage_fragments.png";
   if (testsupport::regenerate_golden(img, "sphere_impact_montage.png")) GTEST_SKIP() << "baseline image regenerated";
   testsupport::expect_golden(img, "sphere_impact_montage.png", "sphere_impact");
+}
+
+// The paper's pattern read from a run's numbers, alone (scenes/sphere_impact/pattern.hpp):
+// its three speed bands and the criteria REFERENCE.md chose for them.
+TEST(SpherePattern, ThePapersBandsAndTheirCriteria) {
+  using dspdem::SpeedBand;
+  EXPECT_EQ(dspdem::speed_band(2.5), SpeedBand::Whole);
+  EXPECT_EQ(dspdem::speed_band(5.0), SpeedBand::Whole);  // the paper's "below 5 m/s" taken to include 5
+  EXPECT_EQ(dspdem::speed_band(7.5), SpeedBand::FewLarge);
+  EXPECT_EQ(dspdem::speed_band(10.0), SpeedBand::FewLargeAssumed);
+  EXPECT_EQ(dspdem::speed_band(20.0), SpeedBand::Crushed);
+  EXPECT_EQ(dspdem::speed_band(50.0), SpeedBand::Crushed);
+  // A run: one large piece of `largest` and `singles` single elements sharing the rest.
+  auto run = [](double speed, double largest, int singles, int pieces_10pct, bool through) {
+    dspdem::SphereImpactResult r;
+    r.speed = speed, r.pieces_10pct = pieces_10pct, r.through_crack = through;
+    r.fragments.total_mass = 1.0;
+    r.fragments.masses = {largest};
+    r.fragments.elements = {1000};
+    for (int k = 0; k < singles; ++k)
+      r.fragments.masses.push_back((1.0 - largest) / singles), r.fragments.elements.push_back(1);
+    return r;
+  };
+  EXPECT_TRUE(dspdem::pattern_met(run(5.0, 0.97, 80, 1, false)));
+  EXPECT_FALSE(dspdem::pattern_met(run(5.0, 0.97, 80, 1, true)));  // a side cap of 1 % or more
+  for (int n : {1, 2, 6, 7}) {
+    EXPECT_EQ(dspdem::a_few_large_pieces(run(7.5, 0.5, 0, n, true)), n >= 2 && n <= 6) << n;
+    EXPECT_EQ(dspdem::pattern_met(run(7.5, 0.5, 0, n, true)), n >= 2 && n <= 6) << n;
+  }
+  // Crushed: the largest under 90 % and at least 20 single elements.
+  EXPECT_TRUE(dspdem::pattern_met(run(20.0, 0.4, 20, 1, true)));
+  EXPECT_FALSE(dspdem::pattern_met(run(20.0, 0.4, 19, 1, true)));
+  EXPECT_FALSE(dspdem::pattern_met(run(20.0, 0.91, 200, 1, true)));
+  EXPECT_EQ(dspdem::expected_pattern(20.0), "crushed base, many small pieces");
 }
