@@ -8,7 +8,9 @@
 
 namespace dspdem {
 
-/// The paper's speed bands: it describes up to 5 m/s, 7.5 m/s, and 20 m/s and above.
+/// The paper's speed bands: it describes up to 5 m/s, 7.5 m/s, and 20 m/s and above. A
+/// speed between 5 and 20 m/s other than 7.5 is held to 7.5 m/s's pattern (FewLargeAssumed),
+/// and the report says that this is an assumption, not the paper's.
 enum class SpeedBand { Whole, FewLarge, FewLargeAssumed, Crushed };
 
 SpeedBand speed_band(double v);

@@ -24,14 +24,15 @@ struct RealisationSetup {
   std::string dir, sweep_root;
 };
 
-/// The meshes with the paper's pattern at every speed run: "k of n (95 %: lo-hi)" (empty
-/// unless several speeds and a mesh whose runs all finished), and whether that is most.
+/// The meshes with the paper's pattern at every speed run, as text: "k of n (95 %: lo-hi)"
+/// (empty unless several speeds and a mesh whose runs all finished), and whether that is
+/// most. Issue 18 reads the paper's one mesh as the pattern dspdem should give on most.
 struct EverySpeed {
   std::string count;
   bool most = false;
 };
 
-/// Writes the section into `doc` and orientations.csv into setup.dir; by_speed[s]: the runs at
+/// Writes the section into `doc` and orientations.csv into where.dir; by_speed[s]: the runs at
 /// speeds[s], the case's own mesh first.
 EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& speeds,
                               const std::vector<std::vector<RealisationRun>>& by_speed, const RealisationSetup& where);
