@@ -2,11 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "core/error.hpp"
 #include "report/onsets.hpp"
@@ -83,7 +83,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
   std::vector<std::vector<std::string>> rows_o;
   std::vector<report::SweepPoint> through_at, few_at;  // per run: does it show the property
   std::map<int, bool> met_every;                       // orientation: the pattern at each of its runs so far
-  std::vector<int> failed_mesh;                        // orientations with a failed run: not counted
+  std::set<int> failed_mesh;                           // orientations with a failed run: not counted
   for (std::size_t si = 0; si < speeds.size(); ++si) {
     int n = 0, through = 0, met = 0;
     std::string largest, pieces, split;
@@ -93,7 +93,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
         failed.push_back(fmt::format("{} m/s, orientation {}: {}", speeds[si], o, run.error));
         through_at.push_back({o, speeds[si], false, false});
         few_at.push_back({o, speeds[si], false, false});
-        if (std::find(failed_mesh.begin(), failed_mesh.end(), o) == failed_mesh.end()) failed_mesh.push_back(o);
+        failed_mesh.insert(o);
         met_every.try_emplace(o, true).first->second = false;
         continue;
       }
@@ -145,19 +145,18 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
     for (const auto& [o, ok] : met_every)
       if (ok) whole.push_back(o);
     const int known = static_cast<int>(met_every.size() - failed_mesh.size());
-    if (known > 0) every.count = of_n(static_cast<int>(whole.size()), known);
-    every.most = 2 * static_cast<int>(whole.size()) > known;
-    std::string speeds_run;
-    for (double v : speeds) speeds_run += fmt::format("{}{:g}", speeds_run.empty() ? "" : ", ", v);
-    if (known > 0)
+    if (known > 0) {
+      every.count = of_n(static_cast<int>(whole.size()), known);
+      every.most = 2 * static_cast<int>(whole.size()) > known;
       doc.para(fmt::format(
-          "The paper's pattern at every speed run ({} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
+          "The paper's pattern at every speed run ({:g} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
           "pattern is dspdem's typical outcome when most meshes show it.",
-          speeds_run, every.count,
+          fmt::join(speeds, ", "), every.count,
           whole.empty() ? "" : fmt::format(", orientation{} {}", whole.size() > 1 ? "s" : "", fmt::join(whole, ", ")),
           failed_mesh.empty() ? ""
                               : fmt::format("; not counted, a run failed: orientation{} {}",
                                             failed_mesh.size() > 1 ? "s" : "", fmt::join(failed_mesh, ", "))));
+    }
     onset_table(doc, through_at, few_at);
   }
   return every;

@@ -481,12 +481,13 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   EverySpeed every;
   if (a.realisations > 1) {
     std::vector<std::vector<RealisationRun>> by_speed(speeds.size());
+    auto run_of = [&](std::size_t i) {
+      return RealisationRun{plan[i].orientation, errors[i].empty() ? &res[i] : nullptr, errors[i]};
+    };
     for (std::size_t si = 0; si < speeds.size(); ++si) {
-      std::vector<std::size_t> runs = {si};  // the case's own run (k0) first, then the turned meshes
+      by_speed[si].push_back(run_of(si));  // the case's own run (k0) first, then the turned meshes
       for (std::size_t i = first_realisation; i < plan.size(); ++i)
-        if (std::abs(plan[i].speed - speeds[si]) < 1e-9) runs.push_back(i);
-      for (std::size_t i : runs)
-        by_speed[si].push_back({plan[i].orientation, errors[i].empty() ? &res[i] : nullptr, errors[i]});
+        if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
     }
     every = realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_root});
   }
