@@ -112,13 +112,13 @@ TEST(SphereImpact, SweepFollowsThePapersPatternAndMatchesTheStoredMontage) {
 // The paper's pattern read from a run's numbers, alone (scenes/sphere_impact/pattern.hpp):
 // its three speed bands and the criteria REFERENCE.md chose for them.
 TEST(SpherePattern, ThePapersBandsAndTheirCriteria) {
-  using dspdem::SpeedBand;
-  EXPECT_EQ(dspdem::speed_band(2.5), SpeedBand::Whole);
-  EXPECT_EQ(dspdem::speed_band(5.0), SpeedBand::Whole);  // the paper's "below 5 m/s" taken to include 5
-  EXPECT_EQ(dspdem::speed_band(7.5), SpeedBand::FewLarge);
-  EXPECT_EQ(dspdem::speed_band(10.0), SpeedBand::FewLargeAssumed);
-  EXPECT_EQ(dspdem::speed_band(20.0), SpeedBand::Crushed);
-  EXPECT_EQ(dspdem::speed_band(50.0), SpeedBand::Crushed);
+  using sphere::SpeedBand;
+  EXPECT_EQ(sphere::speed_band(2.5), SpeedBand::Whole);
+  EXPECT_EQ(sphere::speed_band(5.0), SpeedBand::Whole);  // the paper's "below 5 m/s" taken to include 5
+  EXPECT_EQ(sphere::speed_band(7.5), SpeedBand::FewLarge);
+  EXPECT_EQ(sphere::speed_band(10.0), SpeedBand::FewLargeAssumed);
+  EXPECT_EQ(sphere::speed_band(20.0), SpeedBand::Crushed);
+  EXPECT_EQ(sphere::speed_band(50.0), SpeedBand::Crushed);
   // A run: one large piece of `largest` and `singles` single elements sharing the rest.
   auto run = [](double speed, double largest, int singles, int pieces_10pct, bool through) {
     dspdem::SphereImpactResult r;
@@ -130,15 +130,15 @@ TEST(SpherePattern, ThePapersBandsAndTheirCriteria) {
       r.fragments.masses.push_back((1.0 - largest) / singles), r.fragments.elements.push_back(1);
     return r;
   };
-  EXPECT_TRUE(dspdem::pattern_met(run(5.0, 0.97, 80, 1, false)));
-  EXPECT_FALSE(dspdem::pattern_met(run(5.0, 0.97, 80, 1, true)));  // a side cap of 1 % or more
+  EXPECT_TRUE(sphere::pattern_met(run(5.0, 0.97, 80, 1, false)));
+  EXPECT_FALSE(sphere::pattern_met(run(5.0, 0.97, 80, 1, true)));  // a side cap of 1 % or more
   for (int n : {1, 2, 6, 7}) {
-    EXPECT_EQ(dspdem::a_few_large_pieces(run(7.5, 0.5, 0, n, true)), n >= 2 && n <= 6) << n;
-    EXPECT_EQ(dspdem::pattern_met(run(7.5, 0.5, 0, n, true)), n >= 2 && n <= 6) << n;
+    EXPECT_EQ(sphere::a_few_large_pieces(run(7.5, 0.5, 0, n, true)), n >= 2 && n <= 6) << n;
+    EXPECT_EQ(sphere::pattern_met(run(7.5, 0.5, 0, n, true)), n >= 2 && n <= 6) << n;
   }
   // Crushed: the largest under 90 % and at least 20 single elements.
-  EXPECT_TRUE(dspdem::pattern_met(run(20.0, 0.4, 20, 1, true)));
-  EXPECT_FALSE(dspdem::pattern_met(run(20.0, 0.4, 19, 1, true)));
-  EXPECT_FALSE(dspdem::pattern_met(run(20.0, 0.91, 200, 1, true)));
-  EXPECT_EQ(dspdem::expected_pattern(20.0), "crushed base, many small pieces");
+  EXPECT_TRUE(sphere::pattern_met(run(20.0, 0.4, 20, 1, true)));
+  EXPECT_FALSE(sphere::pattern_met(run(20.0, 0.4, 19, 1, true)));
+  EXPECT_FALSE(sphere::pattern_met(run(20.0, 0.91, 200, 1, true)));
+  EXPECT_EQ(sphere::expected_pattern(20.0), "crushed base, many small pieces");
 }

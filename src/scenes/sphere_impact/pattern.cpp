@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace dspdem {
+namespace dspdem::sphere {
 
 // The paper's speed bands: it describes up to 5 m/s, 7.5 m/s, and 20 m/s and above. A speed
 // between 5 and 20 m/s other than 7.5 is held to 7.5 m/s's pattern, and its row says that
@@ -59,4 +59,4 @@ std::string two_large_ms(const SphereImpactResult& r, const char* unknown) {
   return t >= 0 ? fmt::format("{:.3f}", 1e3 * t) : std::string("-");
 }
 
-}  // namespace dspdem
+}  // namespace dspdem::sphere

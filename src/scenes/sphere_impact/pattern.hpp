@@ -6,7 +6,7 @@
 
 #include "scenes/sphere_impact/analysis.hpp"
 
-namespace dspdem {
+namespace dspdem::sphere {
 
 /// The paper's speed bands: it describes up to 5 m/s, 7.5 m/s, and 20 m/s and above. A
 /// speed between 5 and 20 m/s other than 7.5 is held to 7.5 m/s's pattern (FewLargeAssumed),
@@ -24,4 +24,4 @@ bool pattern_met(const SphereImpactResult& r);
 /// the compared time, `unknown` for a run without history (older than fragments.csv).
 std::string two_large_ms(const SphereImpactResult& r, const char* unknown);
 
-}  // namespace dspdem
+}  // namespace dspdem::sphere

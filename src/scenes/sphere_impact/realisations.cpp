@@ -13,7 +13,7 @@
 #include "report/proportion.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 
-namespace dspdem {
+namespace dspdem::sphere {
 
 namespace {
 namespace fs = std::filesystem;
@@ -162,4 +162,4 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
   return every;
 }
 
-}  // namespace dspdem
+}  // namespace dspdem::sphere

@@ -8,7 +8,7 @@
 #include "report/document.hpp"
 #include "scenes/sphere_impact/analysis.hpp"
 
-namespace dspdem {
+namespace dspdem::sphere {
 
 /// One run of a speed: its mesh's orientation, and its result (null when it failed: `error`).
 struct RealisationRun {
@@ -37,4 +37,4 @@ struct EverySpeed {
 EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& speeds,
                               const std::vector<std::vector<RealisationRun>>& by_speed, const RealisationSetup& where);
 
-}  // namespace dspdem
+}  // namespace dspdem::sphere

@@ -165,7 +165,7 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
     if (r.history.empty())
       unknown.push_back(fmt::format("{:g}", r.speed));
     else if (r.t_two_large() >= 0)
-      split.push_back(fmt::format("{} ms at {:g} m/s", two_large_ms(r, ""), r.speed));
+      split.push_back(fmt::format("{} ms at {:g} m/s", sphere::two_large_ms(r, ""), r.speed));
     else
       whole.push_back(fmt::format("{:g}", r.speed));
   auto list = [](const std::vector<std::string>& v) {
@@ -461,11 +461,11 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   }
   std::vector<std::vector<std::string>> pat;
   for (const auto& r : sweep)
-    pat.push_back({fmt::format("{:g}", r.speed), expected_pattern(r.speed),
+    pat.push_back({fmt::format("{:g}", r.speed), sphere::expected_pattern(r.speed),
                    fmt::format("{} fragments, {} >= 10 %, largest {:.2f}, {} of one element{}", r.fragments.count(),
                                r.pieces_10pct, r.fragments.largest_fraction(), r.fragments.single_element(),
                                r.through_crack ? ", through crack" : ", no through crack"),
-                   pattern_met(r) ? "yes" : "no"});
+                   sphere::pattern_met(r) ? "yes" : "no"});
   doc.subsection("Against the paper's description");
   doc.table({"speed [m/s]", "paper", "dspdem", "matches"}, pat);
   {
@@ -478,18 +478,18 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                          lb.empty() ? "never rises" : "rises between " + lb));
   }
   // Over the realisations: per speed and per mesh (realisations.hpp).
-  EverySpeed every;
+  sphere::EverySpeed every;
   if (a.realisations > 1) {
-    std::vector<std::vector<RealisationRun>> by_speed(speeds.size());
+    std::vector<std::vector<sphere::RealisationRun>> by_speed(speeds.size());
     auto run_of = [&](std::size_t i) {
-      return RealisationRun{plan[i].orientation, errors[i].empty() ? &res[i] : nullptr, errors[i]};
+      return sphere::RealisationRun{plan[i].orientation, errors[i].empty() ? &res[i] : nullptr, errors[i]};
     };
     for (std::size_t si = 0; si < speeds.size(); ++si) {
       by_speed[si].push_back(run_of(si));  // the case's own run (k0) first, then the turned meshes
       for (std::size_t i = first_realisation; i < plan.size(); ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
     }
-    every = realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_root});
+    every = sphere::realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_root});
   }
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");
@@ -565,10 +565,11 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       1e3 * sweep.front().diameter, sweep.front().elements, sweep.front().joints, sweep.size(), 1e3 * t_cmp, as_paper);
   for (const auto& r : sweep)
     h.rows.push_back(
-        {fmt::format("pieces at {:g} m/s", r.speed), expected_pattern(r.speed),
+        {fmt::format("pieces at {:g} m/s", r.speed), sphere::expected_pattern(r.speed),
          fmt::format("{} fragments, {} of at least 10 %, largest {:.2f}{}", r.fragments.count(), r.pieces_10pct,
                      r.fragments.largest_fraction(), r.through_crack ? ", through crack" : ", no through crack"),
-         report::agrees(pattern_met(r)), "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
+         report::agrees(sphere::pattern_met(r)),
+         "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
   if (!every.count.empty())
     h.rows.push_back({"meshes with the paper's pattern at every speed run", "the pattern (one mesh)", every.count,
                       report::agrees(every.most), "Cli.ReportRealisationsRunEachSpeedAgainOnTurnedMeshes"});
