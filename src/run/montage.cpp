@@ -5,6 +5,7 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -52,6 +53,13 @@ std::size_t nearest(const std::vector<render::FrameRef>& frames, double t) {
 MontageFrames write_montage(const MontageArgs& a) {
   DSPDEM_CHECK(!a.run_dirs.empty(), "--montage: no run folder given");
   DSPDEM_CHECK(!a.out.empty(), "--montage: no output image given");
+  // The image is a PNG: a name without an extension gets ".png", as plotting tools do; any
+  // other extension is refused before anything is drawn rather than given PNG bytes.
+  fs::path out = a.out;
+  if (!out.has_extension()) out += ".png";
+  std::string ext = out.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  DSPDEM_CHECK(ext == ".png", "--montage {}: a montage is a PNG image; name it .png (or give no extension)", a.out);
   DSPDEM_CHECK(a.labels.empty() || a.labels.size() == a.run_dirs.size(),
                "--montage: {} label(s) for {} run folder(s): give one per run or none", a.labels.size(),
                a.run_dirs.size());
@@ -140,9 +148,9 @@ MontageFrames write_montage(const MontageArgs& a) {
     }
   }
   const auto img = render::tile_images(panels, static_cast<int>(grids.size()));
-  fs::create_directories(fs::absolute(a.out).parent_path());
-  render::write_png(img, a.out);
-  log::info("dspdem render --montage: {} run(s) x {} row(s) -> {}", grids.size(), rows.size(), a.out);
+  fs::create_directories(fs::absolute(out).parent_path());
+  render::write_png(img, out.string());
+  log::info("dspdem render --montage: {} run(s) x {} row(s) -> {}", grids.size(), rows.size(), out.string());
   return used;
 }
 

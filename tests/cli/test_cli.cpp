@@ -475,6 +475,38 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   EXPECT_TRUE(fs::exists(out / "images/cracks/frame_0010.png"));
 }
 
+// `dspdem render --montage`: the runs side by side, a column per run and a row per --rows
+// entry, each panel --size; a name without an extension becomes a .png, another extension
+// and a label count that does not match the runs are refused before anything is drawn.
+TEST_F(Cli, RenderMontageTilesRunsByRowsAndWritesAPng) {
+  const fs::path out = dir_ / "run";
+  ASSERT_EQ(run("-q run " + write("good.toml", good_).string() + " --out " + out.string()).code, 0);
+  // The width and height of a PNG: the IHDR chunk's first two big-endian words.
+  auto png_size = [](const fs::path& p) {
+    const std::string b = slurp(p);
+    auto word = [&](std::size_t at) {
+      return (static_cast<unsigned char>(b[at]) << 24) | (static_cast<unsigned char>(b[at + 1]) << 16) |
+             (static_cast<unsigned char>(b[at + 2]) << 8) | static_cast<unsigned char>(b[at + 3]);
+    };
+    return b.size() < 24 || b.compare(1, 3, "PNG") != 0 ? std::pair(0, 0) : std::pair(word(16), word(20));
+  };
+  const std::string runs = out.string() + " " + out.string();
+  const Result r = run("-q render " + runs + " --montage " + (dir_ / "m").string() +
+                       " --rows stress,fragments:z --label first second --size 160x120");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "m"));
+  EXPECT_EQ(png_size(dir_ / "m.png"), std::pair(2 * 160, 2 * 120));  // two runs, two rows
+
+  const Result jpg = run("-q render " + runs + " --montage " + (dir_ / "m.jpg").string() + " --size 160x120");
+  EXPECT_NE(jpg.code, 0);
+  EXPECT_NE(jpg.out.find("m.jpg: a montage is a PNG image"), std::string::npos) << jpg.out;
+  EXPECT_FALSE(fs::exists(dir_ / "m.jpg"));
+  const Result labels = run("-q render " + runs + " --montage " + (dir_ / "l.png").string() + " --label one");
+  EXPECT_NE(labels.code, 0);
+  EXPECT_NE(labels.out.find("1 label(s) for 2 run folder(s)"), std::string::npos) << labels.out;
+  EXPECT_FALSE(fs::exists(dir_ / "l.png"));
+}
+
 TEST_F(Cli, RunEndsOnceTheLoadHasDroppedAndThePiecesSeparated) {
   // [time] stop_series: the notched bar's reaction peaks near 0.38 ms and falls below 0.3 of
   // its peak at 0.5 ms while the crack runs; 0.2 ms later the two halves are apart. The run
