@@ -113,7 +113,7 @@ int run_main(int argc, char** argv) {
       ->expected(1, -1);
   rend->add_option("--montage", ma.out,
                    "Write one PNG image OUT of the given runs side by side (a column per run, a row per --rows "
-                   "entry) at --time; .png is added to a name without an extension");
+                   "entry) at --time; .png is added to a name that does not end in it");
   rend->add_option("--time", ma.time, "--montage: simulated time of the frames [s] (default: each run's last frame)");
   rend->add_option("--label", ma.labels, "--montage: a label per run, in order (default: the folders' names)");
   rend->add_option("--rows", ma.rows,

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -48,18 +49,28 @@ std::size_t nearest(const std::vector<render::FrameRef>& frames, double t) {
     if (std::abs(frames[i].time - t) < std::abs(frames[best].time - t)) best = i;
   return best;
 }
+// The file a montage goes to: it is a PNG, so a name that does not end in .png gets ".png"
+// (a dot in it, as in montage_v7.5, is part of the name), as plotting tools do; a name with
+// another image or document type's extension is refused before anything is drawn rather than
+// given PNG bytes, and so is a folder.
+fs::path png_path(const std::string& name) {
+  fs::path out = name;
+  const std::string file = out.filename().string();
+  DSPDEM_CHECK(!file.empty() && file != "." && file != "..", "--montage {}: names a folder, not an image file", name);
+  std::string ext = out.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (ext == ".png") return out;
+  static const std::set<std::string> other = {".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".gif", ".ppm",
+                                              ".pnm", ".webp", ".svg", ".pdf",  ".eps", ".ps"};
+  DSPDEM_CHECK(!other.count(ext), "--montage {}: a montage is a PNG image; name it .png (or leave the type off)", name);
+  return out += ".png";
+}
 }  // namespace
 
 MontageFrames write_montage(const MontageArgs& a) {
   DSPDEM_CHECK(!a.run_dirs.empty(), "--montage: no run folder given");
   DSPDEM_CHECK(!a.out.empty(), "--montage: no output image given");
-  // The image is a PNG: a name without an extension gets ".png", as plotting tools do; any
-  // other extension is refused before anything is drawn rather than given PNG bytes.
-  fs::path out = a.out;
-  if (!out.has_extension()) out += ".png";
-  std::string ext = out.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  DSPDEM_CHECK(ext == ".png", "--montage {}: a montage is a PNG image; name it .png (or give no extension)", a.out);
+  const fs::path out = png_path(a.out);
   DSPDEM_CHECK(a.labels.empty() || a.labels.size() == a.run_dirs.size(),
                "--montage: {} label(s) for {} run folder(s): give one per run or none", a.labels.size(),
                a.run_dirs.size());

@@ -18,7 +18,7 @@ struct MontageArgs {
   std::string field;              ///< stress rows: default the first run's case
   std::string range;              ///< stress rows: MIN:MAX (default: 0.5-99.5 percentiles over the panels)
   int width = 640, height = 480;  ///< of one panel
-  std::string out;                ///< PNG to write (through a temporary name)
+  std::string out;                ///< PNG to write; ".png" is added to a name without it (write_montage)
 };
 
 /// What a montage drew: per run, the frame used and its time.
@@ -28,7 +28,8 @@ struct MontageFrames {
 };
 
 /// Draws and writes the montage. Throws Error for a missing run, an unknown view or cut, a
-/// cracks row for a run without joints, or labels that do not match the runs.
+/// cracks row for a run without joints, labels that do not match the runs, or an output name
+/// that is a folder or has another image type's extension (.jpg, .pdf, ...).
 MontageFrames write_montage(const MontageArgs& a);
 
 }  // namespace dspdem

@@ -476,8 +476,9 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
 }
 
 // `dspdem render --montage`: the runs side by side, a column per run and a row per --rows
-// entry, each panel --size; a name without an extension becomes a .png, another extension
-// and a label count that does not match the runs are refused before anything is drawn.
+// entry, each panel --size; a name that does not end in .png gets it (a dot in the name is
+// kept), another image type's extension, a folder and a label count that does not match the
+// runs are refused before anything is drawn.
 TEST_F(Cli, RenderMontageTilesRunsByRowsAndWritesAPng) {
   const fs::path out = dir_ / "run";
   ASSERT_EQ(run("-q run " + write("good.toml", good_).string() + " --out " + out.string()).code, 0);
@@ -491,16 +492,19 @@ TEST_F(Cli, RenderMontageTilesRunsByRowsAndWritesAPng) {
     return b.size() < 24 || b.compare(1, 3, "PNG") != 0 ? std::pair(0, 0) : std::pair(word(16), word(20));
   };
   const std::string runs = out.string() + " " + out.string();
-  const Result r = run("-q render " + runs + " --montage " + (dir_ / "m").string() +
-                       " --rows stress,fragments:z --label first second --size 160x120");
+  const Result r = run("-q render " + runs + " --montage " + (dir_ / "m_v7.5").string() +
+                       " --rows stress,fragments:z,fragments --label first second --size 160x120");
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_FALSE(fs::exists(dir_ / "m"));
-  EXPECT_EQ(png_size(dir_ / "m.png"), std::pair(2 * 160, 2 * 120));  // two runs, two rows
+  EXPECT_FALSE(fs::exists(dir_ / "m_v7.5"));
+  EXPECT_EQ(png_size(dir_ / "m_v7.5.png"), std::pair(2 * 160, 3 * 120));  // two runs, three rows
 
   const Result jpg = run("-q render " + runs + " --montage " + (dir_ / "m.jpg").string() + " --size 160x120");
   EXPECT_NE(jpg.code, 0);
   EXPECT_NE(jpg.out.find("m.jpg: a montage is a PNG image"), std::string::npos) << jpg.out;
   EXPECT_FALSE(fs::exists(dir_ / "m.jpg"));
+  const Result folder = run("-q render " + runs + " --montage " + (dir_ / "sub/").string() + " --size 160x120");
+  EXPECT_NE(folder.code, 0);
+  EXPECT_NE(folder.out.find("names a folder, not an image file"), std::string::npos) << folder.out;
   const Result labels = run("-q render " + runs + " --montage " + (dir_ / "l.png").string() + " --label one");
   EXPECT_NE(labels.code, 0);
   EXPECT_NE(labels.out.find("1 label(s) for 2 run folder(s)"), std::string::npos) << labels.out;
