@@ -49,6 +49,7 @@ std::size_t nearest(const std::vector<render::FrameRef>& frames, double t) {
     if (std::abs(frames[i].time - t) < std::abs(frames[best].time - t)) best = i;
   return best;
 }
+
 // The file a montage goes to: it is a PNG, so a name that does not end in .png gets ".png"
 // (a dot in it, as in montage_v7.5, is part of the name), as plotting tools do; a name with
 // another image or document type's extension is refused before anything is drawn rather than
