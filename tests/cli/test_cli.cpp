@@ -802,6 +802,19 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   }
   for (const char* o : {"v2.5_o1", "v2.5_o2", "v7.5_o1", "v7.5_o2"})
     EXPECT_TRUE(fs::exists(dir_ / "rep" / "orientations" / o / "summary.json")) << o;
+  // The runs read as an impact test: each event's breakage probability over all six runs
+  // (report/breakage_probability.hpp), per speed what was seen, and its plot.
+  const auto runs_of_event = [](const std::string& text, const std::string& event) {
+    const auto at = text.find("| " + event + " | ");
+    if (at == std::string::npos) return std::string("missing");
+    const auto from = text.find(" of ", at + event.size() + 4);
+    return text.substr(from, text.find(" |", from) - from);
+  };
+  EXPECT_NE(md.find("### Breakage probability against the impact energy"), std::string::npos) << md;
+  EXPECT_EQ(runs_of_event(md, "a crack through (a second piece >= 1 % or the largest < 90 %)"), " of 6") << md;
+  EXPECT_EQ(runs_of_event(md, "broken (the largest piece < 90 %)"), " of 6") << md;
+  EXPECT_NE(md.find("| speed [m/s] | a crack through | fitted | broken | fitted |"), std::string::npos) << md;
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "images" / "breakage_probability.png"));
   EXPECT_NE(slurp(dir_ / "rep" / "orientations" / "v7.5_o2" / "case.resolved.toml").find("orientation = 2"),
             std::string::npos);
   std::ifstream csv(dir_ / "rep" / "orientations.csv");
@@ -866,6 +879,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   EXPECT_NE(md2.find("; not counted, a run failed: orientation 1."), std::string::npos) << md2;
   EXPECT_NE(md2.find("| 2.5 | no through crack | 2 |"), std::string::npos) << md2;
   EXPECT_NE(md2.find("0: 1, 2: 1 |"), std::string::npos) << md2;
+  EXPECT_EQ(runs_of_event(md2, "broken (the largest piece < 90 %)"), " of 5") << md2;  // the lost run left out
   // Its first speeds are then upper bounds only, and say so; the others' do not.
   const auto rows2 = onset_rows(md2);
   ASSERT_EQ(rows2.size(), 4u) << md2;

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "report/onsets.hpp"
 #include "report/proportion.hpp"
+#include "scenes/sphere_impact/breakage.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 
 namespace dspdem::sphere {
@@ -158,6 +159,8 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
                                             failed_mesh.size() > 1 ? "s" : "", fmt::join(failed_mesh, ", "))));
     }
     onset_table(doc, through_at, few_at);
+    breakage_tables(doc, speeds, by_speed, (fs::path(where.dir) / "images" / "breakage_probability.png").string(),
+                    "images/breakage_probability.png");
   }
   return every;
 }

@@ -1,0 +1,164 @@
+#include "report/breakage_probability.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace dspdem::report {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kLn2 = 0.69314718055994530942;
+// The chi-square quantile of one degree of freedom at 95 %: the deviance that bounds the
+// profile-likelihood interval.
+constexpr double kDeviance95 = 3.841458820694124;
+
+// The argument in [a, b] that maximises f, by golden-section search: the profile likelihoods
+// below are smooth and single-peaked inside the bracket the grid search hands over.
+template <class F>
+double golden_max(const F& f, double a, double b, int iterations = 60) {
+  const double g = 0.61803398874989484820;
+  double c = b - g * (b - a), d = a + g * (b - a), fc = f(c), fd = f(d);
+  for (int i = 0; i < iterations && b - a > 1e-14 * std::max(1.0, std::abs(b)); ++i) {
+    if (fc >= fd)
+      b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
+    else
+      a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
+  }
+  return fc >= fd ? c : d;
+}
+
+// The maximum of f over [a, b): a grid of n points first (a profile likelihood may have
+// more than one bump near the threshold), then golden section round the best of them.
+template <class F>
+double grid_then_golden(const F& f, double a, double b, int n, double& best) {
+  int jbest = 0;
+  best = -kInf;
+  for (int j = 0; j < n; ++j) {
+    const double v = f(a + (b - a) * j / n);
+    if (v > best) best = v, jbest = j;
+  }
+  const double lo = a + (b - a) * std::max(0, jbest - 1) / n, hi = a + (b - a) * (jbest + 1) / n;
+  const double x = golden_max(f, lo, std::min(hi, b - 1e-12 * (b - a)));
+  const double v = f(x);
+  if (v > best) {
+    best = v;
+    return x;
+  }
+  return a + (b - a) * jbest / n;
+}
+
+// The rate that maximises the likelihood at a given w_min: the root of the score in the
+// rate, sum over broken runs of e / (exp(rate e) - 1) = sum over held runs of e, with e = W -
+// w_min > 0. The left side falls from +infinity to 0, so with a held run above w_min there is
+// exactly one root; it is found by bisection on log(rate).
+double best_rate(const std::vector<BreakageTrial>& t, double w_min) {
+  double held = 0, e_max = 0;
+  for (const auto& x : t) {
+    const double e = x.energy - w_min;
+    if (e <= 0) continue;
+    e_max = std::max(e_max, e);
+    if (!x.broken) held += e;
+  }
+  DSPDEM_ASSERT(held > 0 && e_max > 0);
+  auto score = [&](double log_rate) {
+    const double r = std::exp(log_rate);
+    double s = -held;
+    for (const auto& x : t)
+      if (x.broken) s += (x.energy - w_min) / std::expm1(r * (x.energy - w_min));
+    return s;
+  };
+  double lo = -std::log(e_max), hi = lo;
+  for (int i = 0; i < 400 && score(lo) < 0; ++i) lo -= 1;
+  for (int i = 0; i < 400 && score(hi) > 0; ++i) hi += 1;
+  for (int i = 0; i < 60 && hi - lo > 1e-13; ++i) {
+    const double m = 0.5 * (lo + hi);
+    (score(m) > 0 ? lo : hi) = m;
+  }
+  return std::exp(0.5 * (lo + hi));
+}
+
+}  // namespace
+
+double BreakageFit::probability(double w) const {
+  DSPDEM_CHECK(outcome == Outcome::fitted, "internal: the breakage probability of a curve that was not fitted");
+  return w <= w_min ? 0.0 : -std::expm1(-rate * (w - w_min));
+}
+
+double BreakageFit::energy_at(double p) const {
+  DSPDEM_CHECK(outcome == Outcome::fitted, "internal: the breakage energy of a curve that was not fitted");
+  DSPDEM_CHECK(p > 0 && p < 1, "internal: a breakage probability of {} (0 < p < 1)", p);
+  return w_min - std::log1p(-p) / rate;
+}
+
+double breakage_log_likelihood(const std::vector<BreakageTrial>& trials, double w_min, double rate) {
+  double ll = 0;
+  for (const auto& t : trials) {
+    const double e = t.energy - w_min;
+    if (t.broken) {
+      if (e <= 0) return -kInf;
+      ll += std::log(-std::expm1(-rate * e));
+    } else if (e > 0) {
+      ll -= rate * e;
+    }
+  }
+  return ll;
+}
+
+BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials) {
+  DSPDEM_CHECK(!trials.empty(), "breakage probability: no runs to fit");
+  BreakageFit f;
+  for (const auto& t : trials) {
+    DSPDEM_CHECK(std::isfinite(t.energy) && t.energy >= 0, "breakage probability: an impact energy of {} J/kg",
+                 t.energy);
+    ++f.trials;
+    if (t.broken) {
+      ++f.broken;
+      f.above = std::isnan(f.above) ? t.energy : std::min(f.above, t.energy);
+    } else {
+      f.below = std::isnan(f.below) ? t.energy : std::max(f.below, t.energy);
+    }
+  }
+  using O = BreakageFit::Outcome;
+  if (f.broken == 0) return f.outcome = O::none_broke, f;
+  if (f.broken == f.trials) return f.outcome = O::all_broke, f;
+  if (f.below < f.above) return f.outcome = O::separated, f;
+  f.outcome = O::fitted;
+
+  // W_min lies in [0, the lowest energy of a broken run): at or above it that run could not
+  // have broken. The likelihood is maximised over the rate for each W_min in closed form up
+  // to a root (best_rate), and over W_min by search.
+  auto profile = [&](double w_min) { return breakage_log_likelihood(trials, w_min, best_rate(trials, w_min)); };
+  f.w_min = grid_then_golden(profile, 0.0, f.above, 128, f.log_likelihood);
+  f.rate = best_rate(trials, f.w_min);
+  f.log_likelihood = breakage_log_likelihood(trials, f.w_min, f.rate);
+
+  // The profile likelihood of W50, the energy at P = 1/2: over W_min below both W50 and the
+  // lowest broken run, with the rate that puts P = 1/2 at W50.
+  auto profile50 = [&](double w50) {
+    double best = -kInf;
+    grid_then_golden([&](double w_min) { return breakage_log_likelihood(trials, w_min, kLn2 / (w50 - w_min)); }, 0.0,
+                     std::min(w50, f.above), 64, best);
+    return best;
+  };
+  const double w50 = f.energy_at(0.5);
+  const double top = std::max(f.log_likelihood, profile50(w50));
+  auto outside = [&](double w) { return 2 * (top - profile50(w)) > kDeviance95; };
+  auto bisect = [&](double in, double out) {
+    for (int i = 0; i < 80 && std::abs(out - in) > 1e-9 * std::abs(in); ++i) {
+      const double m = 0.5 * (in + out);
+      (outside(m) ? out : in) = m;
+    }
+    return 0.5 * (in + out);
+  };
+  const double tiny = 1e-9 * w50;
+  f.w50_lo = outside(tiny) ? bisect(w50, tiny) : 0.0;
+  double out = 2 * w50;
+  for (int i = 0; i < 60 && !outside(out); ++i) out *= 2;
+  f.w50_hi = outside(out) ? bisect(w50, out) : kInf;
+  return f;
+}
+
+}  // namespace dspdem::report

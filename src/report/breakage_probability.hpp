@@ -1,0 +1,64 @@
+// The breakage probability of a particle against its impact energy, fitted to runs that each
+// did or did not break: the form of Vogel & Peukert (L. Vogel, W. Peukert, "Breakage
+// behaviour of different materials - construction of a mastercurve for the breakage
+// probability", Powder Technology 129:101-110, 2003), which comminution uses to read single-
+// particle impact tests and which DEM codes' breakage models build on:
+//
+//   P(W) = 1 - exp(-f_Mat x k (W - W_min))  for W > W_min, else 0,
+//
+// W the kinetic energy per mass at the impact (v^2 / 2, J/kg), x the particle's size, k the
+// number of impacts (1 here), W_min the energy below which nothing breaks and f_Mat a
+// material constant. A sweep of speeds run on several meshes (the sphere's realisations) is
+// such a test: which mesh breaks near the threshold is a draw, and the fitted curve says over
+// what range of speeds the draw lies, which single counts at one speed cannot.
+//
+// The fit is by maximum likelihood over the runs, each a Bernoulli trial; the 95 % interval
+// of the energy at P = 1/2 is the profile-likelihood one (deviance 3.84, chi-square with one
+// degree of freedom), which unlike a Wald interval does not assume the likelihood symmetric,
+// as it is not near W_min.
+#pragma once
+#include <cmath>
+#include <vector>
+
+namespace dspdem::report {
+
+/// One run: its impact energy per mass [J/kg] and whether it broke.
+struct BreakageTrial {
+  double energy = 0;
+  bool broken = false;
+};
+
+struct BreakageFit {
+  enum class Outcome {
+    fitted,      ///< w_min, rate and the interval hold
+    none_broke,  ///< no run broke: only that P is small up to `below`
+    all_broke,   ///< every run broke: only that P is large from `above` on
+    separated,   ///< every run below `above` held and every one from it broke: the threshold lies
+                 ///< between `below` and `above`, and the data cannot say how wide the draw is
+  };
+  Outcome outcome = Outcome::none_broke;
+  int trials = 0, broken = 0;
+  /// The highest energy of a run that held, the lowest of one that broke (NaN: none such).
+  double below = std::nan(""), above = std::nan("");
+  /// fitted: W_min [J/kg] and the rate f_Mat x k [kg/J].
+  double w_min = std::nan(""), rate = std::nan("");
+  double log_likelihood = std::nan("");
+  /// fitted: the 95 % profile-likelihood interval of the energy at P = 1/2; w50_hi is
+  /// +infinity when the data do not bound it above.
+  double w50_lo = std::nan(""), w50_hi = std::nan("");
+
+  /// The fitted probability of breaking at energy w (fitted only).
+  double probability(double w) const;
+  /// The energy at which the fitted probability is p, 0 < p < 1 (fitted only).
+  double energy_at(double p) const;
+};
+
+/// The log-likelihood of the trials under P(W) = 1 - exp(-rate (W - w_min)); -infinity when a
+/// run at or below w_min broke.
+double breakage_log_likelihood(const std::vector<BreakageTrial>& trials, double w_min, double rate);
+
+/// Fits W_min >= 0 and the rate by maximum likelihood. Throws Error for an energy that is
+/// negative or not finite, or for no trials.
+BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials);
+
+}  // namespace dspdem::report
