@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -125,7 +127,18 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials) {
   if (f.broken == 0) return f.outcome = O::none_broke, f;
   if (f.broken == f.trials) return f.outcome = O::all_broke, f;
   if (f.below < f.above) return f.outcome = O::separated, f;
-  f.outcome = O::fitted;
+  // With broken and held runs mixed at one energy L only, the likelihood's top is a ridge or is
+  // reached only as the rate grows without bound and W_min tends to L: P(L) is fixed and
+  // nothing else, and a search would hand back whichever point of the ridge it met first. With
+  // none (a run held above one that broke, each energy all one way) the data cross without a
+  // draw to fit either.
+  std::map<double, std::pair<int, int>> at;  // energy: held, broken
+  for (const auto& t : trials) ++(t.broken ? at[t.energy].second : at[t.energy].first);
+  int mixed = 0;
+  for (const auto& [w, hb] : at)
+    if (hb.first > 0 && hb.second > 0) ++mixed, f.mixed_energy = w;
+  if (mixed < 2) return f.outcome = O::too_few_mixed, f;
+  f.outcome = O::fitted, f.mixed_energy = std::nan("");
 
   // W_min lies in [0, the lowest energy of a broken run): at or above it that run could not
   // have broken. The likelihood is maximised over the rate for each W_min in closed form up
@@ -157,7 +170,7 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials) {
   f.w50_lo = outside(tiny) ? bisect(w50, tiny) : 0.0;
   double out = 2 * w50;
   for (int i = 0; i < 60 && !outside(out); ++i) out *= 2;
-  f.w50_hi = outside(out) ? bisect(w50, out) : kInf;
+  f.w50_hi = outside(out) ? bisect(out / 2, out) : kInf;  // out / 2 is w50 or a point found inside
   return f;
 }
 

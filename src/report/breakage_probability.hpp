@@ -12,10 +12,12 @@
 // such a test: which mesh breaks near the threshold is a draw, and the fitted curve says over
 // what range of speeds the draw lies, which single counts at one speed cannot.
 //
-// The fit is by maximum likelihood over the runs, each a Bernoulli trial; the 95 % interval
-// of the energy at P = 1/2 is the profile-likelihood one (deviance 3.84, chi-square with one
-// degree of freedom), which unlike a Wald interval does not assume the likelihood symmetric,
-// as it is not near W_min.
+// The fit is by maximum likelihood over the runs, each a Bernoulli trial; the interval of the
+// energy at P = 1/2 is the profile-likelihood one at a deviance of 3.84 (chi-square with one
+// degree of freedom at 95 %), which unlike a Wald interval does not assume the likelihood
+// symmetric, as it is not near W_min. Its 95 % is nominal: Wilks's theorem behind it is
+// asymptotic and strained here by W_min, a threshold with a bound at 0. The fit needs broken
+// and held runs mixed at two energies or more; without, it names what the data say instead.
 #pragma once
 #include <cmath>
 #include <vector>
@@ -30,16 +32,21 @@ struct BreakageTrial {
 
 struct BreakageFit {
   enum class Outcome {
-    fitted,      ///< w_min, rate and the interval hold
-    none_broke,  ///< no run broke: only that P is small up to `below`
-    all_broke,   ///< every run broke: only that P is large from `above` on
-    separated,   ///< every run below `above` held and every one from it broke: the threshold lies
-                 ///< between `below` and `above`, and the data cannot say how wide the draw is
+    fitted,         ///< w_min, rate and the interval hold
+    none_broke,     ///< no run broke: only that P is small up to `below`
+    all_broke,      ///< every run broke: only that P is large from `above` on
+    separated,      ///< every run below `above` held and every one from it broke: the threshold lies
+                    ///< between `below` and `above`, and the data cannot say how wide the draw is
+    too_few_mixed,  ///< broken and held runs mix at fewer than two energies (at one: `mixed_energy`,
+                    ///< where they fix P and nothing else), though not separated: the likelihood's
+                    ///< top is a ridge or lies at an infinite rate, so the curve is not fixed
   };
   Outcome outcome = Outcome::none_broke;
   int trials = 0, broken = 0;
   /// The highest energy of a run that held, the lowest of one that broke (NaN: none such).
   double below = std::nan(""), above = std::nan("");
+  /// too_few_mixed: the energy at which broken and held runs mix (NaN: at none).
+  double mixed_energy = std::nan("");
   /// fitted: W_min [J/kg] and the rate f_Mat x k [kg/J].
   double w_min = std::nan(""), rate = std::nan("");
   double log_likelihood = std::nan("");
@@ -57,8 +64,9 @@ struct BreakageFit {
 /// run at or below w_min broke.
 double breakage_log_likelihood(const std::vector<BreakageTrial>& trials, double w_min, double rate);
 
-/// Fits W_min >= 0 and the rate by maximum likelihood. Throws Error for an energy that is
-/// negative or not finite, or for no trials.
+/// Fits W_min >= 0 and the rate by maximum likelihood when broken and held runs mix at two
+/// energies or more (energies equal to the last bit count as one). Throws Error for an energy
+/// that is negative or not finite, or for no trials.
 BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials);
 
 }  // namespace dspdem::report

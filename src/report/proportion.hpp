@@ -9,8 +9,11 @@
 // a point at k = 0 or k = n, which is where small realisation counts often sit; R. G.
 // Newcombe (Stat. Med. 17:857-872, 1998) compares it with six other methods and recommends it.
 #pragma once
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace dspdem::report {
 
@@ -29,6 +32,13 @@ inline ProportionInterval wilson_interval(int k, int n, double z = 1.95996398454
   // At k = 0 the bounds' lower end is 0 exactly (centre and half are equal), at k = n the
   // upper is 1: set so, for rounding leaves a residue of 1e-18 there.
   return {k <= 0 ? 0.0 : std::max(0.0, centre - half), k >= n ? 1.0 : std::min(1.0, centre + half)};
+}
+
+/// "k of n (95 %: lo-hi)": a count with its Wilson interval, so that two reports' counts can be
+/// read against each other.
+inline std::string count_of(int k, int n) {
+  const ProportionInterval i = wilson_interval(k, n);
+  return fmt::format("{} of {} (95 %: {:.2f}-{:.2f})", k, n, i.lo, i.hi);
 }
 
 }  // namespace dspdem::report

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/error.hpp"
@@ -23,15 +24,16 @@ double speed_of(double w) { return std::sqrt(2.0 * w); }
 // at 2.5 and 5 m/s is its absence) and a sphere broken, its largest piece under 90 % (Vogel
 // & Peukert count a particle broken once it has lost a share of its mass).
 struct Event {
-  const char* name;
+  const char *name, *short_name;
   bool (*holds)(const SphereImpactResult&);
 };
-const Event kEvents[] = {
-    {"a crack through (a second piece >= 1 % or the largest < 90 %)",
+constexpr std::size_t kN = 2;
+const std::array<Event, kN> kEvents = {{
+    {"a crack through (a second piece >= 1 % or the largest < 90 %)", "a crack through",
      [](const SphereImpactResult& r) { return r.through_crack; }},
-    {"broken (the largest piece < 90 %)",
+    {"broken (the largest piece < 90 %)", "broken",
      [](const SphereImpactResult& r) { return r.fragments.largest_fraction() < SphereImpactResult::intact_fraction; }},
-};
+}};
 
 std::string speed_text(double w) {
   return std::isinf(w) ? std::string("unbounded") : fmt::format("{:.2f}", speed_of(w));
@@ -42,13 +44,27 @@ std::vector<std::string> fit_row(const Event& e, const report::BreakageFit& f, d
   using O = report::BreakageFit::Outcome;
   std::vector<std::string> row = {e.name, fmt::format("{} of {}", f.broken, f.trials)};
   if (f.outcome != O::fitted) {
-    const std::string why = f.outcome == O::none_broke ? fmt::format("none broke, up to {:.2f} m/s", speed_of(f.below))
-                            : f.outcome == O::all_broke
-                                ? fmt::format("all broke, from {:.2f} m/s", speed_of(f.above))
-                                : fmt::format(
-                                      "every run up to {:.2f} m/s held and every one from {:.2f} m/s "
-                                      "broke: no draw to fit",
-                                      speed_of(f.below), speed_of(f.above));
+    std::string why;
+    switch (f.outcome) {
+      case O::none_broke:
+        why = fmt::format("none broke, up to {:.2f} m/s", speed_of(f.below));
+        break;
+      case O::all_broke:
+        why = fmt::format("all broke, from {:.2f} m/s", speed_of(f.above));
+        break;
+      case O::separated:
+        why = fmt::format("every run up to {:.2f} m/s held and every one from {:.2f} m/s broke: no draw to fit",
+                          speed_of(f.below), speed_of(f.above));
+        break;
+      case O::too_few_mixed:
+        why = std::isnan(f.mixed_energy)
+                  ? std::string("broken and held runs mix at no speed, yet cross: no curve to fit")
+                  : fmt::format("broken and held runs mix at {:.2f} m/s only: two speeds are needed to fit a curve",
+                                speed_of(f.mixed_energy));
+        break;
+      case O::fitted:
+        break;
+    }
     row.insert(row.end(), {why, "-", "-", "-", "-", "-"});
     return row;
   }
@@ -68,8 +84,7 @@ void breakage_tables(report::Document& doc, const std::vector<double>& speeds,
                      const std::string& image_in_doc) {
   DSPDEM_CHECK(speeds.size() == by_speed.size() && speeds.size() > 1,
                "internal: the breakage probability over {} speeds with runs for {}", speeds.size(), by_speed.size());
-  constexpr std::size_t kN = std::size(kEvents);
-  std::vector<report::BreakageTrial> trials[kN];
+  std::array<std::vector<report::BreakageTrial>, kN> trials;
   double diameter = 0;
   for (const auto& runs : by_speed)
     for (const RealisationRun& run : runs) {
@@ -79,7 +94,7 @@ void breakage_tables(report::Document& doc, const std::vector<double>& speeds,
         trials[e].push_back({energy_of(run.result->speed), kEvents[e].holds(*run.result)});
     }
   if (trials[0].empty()) return;
-  report::BreakageFit fits[kN];
+  std::array<report::BreakageFit, kN> fits;
   for (std::size_t e = 0; e < kN; ++e) fits[e] = report::fit_breakage(trials[e]);
 
   doc.subsection("Breakage probability against the impact energy");
@@ -88,10 +103,11 @@ void breakage_tables(report::Document& doc, const std::vector<double>& speeds,
       "mesh breaks near the threshold is a draw. Fitted by maximum likelihood over the {} runs that finished, the "
       "breakage probability of Vogel & Peukert (Powder Technology 129:101-110, 2003), P = 1 - exp(-f_Mat x k (W - "
       "W_min)) above W_min, with W = v^2 / 2 the kinetic energy per mass at the impact, x the diameter ({:.0f} mm) "
-      "and k = 1 impact. In brackets after the speed at P = 50 %, its 95 % interval (profile likelihood), which "
-      "counts every run as a draw of its own: a mesh run at several speeds is not quite that (a mesh hard to split "
-      "at one speed tends to be hard at the next), so the interval is if anything too narrow. The last column is "
-      "how far the draw spreads in speed, the speed at 90 % over the speed at 10 %.",
+      "and k = 1 impact; runs that failed are left out. In brackets after the speed at P = 50 %, its 95 % interval "
+      "(profile likelihood, nominal), which counts every run as a draw of its own: runs of one mesh at several "
+      "speeds are not (a mesh hard to split at one speed tends to be hard at the next), so the interval is too "
+      "narrow, by how much these runs do not say. The last column is how far the draw spreads in speed, the speed "
+      "at 90 % over the speed at 10 %.",
       trials[0].size(), 1e3 * diameter));
   std::vector<std::vector<std::string>> rows;
   for (std::size_t e = 0; e < kN; ++e) rows.push_back(fit_row(kEvents[e], fits[e], diameter));
@@ -113,15 +129,16 @@ void breakage_tables(report::Document& doc, const std::vector<double>& speeds,
       int k = 0, n = 0;
       for (const RealisationRun& run : by_speed[si])
         if (run.result != nullptr) ++n, k += kEvents[e].holds(*run.result);
-      const report::ProportionInterval i = report::wilson_interval(k, n);
-      row.push_back(fmt::format("{} of {} ({:.2f}-{:.2f})", k, n, i.lo, i.hi));
+      row.push_back(report::count_of(k, n));
       row.push_back(fitted(e, speeds[si]));
       if (n > 0) curves[e].x.push_back(speeds[si]), curves[e].y.push_back(static_cast<double>(k) / n);
     }
     per_speed.push_back(row);
   }
-  doc.para("Per speed, the share of meshes that show each event (95 % Wilson interval) and the fitted probability:");
-  doc.table({"speed [m/s]", "a crack through", "fitted", "broken", "fitted"}, per_speed);
+  doc.para("Per speed, the meshes that show each event (95 % Wilson interval) and the fitted probability:");
+  std::vector<std::string> header = {"speed [m/s]"};
+  for (const Event& e : kEvents) header.insert(header.end(), {e.short_name, fmt::format("P fitted, {}", e.short_name)});
+  doc.table(header, per_speed);
   for (std::size_t e = 0; e < kN; ++e)
     if (fits[e].outcome == O::fitted) {
       render::Curve c{fmt::format("{}, fitted", kEvents[e].name), {}, {}};

@@ -19,13 +19,6 @@ namespace dspdem::sphere {
 namespace {
 namespace fs = std::filesystem;
 
-// "k of n (95 %: lo-hi)": a count over realisations with its Wilson interval, so that two
-// reports' counts can be read against each other (report/proportion.hpp).
-std::string of_n(int k, int n) {
-  const report::ProportionInterval i = report::wilson_interval(k, n);
-  return fmt::format("{} of {} (95 %: {:.2f}-{:.2f})", k, n, i.lo, i.hi);
-}
-
 // Per mesh, the lowest speed of the sweep with a through crack and with a few large pieces,
 // and the middle of those over the meshes: where dspdem's thresholds lie. The paper shows no
 // crack through at 5 m/s and several large regions at 7.5, and no speed between: its first
@@ -115,8 +108,8 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
                          t2 == "-" ? std::string("-1.000") : t2, r.crack_reach, r.crack_top, r.balance_max);
     }
     rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
-                      of_n(through, n), pieces.empty() ? "-" : pieces, largest.empty() ? "-" : largest,
-                      split.empty() ? "-" : split, of_n(met, n)});
+                      report::count_of(through, n), pieces.empty() ? "-" : pieces, largest.empty() ? "-" : largest,
+                      split.empty() ? "-" : split, report::count_of(met, n)});
   }
   const int last = where.k0 + where.realisations - 1;
   doc.subsection(fmt::format("The pattern over {} orientations of the mesh", where.realisations));
@@ -147,7 +140,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       if (ok) whole.push_back(o);
     const int known = static_cast<int>(met_every.size() - failed_mesh.size());
     if (known > 0) {
-      every.count = of_n(static_cast<int>(whole.size()), known);
+      every.count = report::count_of(static_cast<int>(whole.size()), known);
       every.most = 2 * static_cast<int>(whole.size()) > known;
       doc.para(fmt::format(
           "The paper's pattern at every speed run ({:g} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
