@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <random>
 #include <utility>
 
 #include "core/error.hpp"
@@ -109,7 +110,7 @@ double breakage_log_likelihood(const std::vector<BreakageTrial>& trials, double 
   return ll;
 }
 
-BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials) {
+BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials, bool interval) {
   DSPDEM_CHECK(!trials.empty(), "breakage probability: no runs to fit");
   BreakageFit f;
   for (const auto& t : trials) {
@@ -147,6 +148,7 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials) {
   f.w_min = grid_then_golden(profile, 0.0, f.above, 128, f.log_likelihood);
   f.rate = best_rate(trials, f.w_min);
   f.log_likelihood = breakage_log_likelihood(trials, f.w_min, f.rate);
+  if (!interval) return f;
 
   // The profile likelihood of W50, the energy at P = 1/2: over W_min below both W50 and the
   // lowest broken run, with the rate that puts P = 1/2 at W50.
@@ -172,6 +174,42 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials) {
   for (int i = 0; i < 60 && !outside(out); ++i) out *= 2;
   f.w50_hi = outside(out) ? bisect(out / 2, out) : kInf;  // out / 2 is w50 or a point found inside
   return f;
+}
+
+BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int resamples, unsigned long long seed) {
+  DSPDEM_CHECK(resamples > 0, "breakage probability: {} bootstrap resamples", resamples);
+  std::map<int, std::vector<BreakageTrial>> by_group;
+  for (const auto& t : trials) by_group[t.group].push_back(t);
+  std::vector<const std::vector<BreakageTrial>*> groups;
+  for (const auto& [g, runs] : by_group) groups.push_back(&runs);
+  BreakageBootstrap b;
+  b.groups = static_cast<int>(groups.size()), b.resamples = resamples;
+  if (groups.size() < 2) return b;
+  // The generator's own output, reduced by a modulus: its bias, under n / 2^64, is nothing
+  // beside the bootstrap's, and unlike std::uniform_int_distribution it gives the same draws
+  // with every standard library.
+  std::mt19937_64 rng(seed);
+  std::vector<double> w50;
+  std::vector<BreakageTrial> sample;
+  for (int r = 0; r < resamples; ++r) {
+    sample.clear();
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+      const auto* g = groups[rng() % groups.size()];
+      sample.insert(sample.end(), g->begin(), g->end());
+    }
+    const BreakageFit f = fit_breakage(sample, false);
+    if (f.outcome != BreakageFit::Outcome::fitted) {
+      ++b.not_fitted;
+      continue;
+    }
+    w50.push_back(f.energy_at(0.5));
+  }
+  if (w50.size() < 40) return b;  // too few fitted resamples to place the 2.5 % points
+  std::sort(w50.begin(), w50.end());
+  // The percentile points by the nearest rank.
+  auto at = [&](double q) { return w50[std::min(w50.size() - 1, static_cast<std::size_t>(q * w50.size()))]; };
+  b.w50_lo = at(0.025), b.w50_hi = at(0.975);
+  return b;
 }
 
 }  // namespace dspdem::report

@@ -28,6 +28,9 @@ namespace dspdem::report {
 struct BreakageTrial {
   double energy = 0;
   bool broken = false;
+  /// The unit whose runs are not independent draws (a mesh run at several speeds): the
+  /// bootstrap resamples groups whole.
+  int group = 0;
 };
 
 struct BreakageFit {
@@ -65,8 +68,22 @@ struct BreakageFit {
 double breakage_log_likelihood(const std::vector<BreakageTrial>& trials, double w_min, double rate);
 
 /// Fits W_min >= 0 and the rate by maximum likelihood when broken and held runs mix at two
-/// energies or more (energies equal to the last bit count as one). Throws Error for an energy
-/// that is negative or not finite, or for no trials.
-BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials);
+/// energies or more (energies equal to the last bit count as one); `interval` false leaves the
+/// interval out (it costs most of the fit). Throws Error for an energy that is negative or not
+/// finite, or for no trials.
+BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials, bool interval = true);
+
+/// The spread of the energy at P = 1/2 when the groups, not the runs, are the draws: the
+/// groups resampled with replacement `resamples` times (a cluster bootstrap; B. Efron, R.
+/// Tibshirani, An Introduction to the Bootstrap, 1993), each resample fitted, and the 2.5 % and
+/// 97.5 % points of the fitted W50 (the percentile interval). Runs of one mesh at several speeds
+/// are linked (a mesh hard to split at one speed tends to be at the next), which the profile
+/// interval, counting every run as a draw, does not see. Deterministic for a seed.
+struct BreakageBootstrap {
+  double w50_lo = std::nan(""), w50_hi = std::nan("");
+  int groups = 0, resamples = 0, not_fitted = 0;  ///< resamples with no draw to fit are left out
+};
+BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int resamples = 1000,
+                                unsigned long long seed = 2003);
 
 }  // namespace dspdem::report

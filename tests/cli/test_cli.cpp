@@ -811,6 +811,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
     return from == std::string::npos ? std::string("no count") : text.substr(from, text.find(" |", from) - from);
   };
   EXPECT_NE(md.find("### Breakage probability against the impact energy"), std::string::npos) << md;
+  EXPECT_NE(md.find("| at 50 % (95 %, runs) | 95 %, meshes resampled |"), std::string::npos) << md;
   EXPECT_EQ(runs_of_event(md, "a crack through (a second piece >= 1 % or the largest < 90 %)"), " of 6") << md;
   EXPECT_EQ(runs_of_event(md, "broken (the largest piece < 90 %)"), " of 6") << md;
   EXPECT_NE(md.find("| speed [m/s] | a crack through | P fitted, a crack through | broken | P fitted, broken |"),
