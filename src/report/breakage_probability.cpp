@@ -197,17 +197,31 @@ BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int re
       const auto* g = groups[rng() % groups.size()];
       sample.insert(sample.end(), g->begin(), g->end());
     }
+    // A resample in which nothing broke has its W50 above every run, one in which all broke
+    // below every run: they are the tails, kept as +infinity and 0 (dropping them would narrow
+    // the interval). One with a clean threshold or too few mixed energies has a W50 the data do
+    // not place: dropped, and counted.
     const BreakageFit f = fit_breakage(sample, false);
-    if (f.outcome != BreakageFit::Outcome::fitted) {
+    using O = BreakageFit::Outcome;
+    if (f.outcome == O::fitted)
+      w50.push_back(f.energy_at(0.5));
+    else if (f.outcome == O::none_broke)
+      w50.push_back(kInf);
+    else if (f.outcome == O::all_broke)
+      w50.push_back(0.0);
+    else
       ++b.not_fitted;
-      continue;
-    }
-    w50.push_back(f.energy_at(0.5));
   }
-  if (w50.size() < 40) return b;  // too few fitted resamples to place the 2.5 % points
+  // More dropped than one tail holds would move the 2.5 % points by more than their own
+  // meaning: no interval then.
+  if (b.not_fitted > 0.025 * resamples || w50.size() < 40) return b;
   std::sort(w50.begin(), w50.end());
-  // The percentile points by the nearest rank.
-  auto at = [&](double q) { return w50[std::min(w50.size() - 1, static_cast<std::size_t>(q * w50.size()))]; };
+  // The percentile points by the nearest rank: the smallest value with at least a share q of
+  // the values at or below it.
+  auto at = [&](double q) {
+    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(w50.size())));
+    return w50[std::clamp<std::size_t>(rank, 1, w50.size()) - 1];
+  };
   b.w50_lo = at(0.025), b.w50_hi = at(0.975);
   return b;
 }

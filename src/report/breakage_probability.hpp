@@ -35,7 +35,7 @@ struct BreakageTrial {
 
 struct BreakageFit {
   enum class Outcome {
-    fitted,         ///< w_min, rate and the interval hold
+    fitted,         ///< w_min and rate hold, and the interval unless it was not asked for
     none_broke,     ///< no run broke: only that P is small up to `below`
     all_broke,      ///< every run broke: only that P is large from `above` on
     separated,      ///< every run below `above` held and every one from it broke: the threshold lies
@@ -54,7 +54,8 @@ struct BreakageFit {
   double w_min = std::nan(""), rate = std::nan("");
   double log_likelihood = std::nan("");
   /// fitted: the 95 % profile-likelihood interval of the energy at P = 1/2; w50_hi is
-  /// +infinity when the data do not bound it above.
+  /// +infinity when the data do not bound it above. NaN when fit_breakage was told to leave
+  /// the interval out.
   double w50_lo = std::nan(""), w50_hi = std::nan("");
 
   /// The fitted probability of breaking at energy w (fitted only).
@@ -78,10 +79,15 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials, bool interval
 /// Tibshirani, An Introduction to the Bootstrap, 1993), each resample fitted, and the 2.5 % and
 /// 97.5 % points of the fitted W50 (the percentile interval). Runs of one mesh at several speeds
 /// are linked (a mesh hard to split at one speed tends to be at the next), which the profile
-/// interval, counting every run as a draw, does not see. Deterministic for a seed.
+/// interval, counting every run as a draw, does not see. A resample in which nothing broke
+/// counts as a W50 of +infinity, one in which all broke as 0; one whose W50 the data do not
+/// place (a clean threshold, too few mixed energies) is left out and counted. Deterministic for
+/// a seed. With twenty groups a percentile interval still runs a little narrow.
 struct BreakageBootstrap {
+  /// NaN: fewer than two groups, or more than 2.5 % of the resamples left out (or fewer than
+  /// 40 kept); w50_hi +infinity when more than 2.5 % broke nowhere.
   double w50_lo = std::nan(""), w50_hi = std::nan("");
-  int groups = 0, resamples = 0, not_fitted = 0;  ///< resamples with no draw to fit are left out
+  int groups = 0, resamples = 0, not_fitted = 0;  ///< not_fitted: resamples left out
 };
 BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int resamples = 1000,
                                 unsigned long long seed = 2003);
