@@ -112,17 +112,22 @@ double breakage_log_likelihood(const std::vector<BreakageTrial>& trials, double 
 
 BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials, bool interval) {
   DSPDEM_CHECK(!trials.empty(), "breakage probability: no runs to fit");
-  BreakageFit f;
+  // Per energy, how many runs held and how many broke: the outcomes, the lowest energy of a
+  // broken run and the highest of a held one all come from it.
+  std::map<double, std::pair<int, int>> at;  // energy: held, broken
   for (const auto& t : trials) {
     DSPDEM_CHECK(std::isfinite(t.energy) && t.energy >= 0, "breakage probability: an impact energy of {} J/kg",
                  t.energy);
-    ++f.trials;
-    if (t.broken) {
-      ++f.broken;
-      f.above = std::isnan(f.above) ? t.energy : std::min(f.above, t.energy);
-    } else {
-      f.below = std::isnan(f.below) ? t.energy : std::max(f.below, t.energy);
-    }
+    ++(t.broken ? at[t.energy].second : at[t.energy].first);
+  }
+  BreakageFit f;
+  int mixed = 0;
+  double mixed_at = std::nan("");
+  for (const auto& [w, hb] : at) {
+    f.trials += hb.first + hb.second, f.broken += hb.second;
+    if (hb.second > 0 && std::isnan(f.above)) f.above = w;
+    if (hb.first > 0) f.below = w;
+    if (hb.first > 0 && hb.second > 0) ++mixed, mixed_at = w;
   }
   using O = BreakageFit::Outcome;
   if (f.broken == 0) return f.outcome = O::none_broke, f;
@@ -133,19 +138,15 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials, bool interval
   // nothing else, and a search would hand back whichever point of the ridge it met first. With
   // none (a run held above one that broke, each energy all one way) the data cross without a
   // draw to fit either.
-  std::map<double, std::pair<int, int>> at;  // energy: held, broken
-  for (const auto& t : trials) ++(t.broken ? at[t.energy].second : at[t.energy].first);
-  int mixed = 0;
-  for (const auto& [w, hb] : at)
-    if (hb.first > 0 && hb.second > 0) ++mixed, f.mixed_energy = w;
-  if (mixed < 2) return f.outcome = O::too_few_mixed, f;
-  f.outcome = O::fitted, f.mixed_energy = std::nan("");
+  if (mixed < 2) return f.mixed_energy = mixed_at, f.outcome = O::too_few_mixed, f;
+  f.outcome = O::fitted;
 
   // W_min lies in [0, the lowest energy of a broken run): at or above it that run could not
   // have broken. The likelihood is maximised over the rate for each W_min in closed form up
   // to a root (best_rate), and over W_min by search.
   auto profile = [&](double w_min) { return breakage_log_likelihood(trials, w_min, best_rate(trials, w_min)); };
-  f.w_min = grid_then_golden(profile, 0.0, f.above, 128, f.log_likelihood);
+  double best = -kInf;
+  f.w_min = grid_then_golden(profile, 0.0, f.above, 128, best);
   f.rate = best_rate(trials, f.w_min);
   f.log_likelihood = breakage_log_likelihood(trials, f.w_min, f.rate);
   if (!interval) return f;
