@@ -553,12 +553,31 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       }
       b.zone_groups = s.strings("zone_groups");
       b.zone_material = s.str("zone_material");
-      if (!b.zone_groups.empty() || !b.zone_material.empty()) {
-        if (b.zone_groups.empty() || b.zone_material.empty())
+      if (s.has("zone_box_min") || s.has("zone_box_max")) {
+        if (!s.has("zone_box_min") || !s.has("zone_box_max"))
+          fail("{}: [[bodies]] '{}': zone_box_min and zone_box_max come together", s.where(), b.name);
+        b.zone_box = true;
+        b.zone_box_min = s.vec3("zone_box_min");
+        b.zone_box_max = s.vec3("zone_box_max");
+        for (int i = 0; i < 3; ++i)
+          if (!(b.zone_box_min(i) < b.zone_box_max(i)))
+            fail(
+                "{}: [[bodies]] '{}': zone_box_max must lie above zone_box_min on every axis ({} is {:g}, not above "
+                "{:g})",
+                s.where("zone_box_max"), b.name, "xyz"[i], b.zone_box_max(i), b.zone_box_min(i));
+      }
+      const bool zone = !b.zone_groups.empty() || b.zone_box;
+      if (zone || !b.zone_material.empty()) {
+        if (!b.zone_groups.empty() && b.zone_material.empty())
           fail("{}: [[bodies]] '{}': zone_groups and zone_material come together", s.where(), b.name);
+        if (b.zone_box && b.zone_material.empty())
+          fail("{}: [[bodies]] '{}': a zone box (zone_box_min, zone_box_max) needs zone_material", s.where(), b.name);
+        if (!zone)
+          fail("{}: [[bodies]] '{}': zone_material needs zone_groups or a zone box (zone_box_min, zone_box_max)",
+               s.where("zone_material"), b.name);
         if (b.fracture == BodyConfig::Fracture::None)
-          fail("{}: [[bodies]] '{}' has zone_groups but no joints (fracture = \"none\")", s.where("zone_groups"),
-               b.name);
+          fail("{}: [[bodies]] '{}' has a joint zone but no joints (fracture = \"none\")",
+               s.where(b.zone_groups.empty() ? "zone_box_min" : "zone_groups"), b.name);
         const Index zi = material_index(b.zone_material, s.where("zone_material"));
         if (!c.joint_materials[zi].given)
           fail("{}: [[bodies]] '{}': zone_material '{}' has no joint parameters", s.where("zone_material"), b.name,

@@ -216,14 +216,34 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       for_body_groups(bi, bc.fracture_groups, "fracture_groups", [&](Index gid) { in.fracturable[gid] = 1; });
     }
     // Joint zones: elements whose joints (with another element of the same zone) take the
-    // zone material's joint parameters.
+    // zone material's joint parameters; from volume groups, or by centroid from a box.
     std::vector<Index> zone(ne, -1);
     for (std::size_t bi = 0; bi < c.bodies.size(); ++bi) {
       const BodyConfig& bc = c.bodies[bi];
-      if (bc.zone_groups.empty()) continue;
+      if (bc.zone_groups.empty() && !bc.zone_box) continue;
       Index zm = 0;
       while (c.materials[zm].name != bc.zone_material) ++zm;  // checked by the case reader
       for_body_groups(bi, bc.zone_groups, "zone_groups", [&](Index gid) { zone[gid] = zm; });
+      if (!bc.zone_box) continue;
+      Index in_box = 0;
+      for (std::size_t b = 0; b < me.blocks.size(); ++b) {
+        const ElementBlock& blk = me.blocks[b];
+        const int k = blk.npe();
+        for (Index e = 0; e < blk.size(); ++e) {
+          const Index gid = block_offset[b] + e;
+          if (cfg_body[gid] != static_cast<Index>(bi)) continue;
+          Vec3 centroid = Vec3::Zero();
+          for (int a = 0; a < k; ++a) centroid += node_pos(me.x, blk.conn[static_cast<std::size_t>(e) * k + a]);
+          centroid /= k;
+          if ((centroid.array() > bc.zone_box_min.array()).all() && (centroid.array() < bc.zone_box_max.array()).all())
+            zone[gid] = zm, ++in_box;
+        }
+      }
+      DSPDEM_CHECK(in_box > 0,
+                   "[[bodies]] '{}': the zone box from zone_box_min [{:g}, {:g}, {:g}] to zone_box_max [{:g}, {:g}, "
+                   "{:g}] holds no element centroid of the body",
+                   bc.name, bc.zone_box_min.x(), bc.zone_box_min.y(), bc.zone_box_min.z(), bc.zone_box_max.x(),
+                   bc.zone_box_max.y(), bc.zone_box_max.z());
     }
     if (any) {
       m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);

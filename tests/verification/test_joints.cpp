@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <functional>
 #include <limits>
+#include <map>
 #include <tuple>
 
 #include "core/error.hpp"
@@ -468,17 +469,26 @@ TEST(Joints, FaceQuadratureWeightsAndShapeValues) {
   }
 }
 
-TEST(Joints, ZoneGroupsTakeTheZoneMaterialsJointParameters) {
-  // Three hexes along x; the last two form the zone "end" with a stronger joint material:
-  // the joint inside the zone takes its cohesion, the one across the zone's edge the body's.
+namespace {
+// A fracturable body (joint cohesion 10 MPa) with a second material "strong" (99 MPa) as its
+// zone material, for the joint-zone tests.
+CaseConfig case_with_a_strong_zone_material() {
   CaseConfig c = simple_case(30e9, 0.2, 2400);
   Material strong = c.materials[0];
   strong.name = "strong";
   c.materials.push_back(strong);
   make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
   c.joint_materials[1].c = 99e6;
-  c.bodies[0].zone_groups = {"end"};
   c.bodies[0].zone_material = "strong";
+  return c;
+}
+}  // namespace
+
+TEST(Joints, ZoneGroupsTakeTheZoneMaterialsJointParameters) {
+  // Three hexes along x; the last two form the zone "end" with a stronger joint material:
+  // the joint inside the zone takes its cohesion, the one across the zone's edge the body's.
+  CaseConfig c = case_with_a_strong_zone_material();
+  c.bodies[0].zone_groups = {"end"};
   Mesh mesh = box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1));
   Group end;
   end.name = "end";
@@ -499,6 +509,43 @@ TEST(Joints, ZoneGroupsTakeTheZoneMaterialsJointParameters) {
   }
   c.bodies[0].zone_groups = {"nothing"};
   EXPECT_THROW(build_model(c, mesh), Error);
+}
+
+TEST(Joints, AZoneBoxTakesTheElementsWhoseCentroidsLieInIt) {
+  // The same three hexes (centroids at x = 0.05, 0.15, 0.25), no group: a box over x > 0.1
+  // holds the last two, so only the joint between them takes the zone's cohesion.
+  CaseConfig c = case_with_a_strong_zone_material();
+  c.bodies[0].zone_box = true;
+  c.bodies[0].zone_box_min = Vec3(0.1, -1, -1);
+  c.bodies[0].zone_box_max = Vec3(1, 1, 1);
+  const Mesh mesh = box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1));
+  const auto cohesions = [&] {
+    const Model m = build_model(c, mesh);
+    const Index nt = m.mesh.blocks[0].size();
+    std::map<std::pair<Index, Index>, Real> out;
+    for (Index j = 0; j < m.joints.size(); ++j)
+      out[{std::min(m.joints.ea[j], m.joints.eb[j]) - nt, std::max(m.joints.ea[j], m.joints.eb[j]) - nt}] =
+          m.joints.params[m.joints.param[j]].c;
+    return out;
+  };
+  const std::pair<Index, Index> edge(0, 1), inside(1, 2);
+  auto coh = cohesions();
+  ASSERT_EQ(coh.size(), 2u);
+  EXPECT_EQ(coh.at(edge), 10e6) << "a joint across the box's edge keeps the body's material";
+  EXPECT_EQ(coh.at(inside), 99e6) << "the joint inside the box";
+  // A box over the middle element alone holds no joint of its own: both keep the body's.
+  c.bodies[0].zone_box_min = Vec3(0.1, -1, -1), c.bodies[0].zone_box_max = Vec3(0.2, 1, 1);
+  coh = cohesions();
+  EXPECT_EQ(coh.at(edge), 10e6);
+  EXPECT_EQ(coh.at(inside), 10e6);
+  // A box that holds no centroid is an error naming the body, not a zone that silently is not there.
+  c.bodies[0].zone_box_min = Vec3(0.31, -1, -1), c.bodies[0].zone_box_max = Vec3(1, 1, 1);
+  try {
+    build_model(c, mesh);
+    ADD_FAILURE() << "an empty zone box was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no element centroid"), std::string::npos) << e.what();
+  }
 }
 
 // Extrinsic insertion's closed joints (joint/ties.hpp): the copies of a node are tied into one
