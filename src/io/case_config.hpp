@@ -49,8 +49,8 @@ struct BodyConfig {
   std::vector<std::string> fracture_groups;
   std::vector<std::string> zone_groups;  ///< their joints take zone_material's joint parameters
   std::string zone_material;
-  /// Elements whose centroid lies in [zone_box_min, zone_box_max] join the zone too (a zone
-  /// with no mesh surface along its edge); off unless both corners are given.
+  /// Elements whose centroid lies in [zone_box_min, zone_box_max] (its faces included) join the
+  /// zone too (a zone with no mesh surface along its edge); off unless both corners are given.
   bool zone_box = false;
   Vec3 zone_box_min = Vec3::Zero(), zone_box_max = Vec3::Zero();
   std::vector<std::string> groups;

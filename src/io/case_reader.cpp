@@ -121,6 +121,8 @@ class Section {
   Vec3 vec3(const std::string& key) {
     const auto& k = spec(key, Type::Vec3);
     const toml::node* n = get_or_default(k);
+    // An "auto" key left out has no node: its caller must ask has() first.
+    if (!n) fail("internal: {} key '{}' is not given and has no default: ask has() first", label_, key);
     const toml::array* a = n->as_array();
     if (!a || a->size() != 3) fail("{}: {} key '{}' must be an array of 3 numbers [x, y, z]", where(key), label_, key);
     Vec3 v;

@@ -235,14 +235,15 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
           Vec3 centroid = Vec3::Zero();
           for (int a = 0; a < k; ++a) centroid += node_pos(me.x, blk.conn[static_cast<std::size_t>(e) * k + a]);
           centroid /= k;
-          if ((centroid.array() > bc.zone_box_min.array()).all() && (centroid.array() < bc.zone_box_max.array()).all())
+          if ((centroid.array() >= bc.zone_box_min.array()).all() &&
+              (centroid.array() <= bc.zone_box_max.array()).all())
             zone[gid] = zm, ++in_box;
         }
       }
       DSPDEM_CHECK(in_box > 0,
-                   "[[bodies]] '{}': the zone box from zone_box_min [{:g}, {:g}, {:g}] to zone_box_max [{:g}, {:g}, "
-                   "{:g}] holds no element centroid of the body",
-                   bc.name, bc.zone_box_min.x(), bc.zone_box_min.y(), bc.zone_box_min.z(), bc.zone_box_max.x(),
+                   "{}: [[bodies]] '{}': the zone box from zone_box_min [{:g}, {:g}, {:g}] to zone_box_max [{:g}, "
+                   "{:g}, {:g}] holds no element centroid of the body",
+                   c.path, bc.name, bc.zone_box_min.x(), bc.zone_box_min.y(), bc.zone_box_min.z(), bc.zone_box_max.x(),
                    bc.zone_box_max.y(), bc.zone_box_max.z());
     }
     if (any) {

@@ -172,6 +172,9 @@ TEST(CaseReader, JointZonesNeedBothKeysAndJointParameters) {
   // The box: both corners, the lower below the upper on every axis, and a material.
   const std::string lo = "bodies.0.zone_box_min=[-1.0, -1.0, -1.0]", hi = "bodies.0.zone_box_max=[1.0, 0.5, 1.0]";
   expect_error(base, {"zone_box_min and zone_box_max come together"}, {lo, "bodies.0.zone_material=\"rock\""});
+  expect_error(base, {"zone_box_min and zone_box_max come together"}, {hi, "bodies.0.zone_material=\"rock\""});
+  expect_error(base, {"has a joint zone but no joints"},
+               {lo, hi, "bodies.0.zone_material=\"rock\"", "bodies.0.fracture=\"none\""});
   expect_error(base, {"needs zone_material"}, {lo, hi});
   expect_error(base, {"zone_box_max must lie above zone_box_min", "(y is -2"},
                {lo, "bodies.0.zone_box_max=[1.0, -2.0, 1.0]", "bodies.0.zone_material=\"rock\""});
