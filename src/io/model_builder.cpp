@@ -227,14 +227,10 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       if (!bc.zone_box) continue;
       Index in_box = 0;
       for (std::size_t b = 0; b < me.blocks.size(); ++b) {
-        const ElementBlock& blk = me.blocks[b];
-        const int k = blk.npe();
-        for (Index e = 0; e < blk.size(); ++e) {
+        for (Index e = 0; e < me.blocks[b].size(); ++e) {
           const Index gid = block_offset[b] + e;
           if (cfg_body[gid] != static_cast<Index>(bi)) continue;
-          Vec3 centroid = Vec3::Zero();
-          for (int a = 0; a < k; ++a) centroid += node_pos(me.x, blk.conn[static_cast<std::size_t>(e) * k + a]);
-          centroid /= k;
+          const Vec3 centroid = element_centroid(me, me.blocks[b], e);
           if ((centroid.array() >= bc.zone_box_min.array()).all() &&
               (centroid.array() <= bc.zone_box_max.array()).all())
             zone[gid] = zm, ++in_box;

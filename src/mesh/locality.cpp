@@ -17,13 +17,10 @@ using Point = Kernel::Point_3;
 // New position of each element of a block along the Hilbert curve: order[k] = old index.
 std::vector<Index> hilbert_order(const Mesh& mesh, const ElementBlock& blk) {
   const Index ne = blk.size();
-  const int npe = blk.npe();
   std::vector<Point> centroid;
   centroid.reserve(static_cast<std::size_t>(ne));
   for (Index e = 0; e < ne; ++e) {
-    Vec3 c = Vec3::Zero();
-    for (int k = 0; k < npe; ++k) c += node_pos(mesh.x, blk.conn[static_cast<std::size_t>(e) * npe + k]);
-    c /= npe;
+    const Vec3 c = element_centroid(mesh, blk, e);
     centroid.emplace_back(c(0), c(1), c(2));
   }
   std::vector<std::size_t> order(static_cast<std::size_t>(ne));

@@ -85,6 +85,13 @@ void check_element_volumes(const Mesh& mesh) {
 }  // namespace dspdem
 
 namespace dspdem {
+Vec3 element_centroid(const Mesh& mesh, const ElementBlock& blk, Index e) {
+  const int npe = blk.npe();
+  Vec3 c = Vec3::Zero();
+  for (int k = 0; k < npe; ++k) c += node_pos(mesh.x, blk.conn[static_cast<std::size_t>(e) * npe + k]);
+  return c / npe;
+}
+
 Real element_volume(const Mesh& mesh, const ElementBlock& blk, Index e) {
   const Index* c = &blk.conn[static_cast<std::size_t>(e) * blk.npe()];
   auto P = [&](int i) { return node_pos(mesh.x, c[i]); };

@@ -70,4 +70,6 @@ inline Vec3 node_pos_ptr(const Real* x, Index i) { return {x[3 * i], x[3 * i + 1
 namespace dspdem {
 /// Volume of element e of a block at the mesh's coordinates (hex8: 6-tet split).
 Real element_volume(const Mesh& mesh, const ElementBlock& blk, Index e);
+/// Mean of element e's node positions (its centroid for a tet; the mean of its corners for a hex).
+Vec3 element_centroid(const Mesh& mesh, const ElementBlock& blk, Index e);
 }  // namespace dspdem
