@@ -2,7 +2,9 @@
 // The schema (keys, types, defaults, ranges, units, documentation) is in case_schema.cpp
 // and is printed by `dspdem keys`; cases/README.md holds the same table.
 #pragma once
+#include <Eigen/Geometry>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,10 +51,10 @@ struct BodyConfig {
   std::vector<std::string> fracture_groups;
   std::vector<std::string> zone_groups;  ///< their joints take zone_material's joint parameters
   std::string zone_material;
-  /// Elements whose centroid lies in [zone_box_min, zone_box_max] (its faces included) join the
-  /// zone too (a zone with no mesh surface along its edge); off unless both corners are given.
-  bool zone_box = false;
-  Vec3 zone_box_min = Vec3::Zero(), zone_box_max = Vec3::Zero();
+  /// Elements whose centroid lies in the box from zone_box_min to zone_box_max (its faces
+  /// included, as Eigen's contains()) join the zone too: a zone with no mesh surface along its
+  /// edge. Absent unless both corners are given.
+  std::optional<Eigen::AlignedBox<Real, 3>> zone_box;
   std::vector<std::string> groups;
   std::string material;
   Kinematics kinematics = Kinematics::Corotational;

@@ -558,15 +558,14 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       if (s.has("zone_box_min") || s.has("zone_box_max")) {
         if (!s.has("zone_box_min") || !s.has("zone_box_max"))
           fail("{}: [[bodies]] '{}': zone_box_min and zone_box_max come together", s.where(), b.name);
-        b.zone_box = true;
-        b.zone_box_min = s.vec3("zone_box_min");
-        b.zone_box_max = s.vec3("zone_box_max");
+        const Vec3 lo = s.vec3("zone_box_min"), hi = s.vec3("zone_box_max");
         for (int i = 0; i < 3; ++i)
-          if (!(b.zone_box_min(i) < b.zone_box_max(i)))
+          if (!(lo(i) < hi(i)))
             fail(
                 "{}: [[bodies]] '{}': zone_box_max must lie above zone_box_min on every axis ({} is {:g}, not above "
                 "{:g})",
-                s.where("zone_box_max"), b.name, "xyz"[i], b.zone_box_max(i), b.zone_box_min(i));
+                s.where("zone_box_max"), b.name, "xyz"[i], hi(i), lo(i));
+        b.zone_box.emplace(lo, hi);
       }
       const bool zone = !b.zone_groups.empty() || b.zone_box;
       if (zone || !b.zone_material.empty()) {

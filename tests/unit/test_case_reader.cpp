@@ -168,7 +168,7 @@ TEST(CaseReader, JointZonesNeedBothKeysAndJointParameters) {
   const CaseConfig c =
       read_case(write_case(base), {"bodies.0.zone_groups=[\"caps\"]", "bodies.0.zone_material=\"rock\""});
   EXPECT_EQ(c.bodies[0].zone_material, "rock");
-  EXPECT_FALSE(c.bodies[0].zone_box);
+  EXPECT_FALSE(c.bodies[0].zone_box.has_value());
   // The box: both corners, the lower below the upper on every axis, and a material.
   const std::string lo = "bodies.0.zone_box_min=[-1.0, -1.0, -1.0]", hi = "bodies.0.zone_box_max=[1.0, 0.5, 1.0]";
   expect_error(base, {"zone_box_min and zone_box_max come together"}, {lo, "bodies.0.zone_material=\"rock\""});
@@ -180,8 +180,9 @@ TEST(CaseReader, JointZonesNeedBothKeysAndJointParameters) {
                {lo, "bodies.0.zone_box_max=[1.0, -2.0, 1.0]", "bodies.0.zone_material=\"rock\""});
   expect_error(base, {"zone_material needs zone_groups or a zone box"}, {"bodies.0.zone_material=\"rock\""});
   const CaseConfig b = read_case(write_case(base), {lo, hi, "bodies.0.zone_material=\"rock\""});
-  EXPECT_TRUE(b.bodies[0].zone_box);
-  EXPECT_EQ(b.bodies[0].zone_box_max, Vec3(1.0, 0.5, 1.0));
+  ASSERT_TRUE(b.bodies[0].zone_box.has_value());
+  EXPECT_EQ(b.bodies[0].zone_box->min(), Vec3(-1.0, -1.0, -1.0));
+  EXPECT_EQ(b.bodies[0].zone_box->max(), Vec3(1.0, 0.5, 1.0));
   EXPECT_TRUE(b.bodies[0].zone_groups.empty());
 }
 

@@ -16,6 +16,7 @@
 #include "joint/joint_forces.hpp"
 #include "joint/ties.hpp"
 #include "support/run_helpers.hpp"
+#include "support/scene.hpp"
 #include "time/extrinsic.hpp"
 
 using namespace dspdem;
@@ -515,9 +516,7 @@ TEST(Joints, AZoneBoxTakesTheElementsWhoseCentroidsLieInIt) {
   // The same three hexes (centroids at x = 0.05, 0.15, 0.25), no group: a box over x > 0.1
   // holds the last two, so only the joint between them takes the zone's cohesion.
   CaseConfig c = case_with_a_strong_zone_material();
-  c.bodies[0].zone_box = true;
-  c.bodies[0].zone_box_min = Vec3(0.1, -1, -1);
-  c.bodies[0].zone_box_max = Vec3(1, 1, 1);
+  c.bodies[0].zone_box.emplace(Vec3(0.1, -1, -1), Vec3(1, 1, 1));
   const Mesh mesh = box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1));
   const auto cohesions = [&] {
     const Model m = build_model(c, mesh);
@@ -534,18 +533,58 @@ TEST(Joints, AZoneBoxTakesTheElementsWhoseCentroidsLieInIt) {
   EXPECT_EQ(coh.at(edge), 10e6) << "a joint across the box's edge keeps the body's material";
   EXPECT_EQ(coh.at(inside), 99e6) << "the joint inside the box";
   // A box over the middle element alone holds no joint of its own: both keep the body's.
-  c.bodies[0].zone_box_min = Vec3(0.1, -1, -1), c.bodies[0].zone_box_max = Vec3(0.2, 1, 1);
+  c.bodies[0].zone_box.emplace(Vec3(0.1, -1, -1), Vec3(0.2, 1, 1));
   coh = cohesions();
   EXPECT_EQ(coh.at(edge), 10e6);
   EXPECT_EQ(coh.at(inside), 10e6);
   // A box that holds no centroid is an error naming the body, not a zone that silently is not there.
-  c.bodies[0].zone_box_min = Vec3(0.31, -1, -1), c.bodies[0].zone_box_max = Vec3(1, 1, 1);
+  c.bodies[0].zone_box.emplace(Vec3(0.31, -1, -1), Vec3(1, 1, 1));
   try {
     build_model(c, mesh);
     ADD_FAILURE() << "an empty zone box was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds no element centroid"), std::string::npos) << e.what();
   }
+}
+
+TEST(Joints, AZoneBoxTakesOnlyItsOwnBodysElementsAcrossBlocks) {
+  // Two bodies apart in one mesh: tetrahedra "t" over x in [0, 0.2] (block 0) and three hexes
+  // "h" over x in [0.3, 0.6] (block 1, centroids 0.35, 0.45, 0.55). "t"'s box spans the whole
+  // mesh, yet "h"'s joints keep the body's cohesion: a box only takes its own body's elements.
+  // "h"'s own box over x >= 0.4 gives its last joint alone the zone's, found through block 1's
+  // offset.
+  CaseConfig c = case_with_a_strong_zone_material();
+  Mesh mesh;
+  add_part(mesh, box_mesh(CellType::Tet4, 2, 1, 1, Vec3(0.2, 0.1, 0.1)), "t", Vec3::Zero(), Vec3::Zero());
+  add_part(mesh, box_mesh(CellType::Hex8, 3, 1, 1, Vec3(0.3, 0.1, 0.1)), "h", Vec3::Zero(), Vec3(0.3, 0, 0));
+  c.bodies[0].name = "t", c.bodies[0].groups = {"t"};
+  c.bodies[0].zone_box.emplace(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+  BodyConfig h = c.bodies[0];
+  h.name = "h", h.groups = {"h"}, h.zone_box.reset(), h.zone_material.clear();
+  c.bodies.push_back(h);
+  const auto check = [&](Real last_hex_joint, const char* what) {
+    const Model m = build_model(c, mesh);
+    const Index nt = m.mesh.blocks[0].size();
+    Index tet_joints = 0, hex_joints = 0;
+    for (Index j = 0; j < m.joints.size(); ++j) {
+      const Index a = std::min(m.joints.ea[j], m.joints.eb[j]), b = std::max(m.joints.ea[j], m.joints.eb[j]);
+      const Real coh = m.joints.params[m.joints.param[j]].c;
+      if (b < nt) {
+        ++tet_joints;
+        EXPECT_EQ(coh, 99e6) << what << ": tet joint " << a << "-" << b << " lies in t's box";
+      } else {
+        ASSERT_GE(a, nt) << "no joint joins the two bodies";
+        ++hex_joints;
+        EXPECT_EQ(coh, b - nt == 2 ? last_hex_joint : 10e6) << what << ": hex joint " << a - nt << "-" << b - nt;
+      }
+    }
+    EXPECT_GT(tet_joints, 0);
+    EXPECT_EQ(hex_joints, 2);
+  };
+  check(10e6, "h without a zone");
+  c.bodies[1].zone_material = "strong";
+  c.bodies[1].zone_box.emplace(Vec3(0.4, -1, -1), Vec3(1, 1, 1));
+  check(99e6, "h's box over x >= 0.4");
 }
 
 // Extrinsic insertion's closed joints (joint/ties.hpp): the copies of a node are tied into one
