@@ -145,7 +145,11 @@ int run_main(int argc, char** argv) {
   rep->add_option("--set", rpa.sets, "Override a case key: section.key=value (repeatable)");
   rep->add_flag("--study", rpa.study, "Also run the sweep over mesh sizes and accuracy knobs");
   rep->add_flag("--no-render", rpa.no_render, "Skip the frame images and animations");
-  rep->add_option("--from-run", rpa.from_run, "Analyse this finished run of the case instead of running it again");
+  rep->add_option("--from-run", rpa.from_runs,
+                  "Analyse this finished run of the case instead of running it again; for a velocity sweep, an earlier "
+                  "report's folder, repeatable to merge several reports' runs of the same case (each run taken from "
+                  "the first folder that has it)")
+      ->allow_extra_args(false);
   rep->add_option("--speeds", rpa.speeds, "Impact speeds of a scene's velocity sweep [m/s] (the sphere impact)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);

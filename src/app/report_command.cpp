@@ -12,10 +12,11 @@ namespace dspdem {
 
 int report_command(const report::ReportArgs& a) {
   CaseConfig c = read_case(a.case_file, a.sets);
-  if (!a.from_run.empty()) {
+  if (a.from_runs.size() == 1) {
     // Analyse the run as it ran: its resolved case holds the overrides it was run with
-    // (mesh size, speeds), which the case file alone does not.
-    const auto resolved = std::filesystem::path(a.from_run) / "case.resolved.toml";
+    // (mesh size, speeds), which the case file alone does not. (A sweep's report folder has
+    // none: its runs are checked against the case as given, report/earlier_reports.hpp.)
+    const auto resolved = std::filesystem::path(a.from_runs.front()) / "case.resolved.toml";
     if (std::filesystem::exists(resolved)) {
       if (!a.sets.empty()) log::warn("--from-run: the run's own case.resolved.toml is analysed; --set is ignored");
       c = read_case(resolved.string());
@@ -25,7 +26,11 @@ int report_command(const report::ReportArgs& a) {
   DSPDEM_CHECK(scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1),
                "{}: --speeds, --study-speeds and --realisations belong to a velocity sweep; scene '{}' has none",
                c.path, scene.name);
-  DSPDEM_CHECK(!a.runs.resume || a.from_run.empty(),
+  DSPDEM_CHECK(scene.speed_sweep || a.from_runs.size() <= 1,
+               "{}: --from-run given {} times: scene '{}' analyses one run (several folders merge the runs of a "
+               "velocity sweep)",
+               c.path, a.from_runs.size(), scene.name);
+  DSPDEM_CHECK(!a.runs.resume || a.from_runs.empty(),
                "--resume and --from-run: --from-run analyses an earlier report's runs without running any; --resume "
                "keeps those of this report's folder that are still this report's runs and runs the rest");
   set_setup_stop_hint(

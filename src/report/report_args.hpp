@@ -20,9 +20,11 @@ struct RunPolicy {
 struct ReportArgs {
   std::string case_file, out_dir;
   std::vector<std::string> sets;
-  bool study = false;                ///< also run the speed-against-error sweep
-  bool no_render = false;            ///< skip images (numbers and plots only)
-  std::string from_run;              ///< analyse this finished run of the same case instead of running it
+  bool study = false;      ///< also run the speed-against-error sweep
+  bool no_render = false;  ///< skip images (numbers and plots only)
+  /// Analyse earlier runs of the same case instead of running them: a finished run's folder,
+  /// or for a velocity sweep one or more earlier reports' folders (report/earlier_reports.hpp).
+  std::vector<std::string> from_runs;
   bool no_stress_check = false;      ///< skip a scene's extra verification runs (the disc's stress check)
   std::vector<double> speeds;        ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
   std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)

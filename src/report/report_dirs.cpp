@@ -12,9 +12,10 @@ namespace fs = std::filesystem;
 ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   ReportDirs d;
   d.dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
-  d.run_dir = a.from_run.empty() ? (fs::path(d.dir) / "run").string() : a.from_run;
+  // One folder only: report_command refuses several for a scene without a velocity sweep.
+  d.run_dir = a.from_runs.empty() ? (fs::path(d.dir) / "run").string() : a.from_runs.front();
   fs::create_directories(d.dir);
-  if (a.from_run.empty()) {
+  if (a.from_runs.empty()) {
     run_or_resume(c, d.run_dir, a.runs);
   } else {
     DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),

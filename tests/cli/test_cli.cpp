@@ -680,6 +680,13 @@ TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
       run("report " + disc + " --from-run " + (dir_ / "nothing").string() + " --out " + (dir_ / "rep").string());
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("summary.json"), std::string::npos) << r.out;
+  // Several folders merge a velocity sweep's runs; the disc analyses one run, and says so
+  // instead of taking the first.
+  const Result two = run("report " + disc + " --from-run " + (dir_ / "a").string() + " --from-run " +
+                         (dir_ / "b").string() + " --out " + (dir_ / "rep").string());
+  EXPECT_EQ(two.code, 2) << two.out;
+  EXPECT_NE(two.out.find("--from-run given 2 times: scene 'brazilian_disc' analyses one run"), std::string::npos)
+      << two.out;
 }
 
 TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
@@ -868,6 +875,57 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   const Result more = from_run("again", 4);
   EXPECT_EQ(more.code, 2) << more.out;
   EXPECT_NE(more.out.find("v2.5_o3"), std::string::npos) << more.out;
+  // Several earlier reports merge into one: the runs at 2.5 m/s in one folder, those at 7.5
+  // in another read as the one report they were, each folder named with its count.
+  for (const auto& [part, v] : {std::pair{"part_a", "v2.5"}, std::pair{"part_b", "v7.5"}}) {
+    fs::create_directories(dir_ / part / "speeds");
+    fs::create_directories(dir_ / part / "orientations");
+    fs::copy(dir_ / "rep" / "speeds" / v, dir_ / part / "speeds" / v, fs::copy_options::recursive);
+    for (const char* o : {"_o1", "_o2"})
+      fs::copy(dir_ / "rep" / "orientations" / (std::string(v) + o),
+               dir_ / part / "orientations" / (std::string(v) + o), fs::copy_options::recursive);
+  }
+  const auto merged = [&](const std::string& out, const std::vector<fs::path>& parts, const std::string& sets) {
+    std::string from;
+    for (const auto& p : parts) from += " --from-run " + p.string();
+    return report("sphere_impact",
+                  "--realisations 3 --speeds 2.5,7.5 --set mesh.sphere_plate.size=0.04 --set time.end=1e-4 "
+                  "--set output.frame_interval=2.5e-5" +
+                      sets + from,
+                  out);
+  };
+  const Result both = merged("merged", {dir_ / "part_a", dir_ / "part_b"}, "");
+  ASSERT_EQ(both.code, 0) << both.out;
+  EXPECT_EQ(slurp(dir_ / "merged" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
+  const std::string mmd = slurp(dir_ / "merged" / "report.md");
+  EXPECT_NE(mmd.find("none run here: `../part_a` (3 runs), `../part_b` (3 runs), made by one build of dspdem ("),
+            std::string::npos)
+      << mmd;
+  // One part alone lacks the other speed's runs, and names the first missing.
+  const Result half = merged("half", {dir_ / "part_a"}, "");
+  EXPECT_EQ(half.code, 2) << half.out;
+  EXPECT_NE(half.out.find("no finished run of speeds/v7.5 in any"), std::string::npos) << half.out;
+  // Runs of the case with other overrides are not this report's runs: refused, the folder
+  // and the first line that differs named, rather than mixed in.
+  const Result other = merged("other", {dir_ / "part_a", dir_ / "part_b"}, " --set materials.rock.friction=0.7");
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_NE(other.out.find("is not a run of this report's case as it resolves now (line "), std::string::npos)
+      << other.out;
+  EXPECT_NE(other.out.find("friction"), std::string::npos) << other.out;
+  // A run an earlier report left failed is a failed row with its reason, not analysed.
+  {
+    const fs::path sum = dir_ / "part_b" / "orientations" / "v7.5_o2" / "summary.json";
+    std::string js = slurp(sum);
+    const auto at = js.find("\"completed\"");
+    ASSERT_NE(at, std::string::npos) << js;
+    js.replace(at, 11, "\"failed\"");
+    std::ofstream(sum) << js;
+  }
+  const Result bad = merged("bad", {dir_ / "part_a", dir_ / "part_b"}, "");
+  ASSERT_EQ(bad.code, 0) << bad.out;
+  const std::string bmd = slurp(dir_ / "bad" / "report.md");
+  EXPECT_NE(bmd.find("- 7.5 m/s, orientation 2: the run in "), std::string::npos) << bmd;
+  EXPECT_NE(bmd.find("v7.5_o2 failed"), std::string::npos) << bmd;
   // A realisation that ran and was lost (its log is there, its results are not) is a failed
   // row, named by its orientation, and the others keep their own orientation numbers.
   fs::remove(dir_ / "rep" / "orientations" / "v2.5_o1" / "summary.json");

@@ -112,15 +112,18 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
                       split.empty() ? "-" : split, report::count_of(met, n)});
   }
   const int last = where.k0 + where.realisations - 1;
+  std::string folders;
+  for (const auto& root : where.sweep_roots)
+    folders += fmt::format("{}`{}`", folders.empty() ? "" : ", ",
+                           fs::relative(fs::path(root) / "orientations", where.dir).string());
   doc.subsection(fmt::format("The pattern over {} orientations of the mesh", where.realisations));
   doc.para(fmt::format(
       "Fracture at an impact is chaotic: which elements meet the plate first decides where cracks run. Each speed "
       "was run again with the sphere turned before meshing (`mesh.sphere_plate.orientation` {}: gmsh meshes each "
       "differently at the same size), so the pattern can be told from one mesh's chance. Per run, by "
-      "orientation ({}, the orientation the case was given, is the sweep's own runs in `speeds/`). Folders: `{}`; "
+      "orientation ({}, the orientation the case was given, is the sweep's own runs in `speeds/`). Folders: {}; "
       "every run in `orientations.csv`.",
-      last == where.k0 + 1 ? std::to_string(last) : fmt::format("{} to {}", where.k0 + 1, last), where.k0,
-      fs::relative(fs::path(where.sweep_root) / "orientations", where.dir).string()));
+      last == where.k0 + 1 ? std::to_string(last) : fmt::format("{} to {}", where.k0 + 1, last), where.k0, folders));
   if (!failed.empty()) {
     std::string f;
     for (const auto& e : failed) f += "\n- " + e;

@@ -18,10 +18,11 @@ struct RealisationRun {
 };
 
 /// Where the runs are: the case's own orientation, the meshes per speed, the report's folder
-/// and the folder the runs are in (an earlier report's with --from-run).
+/// and the folders the runs are in (earlier reports' with --from-run).
 struct RealisationSetup {
   int k0 = 0, realisations = 1;
-  std::string dir, sweep_root;
+  std::string dir;
+  std::vector<std::string> sweep_roots;
 };
 
 /// The meshes with the paper's pattern at every speed run, as text: "k of n (95 %: lo-hi)"

@@ -14,6 +14,7 @@
 #include "io/run_summary.hpp"
 #include "render/plot.hpp"
 #include "report/document.hpp"
+#include "report/earlier_reports.hpp"
 #include "report/resume.hpp"
 #include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
@@ -202,15 +203,17 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   std::sort(speeds.begin(), speeds.end());
   speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
   const int jobs = a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  // --from-run: an earlier report's folder, whose speeds/ runs are analysed again.
-  const std::string sweep_root = a.from_run.empty() ? dir : a.from_run;
+  // --from-run: earlier reports' folders, whose speeds/ and orientations/ runs are analysed
+  // again (each found in the first folder that has it); the plan's folders are this report's
+  // until then.
+  const std::vector<std::string> sweep_roots = a.from_runs.empty() ? std::vector<std::string>{dir} : a.from_runs;
 
   // The case's own orientation: the sweep's and the study's mesh; realisations turn it further.
   const int k0 = static_cast<int>(mesh_param(c, "orientation"));
   std::vector<Planned> plan;
   for (double v : speeds)
-    plan.push_back({speed_name(v), fmt::format("{:g} m/s", v),
-                    (fs::path(sweep_root) / "speeds" / speed_name(v)).string(), speed_overrides(c, v), v, k0});
+    plan.push_back({speed_name(v), fmt::format("{:g} m/s", v), (fs::path(dir) / "speeds" / speed_name(v)).string(),
+                    speed_overrides(c, v), v, k0});
   const std::size_t n_sweep = plan.size();
   // The study: at 7.5 and 20 m/s (--study-speeds), each knob moved alone from the case.
   const std::vector<double> study_speeds = a.study_speeds.empty() ? std::vector<double>{7.5, 20.0} : a.study_speeds;
@@ -261,25 +264,33 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       std::vector<std::string> sets = speed_overrides(c, v);
       sets.push_back(override_of("mesh.sphere_plate.orientation", k0 + r));
       const std::string name = fmt::format("{}_o{}", speed_name(v), k0 + r);
-      plan.push_back({name, fmt::format("orientation {}", k0 + r),
-                      (fs::path(sweep_root) / "orientations" / name).string(), sets, v, k0 + r});
+      plan.push_back({name, fmt::format("orientation {}", k0 + r), (fs::path(dir) / "orientations" / name).string(),
+                      sets, v, k0 + r});
     }
   std::vector<std::string> errors(plan.size());
-  if (a.from_run.empty()) {
+  std::vector<report::EarlierReportRun> earlier;  // --from-run: where each run of the sweep was found
+  if (a.from_runs.empty()) {
     errors = run_planned(c, plan, jobs, a.runs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
-      if ((i >= n_sweep && i < n_sweep + n_study) || fs::exists(fs::path(plan[i].dir) / "summary.json")) continue;
-      // A realisation the earlier report ran and lost (its log is there) is a failed row, as
-      // it was in that report; one it never ran means it had fewer --realisations.
-      if (i >= first_realisation && fs::exists(plan[i].dir + ".log")) {
-        errors[i] = fmt::format("no finished run (see {}.log)", plan[i].dir);
+      if (i >= n_sweep && i < n_sweep + n_study) continue;
+      const std::string rel = fs::path(plan[i].dir).lexically_relative(dir).string();
+      earlier.push_back(report::find_earlier_report_run(sweep_roots, rel, reread_with(c, plan[i].sets).resolved_toml));
+      const report::EarlierReportRun& e = earlier.back();
+      if (!e.dir.empty()) {
+        plan[i].dir = e.dir, errors[i] = e.error;
+        continue;
+      }
+      // A realisation an earlier report ran and lost (its log is there) is a failed row, as
+      // it was in that report; one none ran means they had fewer --realisations.
+      if (i >= first_realisation && !e.lost_log.empty()) {
+        errors[i] = fmt::format("no finished run (see {})", e.lost_log);
         continue;
       }
       fail(
-          "--from-run {}: no finished run at {} (the sweep's speeds/ and orientations/ folders of an earlier "
-          "report, with as many --realisations)",
-          a.from_run, plan[i].dir);
+          "--from-run {}: no finished run of {} in any (the sweep's speeds/ and orientations/ folders of earlier "
+          "reports, with as many --realisations)",
+          fmt::join(sweep_roots, ", "), rel);
     }
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
@@ -396,6 +407,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       "base with many small pieces at 20 m/s and more. Here a crack is *through* when a second piece holds at least "
       "1 % of the mass (smaller pieces are material crushed off at the contact), *large pieces* hold at least 10 %, "
       "and single-element fragments are the crushed material the mesh cannot resolve further.");
+  if (!earlier.empty())
+    doc.para(fmt::format("Runs analysed again from earlier reports (`--from-run`){}: {}.",
+                         a.study ? ", the study's run here" : ", none run here",
+                         report::earlier_report_sources(earlier, dir)));
   if (!sweep_failed.empty()) {
     std::string f;
     for (const auto& e : sweep_failed) f += "\n- " + e;
@@ -489,7 +504,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       for (std::size_t i = first_realisation; i < plan.size(); ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
     }
-    every = sphere::realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_root});
+    every = sphere::realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_roots});
   }
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");

@@ -1,0 +1,37 @@
+// `dspdem report --from-run DIR ...` over a sweep: the runs of earlier reports analysed again
+// without running any, from one report's folder or merged from several (a sweep extended by
+// another report at new speeds or on more meshes is fitted as one). Each run is taken only
+// when it is a run of the case as it resolves now, so that runs of another case, or of the
+// same case with other overrides, are never mixed in silently.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace dspdem::report {
+
+/// A planned run as found among the earlier reports' folders.
+struct EarlierReportRun {
+  std::string dir;    ///< its run folder; empty when no folder holds a finished or failed run
+  std::string root;   ///< the report folder it was found in
+  std::string build;  ///< the dspdem that made it (its summary's executable id)
+  std::string error;  ///< why the run found is no result: it failed or was interrupted
+  /// When no folder holds its summary but one holds its log: that log (the earlier report
+  /// started the run and lost it, as opposed to a run it never had).
+  std::string lost_log;
+};
+
+/// Looks for the run folder `rel` (below a report's folder, e.g. "speeds/v5") in each of
+/// `roots` in turn and takes the first that holds its summary.json. That run must be of the
+/// case that resolves to `resolved` (its case.resolved.toml, compared as same_case does):
+/// otherwise throws Error naming the folder and the first line that differs. A run that
+/// failed or was interrupted is returned with `error` set. When no root holds the run's
+/// summary, `lost_log` names the first log of it found (`rel`.log, beside its folder).
+EarlierReportRun find_earlier_report_run(const std::vector<std::string>& roots, const std::string& rel,
+                                         const std::string& resolved);
+
+/// Which earlier reports and builds made `runs`, for the report's text: "`A` (12 runs),
+/// `B` (8 runs), made by one build of dspdem (ID)" or "... by 2 builds: ID (12 runs), ..."
+/// (paths relative to `out_dir`). Runs with an empty dir are left out.
+std::string earlier_report_sources(const std::vector<EarlierReportRun>& runs, const std::string& out_dir);
+
+}  // namespace dspdem::report

@@ -1,0 +1,110 @@
+// report --from-run over several earlier reports' folders: which run is taken, that runs of
+// another case are refused, and how the sources are named.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/run_summary.hpp"
+#include "report/earlier_reports.hpp"
+
+using namespace dspdem;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCase = "# Resolved from cases/a.toml (every default filled in)\n[case]\nname = 'a'\nspeed = 5.0\n";
+
+class EarlierReports : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("dspdem_earlier_reports_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  // A run folder `root`/speeds/v5 as a run leaves it: its summary and its resolved case.
+  std::string put_run(const std::string& root, const std::string& resolved, const std::string& build,
+                      const std::string& status = "completed") {
+    const fs::path d = dir_ / root / "speeds" / "v5";
+    fs::create_directories(d);
+    RunSummary s;
+    s.status = status, s.build = build, s.message = status == "completed" ? "" : "NaN at step 7";
+    write_run_summary((d / "summary.json").string(), s);
+    std::ofstream(d / "case.resolved.toml") << resolved;
+    return (dir_ / root).string();
+  }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(EarlierReports, TheFirstFolderWithTheRunGivesIt) {
+  const std::string a = put_run("a", kCase, "build A"), b = put_run("b", kCase, "build B");
+  const auto r = report::find_earlier_report_run({b, a}, "speeds/v5", kCase);
+  EXPECT_EQ(r.root, b);
+  EXPECT_EQ(r.build, "build B");
+  EXPECT_EQ(r.dir, (fs::path(b) / "speeds" / "v5").string());
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  // A folder that does not hold it is passed over.
+  const std::string empty = (dir_ / "empty").string();
+  fs::create_directories(empty);
+  EXPECT_EQ(report::find_earlier_report_run({empty, a}, "speeds/v5", kCase).root, a);
+  // None holds it: no folder, and no lost run.
+  const auto none = report::find_earlier_report_run({a, b}, "speeds/v7.5", kCase);
+  EXPECT_TRUE(none.dir.empty());
+  EXPECT_TRUE(none.lost_log.empty());
+}
+
+TEST_F(EarlierReports, ALogWithoutItsRunIsALostRunUnlessALaterFolderHasIt) {
+  const std::string a = (dir_ / "a").string();
+  fs::create_directories(dir_ / "a" / "speeds");
+  std::ofstream(dir_ / "a" / "speeds" / "v5.log") << "killed\n";
+  const auto lost = report::find_earlier_report_run({a}, "speeds/v5", kCase);
+  EXPECT_TRUE(lost.dir.empty());
+  EXPECT_EQ(lost.lost_log, (dir_ / "a" / "speeds" / "v5.log").string());
+  const std::string b = put_run("b", kCase, "build B");
+  const auto found = report::find_earlier_report_run({a, b}, "speeds/v5", kCase);
+  EXPECT_EQ(found.root, b);
+  EXPECT_TRUE(found.lost_log.empty());
+}
+
+TEST_F(EarlierReports, ARunOfAnotherCaseIsRefusedNamingTheLineAndTheOriginLineIsNoDifference) {
+  std::string other = kCase;
+  other.replace(other.find("5.0"), 3, "7.5");
+  const std::string a = put_run("a", other, "build A");
+  try {
+    report::find_earlier_report_run({a}, "speeds/v5", kCase);
+    FAIL() << "a run of another case was taken";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find((fs::path(a) / "speeds" / "v5").string()), std::string::npos) << m;
+    EXPECT_NE(m.find("line 4: 'speed = 7.5' then, 'speed = 5.0' now"), std::string::npos) << m;
+  }
+  // The first comment names the case file as it was given: another path is the same case.
+  std::string moved = kCase;
+  moved.replace(moved.find("cases/a.toml"), 12, "/abs/cases/a.toml");
+  const std::string b = put_run("b", moved, "build B");
+  EXPECT_EQ(report::find_earlier_report_run({b}, "speeds/v5", kCase).root, b);
+}
+
+TEST_F(EarlierReports, AFailedRunIsFoundWithItsReason) {
+  const std::string a = put_run("a", kCase, "build A", "failed");
+  const auto r = report::find_earlier_report_run({a}, "speeds/v5", kCase);
+  EXPECT_FALSE(r.dir.empty());
+  EXPECT_NE(r.error.find("v5 failed: NaN at step 7"), std::string::npos) << r.error;
+}
+
+TEST_F(EarlierReports, SourcesNameEachFolderAndEachBuildWithItsRuns) {
+  const std::vector<report::EarlierReportRun> one = {
+      {"/r/a/speeds/v5", "/r/a", "B1", "", ""}, {"/r/a/speeds/v7.5", "/r/a", "B1", "", ""}, {"", "", "", "", "x.log"}};
+  EXPECT_EQ(report::earlier_report_sources(one, "/r/out"), "`../a` (2 runs), made by one build of dspdem (B1)");
+  const std::vector<report::EarlierReportRun> two = {{"/r/b/speeds/v5", "/r/b", "B2", "", ""},
+                                                     {"/r/a/speeds/v5", "/r/a", "B1", "", ""},
+                                                     {"/r/a/speeds/v7.5", "/r/a", "B1", "", ""}};
+  EXPECT_EQ(report::earlier_report_sources(two, "/r/out"),
+            "`../b` (1 run), `../a` (2 runs), made by 2 builds of dspdem: B2 (1 run), B1 (2 runs)");
+  EXPECT_EQ(report::earlier_report_sources({}, "/r/out"), "");
+}
