@@ -226,19 +226,20 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       for_body_groups(bi, bc.zone_groups, "zone_groups", [&](Index gid) { zone[gid] = zm; });
       if (!bc.zone_box) continue;
       Index in_box = 0;
-      const Vec3 lo = bc.zone_box->min(), hi = bc.zone_box->max();
+      const auto& box = *bc.zone_box;
       for (std::size_t b = 0; b < me.blocks.size(); ++b) {
         for (Index e = 0; e < me.blocks[b].size(); ++e) {
           const Index gid = block_offset[b] + e;
           if (cfg_body[gid] != static_cast<Index>(bi)) continue;
           const Vec3 centroid = element_centroid(me, me.blocks[b], e);
-          if (bc.zone_box->contains(centroid)) zone[gid] = zm, ++in_box;
+          if (box.contains(centroid)) zone[gid] = zm, ++in_box;
         }
       }
       DSPDEM_CHECK(in_box > 0,
                    "{}: [[bodies]] '{}': the zone box from zone_box_min [{:g}, {:g}, {:g}] to zone_box_max [{:g}, "
                    "{:g}, {:g}] holds no element centroid of the body",
-                   c.path, bc.name, lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+                   c.path, bc.name, box.min().x(), box.min().y(), box.min().z(), box.max().x(), box.max().y(),
+                   box.max().z());
     }
     if (any) {
       m.joints = joint::insert_joints(m.mesh, in, &m.joint_report);
