@@ -190,7 +190,7 @@ BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int re
   // beside the bootstrap's, and unlike std::uniform_int_distribution it gives the same draws
   // with every standard library.
   std::mt19937_64 rng(seed);
-  std::vector<double> w50;
+  std::vector<double> w50, spread;
   std::vector<BreakageTrial> sample;
   for (int r = 0; r < resamples; ++r) {
     sample.clear();
@@ -205,7 +205,7 @@ BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int re
     const BreakageFit f = fit_breakage(sample, false);
     using O = BreakageFit::Outcome;
     if (f.outcome == O::fitted)
-      w50.push_back(f.energy_at(0.5));
+      w50.push_back(f.energy_at(0.5)), spread.push_back(f.energy_at(0.9) / f.energy_at(0.1));
     else if (f.outcome == O::none_broke)
       w50.push_back(kInf);
     else if (f.outcome == O::all_broke)
@@ -213,17 +213,21 @@ BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int re
     else
       ++b.not_fitted;
   }
+  b.spread_left_out = resamples - static_cast<int>(spread.size());
   // More dropped than one tail holds would move the 2.5 % points by more than their own
-  // meaning: no interval then.
-  if (b.not_fitted > 0.025 * resamples || w50.size() < 40) return b;
-  std::sort(w50.begin(), w50.end());
-  // The percentile points by the nearest rank: the smallest value with at least a share q of
-  // the values at or below it.
-  auto at = [&](double q) {
-    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(w50.size())));
-    return w50[std::clamp<std::size_t>(rank, 1, w50.size()) - 1];
+  // meaning: no interval then. The percentile points by the nearest rank: the smallest value
+  // with at least a share q of the values at or below it.
+  auto points = [&](std::vector<double>& v, int left_out, double& lo, double& hi) {
+    if (left_out > 0.025 * resamples || v.size() < 40) return;
+    std::sort(v.begin(), v.end());
+    auto at = [&](double q) {
+      const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+      return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+    };
+    lo = at(0.025), hi = at(0.975);
   };
-  b.w50_lo = at(0.025), b.w50_hi = at(0.975);
+  points(w50, b.not_fitted, b.w50_lo, b.w50_hi);
+  points(spread, b.spread_left_out, b.spread_lo, b.spread_hi);
   return b;
 }
 

@@ -83,11 +83,20 @@ BreakageFit fit_breakage(const std::vector<BreakageTrial>& trials, bool interval
 /// counts as a W50 of +infinity, one in which all broke as 0; one whose W50 the data do not
 /// place (a clean threshold, too few mixed energies) is left out and counted. Deterministic for
 /// a seed. With twenty groups a percentile interval still runs a little narrow.
+///
+/// The same resamples give the spread of the draw, the energy at P = 0.9 over the energy at
+/// P = 0.1 (how far apart the easy and the hard groups break; its square root is the ratio
+/// of speeds), by the same percentile points over the resamples that fitted: one in which
+/// nothing or everything broke, or whose curve the data do not place, has no spread, so all
+/// of those are left out and counted, under the same limit.
 struct BreakageBootstrap {
   /// NaN: fewer than two groups, or more than 2.5 % of the resamples left out (or fewer than
   /// 40 kept); w50_hi +infinity when more than 2.5 % broke nowhere.
   double w50_lo = std::nan(""), w50_hi = std::nan("");
-  int groups = 0, resamples = 0, not_fitted = 0;  ///< not_fitted: resamples left out
+  int groups = 0, resamples = 0, not_fitted = 0;  ///< not_fitted: resamples left out of W50's points
+  /// E(P = 0.9) / E(P = 0.1), its 2.5 % and 97.5 % points; NaN as for W50, by their own count.
+  double spread_lo = std::nan(""), spread_hi = std::nan("");
+  int spread_left_out = 0;  ///< resamples without a fitted curve
 };
 BreakageBootstrap bootstrap_w50(const std::vector<BreakageTrial>& trials, int resamples = 1000,
                                 unsigned long long seed = 2003);

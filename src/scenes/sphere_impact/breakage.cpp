@@ -50,6 +50,15 @@ std::string bootstrap_cell(const report::BreakageBootstrap& b) {
   return fmt::format("{}-{}", speed_text(b.w50_lo), speed_text(b.w50_hi)) + (left.empty() ? "" : " (" + left + ")");
 }
 
+// The spread's interval over the resampled meshes, as speeds (the square root of the
+// energies' ratio), or why there is none.
+std::string spread_cell(const report::BreakageBootstrap& b) {
+  if (b.groups < 2) return "";
+  if (std::isnan(b.spread_lo))
+    return fmt::format(" (none: {} of {} resamples without a curve)", b.spread_left_out, b.resamples);
+  return fmt::format(" ({:.2f}-{:.2f})", std::sqrt(b.spread_lo), std::sqrt(b.spread_hi));
+}
+
 // The event's fit as a table row, or what the data say instead of one.
 std::vector<std::string> fit_row(const Event& e, const report::BreakageFit& f, const report::BreakageBootstrap& b,
                                  double diameter) {
@@ -85,7 +94,7 @@ std::vector<std::string> fit_row(const Event& e, const report::BreakageFit& f, c
              {fmt::format("{:.1f} ({:.2f} m/s)", f.w_min, speed_of(f.w_min)), fmt::format("{:.3g}", f.rate / diameter),
               fmt::format("{:.2f}", v10),
               fmt::format("{:.2f} ({}-{})", speed_of(f.energy_at(0.5)), speed_text(f.w50_lo), speed_text(f.w50_hi)),
-              bootstrap_cell(b), fmt::format("{:.2f}", v90), fmt::format("{:.2f}", v90 / v10)});
+              bootstrap_cell(b), fmt::format("{:.2f}", v90), fmt::format("{:.2f}", v90 / v10) + spread_cell(b)});
   return row;
 }
 
@@ -127,12 +136,13 @@ void breakage_tables(report::Document& doc, const std::vector<double>& speeds,
       "resample in which nothing broke counts as a speed above all, one whose threshold the data do not place is "
       "left out, and with more than 2.5 % left out there is no interval): the one to read, though with this many "
       "meshes it too runs a little narrow. The last column is how far the draw spreads in speed, the speed at 90 % "
-      "over the speed at 10 %.",
+      "over the speed at 10 %, in brackets its 95 % interval over the same resampled meshes (those in which nothing "
+      "or everything broke have no spread and are left out too, under the same limit).",
       trials[0].size(), 1e3 * diameter, kResamples));
   std::vector<std::vector<std::string>> rows;
   for (std::size_t e = 0; e < kN; ++e) rows.push_back(fit_row(kEvents[e], fits[e], boots[e], diameter));
   doc.table({"event", "runs that show it", "W_min [J/kg] (speed)", "f_Mat [kg/(J m)]", "speed at P = 10 % [m/s]",
-             "at 50 % (95 %, runs)", "95 %, meshes resampled", "at 90 %", "90 % / 10 %"},
+             "at 50 % (95 %, runs)", "95 %, meshes resampled", "at 90 %", "90 % / 10 % (95 %, meshes resampled)"},
             rows);
 
   // Per speed, what was seen against the fitted curve: the fit's check.
