@@ -25,6 +25,7 @@
 
 #include "scenes/sphere_impact/analysis.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
+#include "scenes/sphere_impact/realisations.hpp"
 #include "support/cli.hpp"
 #include "support/golden.hpp"
 #include "support/quick_report.hpp"
@@ -141,4 +142,50 @@ TEST(SpherePattern, ThePapersBandsAndTheirCriteria) {
   EXPECT_FALSE(sphere::pattern_met(run(20.0, 0.4, 19, 1, true)));
   EXPECT_FALSE(sphere::pattern_met(run(20.0, 0.91, 200, 1, true)));
   EXPECT_EQ(sphere::expected_pattern(20.0), "crushed base, many small pieces");
+}
+
+// The meshes with the paper's pattern at every speed, over a sweep that has a speed the paper
+// does not describe (6.25 m/s, held to 7.5 m/s's pattern only by assumption): the count the
+// headline reads is over the described speeds alone. Four meshes: o0 whole at 5 and 6.25 m/s
+// and in a few large pieces at 7.5; o1 whole at 5 and in a few large pieces from 6.25; o2 cut
+// through at 5; o3's run at 6.25 m/s failed, which leaves o3 out of the count over every
+// speed but not of the count over the described ones: that count is the same with or without
+// the speeds between.
+TEST(SpherePattern, TheEverySpeedCountLeavesOutTheSpeedsThePaperDoesNotDescribe) {
+  auto run = [](double speed, int pieces_10pct, bool through) {
+    SphereImpactResult r;
+    r.speed = speed, r.pieces_10pct = pieces_10pct, r.through_crack = through;
+    return r;
+  };
+  const std::vector<double> speeds = {5.0, 6.25, 7.5};
+  const std::vector<std::vector<SphereImpactResult>> res = {
+      // [speed][mesh]
+      {run(5.0, 1, false), run(5.0, 1, false), run(5.0, 2, true), run(5.0, 1, false)},
+      {run(6.25, 1, false), run(6.25, 2, true), run(6.25, 2, true), {}},
+      {run(7.5, 2, true), run(7.5, 3, true), run(7.5, 2, true), run(7.5, 2, true)}};
+  std::vector<std::vector<sphere::RealisationRun>> by_speed(speeds.size());
+  for (std::size_t s = 0; s < speeds.size(); ++s)
+    for (int o = 0; o < 4; ++o) {
+      const bool lost = s == 1 && o == 3;
+      by_speed[s].push_back({o, lost ? nullptr : &res[s][static_cast<std::size_t>(o)], lost ? "lost" : ""});
+    }
+  const sphere::MeshCount described = sphere::count_every_speed(speeds, by_speed, true);
+  EXPECT_EQ(described.whole, (std::vector<int>{0, 1, 3}));
+  EXPECT_TRUE(described.failed.empty());
+  EXPECT_EQ(described.known, 4);
+  const sphere::MeshCount all = sphere::count_every_speed(speeds, by_speed, false);
+  EXPECT_EQ(all.whole, (std::vector<int>{1}));
+  EXPECT_EQ(all.failed, (std::vector<int>{3}));
+  EXPECT_EQ(all.known, 3);
+  // Without the speed between, both counts are the described one.
+  const std::vector<double> paper = {5.0, 7.5};
+  const std::vector<std::vector<sphere::RealisationRun>> paper_runs = {by_speed[0], by_speed[2]};
+  for (bool d : {false, true}) {
+    EXPECT_EQ(sphere::count_every_speed(paper, paper_runs, d).whole, described.whole) << d;
+    EXPECT_EQ(sphere::count_every_speed(paper, paper_runs, d).known, 4) << d;
+  }
+  // A failed run at a described speed leaves its mesh out of both.
+  by_speed[2][0] = {0, nullptr, "lost"};
+  EXPECT_EQ(sphere::count_every_speed(speeds, by_speed, true).failed, (std::vector<int>{0}));
+  EXPECT_EQ(sphere::count_every_speed(speeds, by_speed, true).whole, (std::vector<int>{1, 3}));
 }

@@ -62,6 +62,30 @@ void onset_table(report::Document& doc, const std::vector<report::SweepPoint>& t
 
 }  // namespace
 
+MeshCount count_every_speed(const std::vector<double>& speeds, const std::vector<std::vector<RealisationRun>>& by_speed,
+                            bool described_only) {
+  DSPDEM_CHECK(by_speed.size() == speeds.size(), "internal: {} speeds, runs for {}", speeds.size(), by_speed.size());
+  std::map<int, bool> met;  // orientation: the pattern at each of its runs counted so far
+  std::set<int> failed;
+  for (std::size_t si = 0; si < speeds.size(); ++si)
+    for (const RealisationRun& run : by_speed[si]) {
+      // A speed not counted is left out whole, its failed runs too: the count over the
+      // described speeds is the same with or without the speeds between.
+      if (described_only && speed_band(speeds[si]) == SpeedBand::FewLargeAssumed) continue;
+      if (run.result == nullptr) {
+        failed.insert(run.orientation);  // the mesh is not counted
+        continue;
+      }
+      met.try_emplace(run.orientation, true).first->second &= pattern_met(*run.result);
+    }
+  MeshCount c;
+  for (const auto& [o, ok] : met)
+    if (ok && !failed.count(o)) c.whole.push_back(o);
+  c.failed.assign(failed.begin(), failed.end());
+  for (const auto& [o, ok] : met) c.known += !failed.count(o);
+  return c;
+}
+
 EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& speeds,
                               const std::vector<std::vector<RealisationRun>>& by_speed, const RealisationSetup& where) {
   DSPDEM_CHECK(by_speed.size() == speeds.size(), "internal: {} speeds, runs for {}", speeds.size(), by_speed.size());
@@ -76,8 +100,6 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
   // and crack_top -1: no joints frames paired with the run's frames.
   std::vector<std::vector<std::string>> rows_o;
   std::vector<report::SweepPoint> through_at, few_at;  // per run: does it show the property
-  std::map<int, bool> met_every;                       // orientation: the pattern at each of its runs so far
-  std::set<int> failed_mesh;                           // orientations with a failed run: not counted
   for (std::size_t si = 0; si < speeds.size(); ++si) {
     int n = 0, through = 0, met = 0;
     std::string largest, pieces, split;
@@ -87,13 +109,10 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
         failed.push_back(fmt::format("{} m/s, orientation {}: {}", speeds[si], o, run.error));
         through_at.push_back({o, speeds[si], false, false});
         few_at.push_back({o, speeds[si], false, false});
-        failed_mesh.insert(o);
-        met_every.try_emplace(o, true).first->second = false;
         continue;
       }
       const SphereImpactResult& r = *run.result;
       through += r.through_crack, met += pattern_met(r);
-      met_every.try_emplace(o, true).first->second &= pattern_met(r);
       through_at.push_back({o, r.speed, r.through_crack});
       few_at.push_back({o, r.speed, a_few_large_pieces(r)});
       largest += fmt::format("{}{}: {:.2f}", n ? ", " : "", o, r.fragments.largest_fraction());
@@ -138,22 +157,43 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       "In brackets, the 95 % interval of the share of meshes that show it (Wilson's score interval): which meshes "
       "show a pattern near its threshold is a draw, and with few meshes a count is read with that spread.");
   if (speeds.size() > 1) {
-    std::vector<int> whole;
-    for (const auto& [o, ok] : met_every)
-      if (ok) whole.push_back(o);
-    const int known = static_cast<int>(met_every.size() - failed_mesh.size());
-    if (known > 0) {
-      every.count = report::count_of(static_cast<int>(whole.size()), known);
-      every.most = 2 * static_cast<int>(whole.size()) > known;
-      doc.para(fmt::format(
-          "The paper's pattern at every speed run ({:g} m/s), mesh by mesh: {}{}{}. The paper shows one mesh; a "
-          "pattern is dspdem's typical outcome when most meshes show it.",
-          fmt::join(speeds, ", "), every.count,
-          whole.empty() ? "" : fmt::format(", orientation{} {}", whole.size() > 1 ? "s" : "", fmt::join(whole, ", ")),
-          failed_mesh.empty() ? ""
-                              : fmt::format("; not counted, a run failed: orientation{} {}",
-                                            failed_mesh.size() > 1 ? "s" : "", fmt::join(failed_mesh, ", "))));
+    // "k of n (95 %: lo-hi), orientations ...; not counted, a run failed: ..."; empty when no
+    // mesh has all its runs.
+    auto text_of = [](const MeshCount& c) {
+      if (c.known <= 0) return std::string();
+      std::string t = report::count_of(static_cast<int>(c.whole.size()), c.known);
+      if (!c.whole.empty())
+        t += fmt::format(", orientation{} {}", c.whole.size() > 1 ? "s" : "", fmt::join(c.whole, ", "));
+      if (!c.failed.empty())
+        t += fmt::format("; not counted, a run failed: orientation{} {}", c.failed.size() > 1 ? "s" : "",
+                         fmt::join(c.failed, ", "));
+      return t;
+    };
+    std::vector<double> described, between;
+    for (double v : speeds) (speed_band(v) == SpeedBand::FewLargeAssumed ? between : described).push_back(v);
+    // The paper's pattern is the paper's at the speeds it describes (<= 5, 7.5, >= 20 m/s); a
+    // speed between is held to 7.5 m/s's only by assumption, so the count the issue reads
+    // leaves those out, and the extra speeds of a merged sweep do not change it.
+    std::string p;
+    if (described.size() > 1) {
+      const MeshCount c = count_every_speed(speeds, by_speed, true);
+      if (c.known > 0) {
+        every.count = report::count_of(static_cast<int>(c.whole.size()), c.known);
+        every.most = 2 * static_cast<int>(c.whole.size()) > c.known;
+        p = fmt::format("The paper's pattern at every speed run that the paper describes ({:g} m/s), mesh by mesh: {}.",
+                        fmt::join(described, ", "), text_of(c));
+      }
     }
+    if (!between.empty()) {
+      const std::string t = text_of(count_every_speed(speeds, by_speed, false));
+      if (!t.empty())
+        p += fmt::format(
+            "{}With the speeds between held to 7.5 m/s's pattern ({:g} m/s: an assumption, the paper describes "
+            "<= 5, 7.5 and >= 20 m/s), at every speed run ({:g} m/s): {}.",
+            p.empty() ? "" : " ", fmt::join(between, ", "), fmt::join(speeds, ", "), t);
+    }
+    if (!p.empty())
+      doc.para(p + " The paper shows one mesh; a pattern is dspdem's typical outcome when most meshes show it.");
     onset_table(doc, through_at, few_at);
     breakage_tables(doc, speeds, by_speed, (fs::path(where.dir) / "images" / "breakage_probability.png").string(),
                     "images/breakage_probability.png");

@@ -33,6 +33,19 @@ struct EverySpeed {
   bool most = false;
 };
 
+/// The meshes that show the paper's pattern at each of their runs: by orientation, those that
+/// do, and those with a failed run (not counted); `known` the meshes counted.
+struct MeshCount {
+  std::vector<int> whole, failed;
+  int known = 0;
+};
+
+/// Over every speed run (a speed between those the paper describes held to 7.5 m/s's pattern,
+/// pattern.hpp), or with `described_only` over the speeds the paper describes alone: the count
+/// issue 18 reads, which a merged sweep's extra speeds leave as it was.
+MeshCount count_every_speed(const std::vector<double>& speeds, const std::vector<std::vector<RealisationRun>>& by_speed,
+                            bool described_only);
+
 /// Writes the section into `doc` and orientations.csv into where.dir; by_speed[s]: the runs at
 /// speeds[s], the case's own mesh first.
 EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& speeds,
