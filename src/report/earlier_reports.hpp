@@ -11,21 +11,24 @@ namespace dspdem::report {
 
 /// A planned run as found among the earlier reports' folders.
 struct EarlierReportRun {
-  std::string dir;    ///< its run folder; empty when no folder holds a finished or failed run
+  std::string dir;    ///< its completed run's folder; empty when no folder holds one
   std::string root;   ///< the report folder it was found in
   std::string build;  ///< the dspdem that made it (its summary's executable id)
-  std::string error;  ///< why the run found is no result: it failed or was interrupted
+  std::string error;  ///< no completed run, but one that failed or was stopped: why
   /// When no folder holds its summary but one holds its log: that log (the earlier report
   /// started the run and lost it, as opposed to a run it never had).
   std::string lost_log;
+  int shadowed = 0;  ///< later folders with a completed copy of it (checked, not taken)
 };
 
 /// Looks for the run folder `rel` (below a report's folder, e.g. "speeds/v5") in each of
-/// `roots` in turn and takes the first that holds its summary.json. That run must be of the
-/// case that resolves to `resolved` (its case.resolved.toml, compared as same_case does):
-/// otherwise throws Error naming the folder and the first line that differs. A run that
-/// failed or was interrupted is returned with `error` set. When no root holds the run's
-/// summary, `lost_log` names the first log of it found (`rel`.log, beside its folder).
+/// `roots` and takes the first completed run (its summary.json in the folder). Every run
+/// found must be of the case that resolves to `resolved` (its case.resolved.toml, compared as
+/// same_case does): otherwise throws Error naming the folder and the first line that differs.
+/// Without a completed run anywhere, the first that failed or was stopped (its summary in
+/// the folder's failed_run/ or interrupted_run/, io/staging.hpp) sets `error`, and the first
+/// log of it (`rel`.log, beside its folder: a run killed outright leaves only that) sets
+/// `lost_log`; neither: no root ever ran it.
 EarlierReportRun find_earlier_report_run(const std::vector<std::string>& roots, const std::string& rel,
                                          const std::string& resolved);
 

@@ -235,8 +235,9 @@ TEST(BreakageProbability, TheBootstrapGivesNoIntervalWhenTooManyResamplesCannotB
   EXPECT_GT(b.not_fitted, 10);  // 400 x 2 / 27 = 30 expected
   EXPECT_LT(b.not_fitted, 60);
   EXPECT_TRUE(std::isnan(b.w50_lo));
-  // The spread: those, and the resamples that broke nowhere, have no curve.
-  EXPECT_GE(b.spread_left_out, b.not_fitted);
+  // The spread: those have no curve, and neither have the resamples of the never-breaking
+  // mesh alone (1 in 27), which W50 keeps as above every run.
+  EXPECT_GT(b.spread_left_out, b.not_fitted);
   EXPECT_TRUE(std::isnan(b.spread_lo));
 }
 

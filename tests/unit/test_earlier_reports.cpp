@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "io/run_summary.hpp"
+#include "io/staging.hpp"
 #include "report/earlier_reports.hpp"
 
 using namespace dspdem;
@@ -25,10 +26,13 @@ class EarlierReports : public ::testing::Test {
     fs::remove_all(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
-  // A run folder `root`/speeds/v5 as a run leaves it: its summary and its resolved case.
+  // A run folder `root`/speeds/v5 as a run leaves it: its summary and its resolved case, in
+  // the folder when it completed, in failed_run/ or interrupted_run/ inside it when not
+  // (io/staging.hpp).
   std::string put_run(const std::string& root, const std::string& resolved, const std::string& build,
                       const std::string& status = "completed") {
-    const fs::path d = dir_ / root / "speeds" / "v5";
+    fs::path d = dir_ / root / "speeds" / "v5";
+    if (status != "completed") d /= status == "failed" ? failed_folder : interrupted_folder;
     fs::create_directories(d);
     RunSummary s;
     s.status = status, s.build = build, s.message = status == "completed" ? "" : "NaN at step 7";
@@ -48,6 +52,7 @@ TEST_F(EarlierReports, TheFirstFolderWithTheRunGivesIt) {
   EXPECT_EQ(r.build, "build B");
   EXPECT_EQ(r.dir, (fs::path(b) / "speeds" / "v5").string());
   EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.shadowed, 1);  // a's copy, checked and not taken
   // A folder that does not hold it is passed over.
   const std::string empty = (dir_ / "empty").string();
   fs::create_directories(empty);
@@ -90,11 +95,26 @@ TEST_F(EarlierReports, ARunOfAnotherCaseIsRefusedNamingTheLineAndTheOriginLineIs
   EXPECT_EQ(report::find_earlier_report_run({b}, "speeds/v5", kCase).root, b);
 }
 
-TEST_F(EarlierReports, AFailedRunIsFoundWithItsReason) {
+TEST_F(EarlierReports, AFailedOrStoppedRunGivesItsReasonUnlessAnotherFolderCompletedIt) {
   const std::string a = put_run("a", kCase, "build A", "failed");
+  std::ofstream(dir_ / "a" / "speeds" / "v5.log") << "NaN\n";
   const auto r = report::find_earlier_report_run({a}, "speeds/v5", kCase);
-  EXPECT_FALSE(r.dir.empty());
+  EXPECT_TRUE(r.dir.empty());
   EXPECT_NE(r.error.find("v5 failed: NaN at step 7"), std::string::npos) << r.error;
+  EXPECT_EQ(r.lost_log, (dir_ / "a" / "speeds" / "v5.log").string());
+  const std::string b = put_run("b", kCase, "build B", "interrupted");
+  EXPECT_NE(report::find_earlier_report_run({b}, "speeds/v5", kCase).error.find("v5 was interrupted"),
+            std::string::npos);
+  // A completed run in a later folder is taken over the failed one.
+  const std::string c = put_run("c", kCase, "build C");
+  const auto done = report::find_earlier_report_run({a, b, c}, "speeds/v5", kCase);
+  EXPECT_EQ(done.root, c);
+  EXPECT_TRUE(done.error.empty()) << done.error;
+  // The failed run is of its case too: one of another case is refused there as well.
+  std::string other = kCase;
+  other.replace(other.find("5.0"), 3, "7.5");
+  const std::string d = put_run("d", other, "build D", "failed");
+  EXPECT_THROW(report::find_earlier_report_run({d, c}, "speeds/v5", kCase), Error);
 }
 
 TEST_F(EarlierReports, SourcesNameEachFolderAndEachBuildWithItsRuns) {
@@ -107,4 +127,10 @@ TEST_F(EarlierReports, SourcesNameEachFolderAndEachBuildWithItsRuns) {
   EXPECT_EQ(report::earlier_report_sources(two, "/r/out"),
             "`../b` (1 run), `../a` (2 runs), made by 2 builds of dspdem: B2 (1 run), B1 (2 runs)");
   EXPECT_EQ(report::earlier_report_sources({}, "/r/out"), "");
+  // A run also in a later folder is named; a summary without a build says so.
+  std::vector<report::EarlierReportRun> again = one;
+  again[0].shadowed = 2, again[0].build = again[1].build = "";
+  EXPECT_EQ(report::earlier_report_sources(again, "/r/out"),
+            "`../a` (2 runs), made by one build of dspdem (not recorded); 1 run also in a later folder, taken from the "
+            "first");
 }

@@ -206,7 +206,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   // --from-run: earlier reports' folders, whose speeds/ and orientations/ runs are analysed
   // again (each found in the first folder that has it); the plan's folders are this report's
   // until then.
-  const std::vector<std::string> sweep_roots = a.from_runs.empty() ? std::vector<std::string>{dir} : a.from_runs;
+  std::vector<std::string> sweep_roots;
+  for (const auto& r : a.from_runs.empty() ? std::vector<std::string>{dir} : a.from_runs)
+    sweep_roots.push_back((fs::path(r) / "").lexically_normal().parent_path().string());  // "a/" and "a" alike
 
   // The case's own orientation: the sweep's and the study's mesh; realisations turn it further.
   const int k0 = static_cast<int>(mesh_param(c, "orientation"));
@@ -268,29 +270,30 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                       sets, v, k0 + r});
     }
   std::vector<std::string> errors(plan.size());
-  std::vector<report::EarlierReportRun> earlier;  // --from-run: where each run of the sweep was found
+  // --from-run: where each run of the sweep was found, by plan index (the study's: none).
+  std::vector<report::EarlierReportRun> earlier(a.from_runs.empty() ? 0 : plan.size());
   if (a.from_runs.empty()) {
     errors = run_planned(c, plan, jobs, a.runs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
       if (i >= n_sweep && i < n_sweep + n_study) continue;
       const std::string rel = fs::path(plan[i].dir).lexically_relative(dir).string();
-      earlier.push_back(report::find_earlier_report_run(sweep_roots, rel, reread_with(c, plan[i].sets).resolved_toml));
-      const report::EarlierReportRun& e = earlier.back();
+      earlier[i] = report::find_earlier_report_run(sweep_roots, rel, reread_with(c, plan[i].sets).resolved_toml);
+      const report::EarlierReportRun& e = earlier[i];
       if (!e.dir.empty()) {
-        plan[i].dir = e.dir, errors[i] = e.error;
+        plan[i].dir = e.dir;
         continue;
       }
-      // A realisation an earlier report ran and lost (its log is there) is a failed row, as
-      // it was in that report; one none ran means they had fewer --realisations.
-      if (i >= first_realisation && !e.lost_log.empty()) {
-        errors[i] = fmt::format("no finished run (see {})", e.lost_log);
+      // A run an earlier report ran and lost is a failed row, as it was in that report: with
+      // the reason its summary gives when it failed or was stopped, else its log's. One none
+      // ran means they had other speeds or fewer --realisations.
+      if (!e.error.empty() || !e.lost_log.empty()) {
+        errors[i] = e.error.empty() ? fmt::format("no finished run (see {})", e.lost_log)
+                                    : e.error + (e.lost_log.empty() ? "" : fmt::format(" (see {})", e.lost_log));
         continue;
       }
-      fail(
-          "--from-run {}: no finished run of {} in any (the sweep's speeds/ and orientations/ folders of earlier "
-          "reports, with as many --realisations)",
-          fmt::join(sweep_roots, ", "), rel);
+      fail("--from-run {}: none has run {} (the speeds/ and orientations/ folders of earlier reports of this sweep{})",
+           fmt::join(sweep_roots, ", "), rel, i >= first_realisation ? ", with as many --realisations" : "");
     }
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
@@ -504,7 +507,13 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       for (std::size_t i = first_realisation; i < plan.size(); ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
     }
-    every = sphere::realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, sweep_roots});
+    // The folders the turned meshes' runs came from (with --from-run, those of the roots that
+    // had any).
+    std::vector<std::string> from = a.from_runs.empty() ? sweep_roots : std::vector<std::string>{};
+    for (std::size_t i = first_realisation; i < earlier.size(); ++i)
+      if (!earlier[i].dir.empty() && std::find(from.begin(), from.end(), earlier[i].root) == from.end())
+        from.push_back(earlier[i].root);
+    every = sphere::realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, from});
   }
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");
@@ -586,8 +595,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
          report::agrees(sphere::pattern_met(r)),
          "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
   if (!every.count.empty())
-    h.rows.push_back({"meshes with the paper's pattern at every speed run that it describes", "the pattern (one mesh)",
-                      every.count, report::agrees(every.most),
+    h.rows.push_back({"meshes with the paper's pattern at every speed run that the paper describes",
+                      "the pattern (one mesh)", every.count, report::agrees(every.most),
                       "Cli.ReportRealisationsRunEachSpeedAgainOnTurnedMeshes"});
   {
     double worst = 0;
