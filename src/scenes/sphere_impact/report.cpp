@@ -207,8 +207,11 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   // again (each found in the first folder that has it); the plan's folders are this report's
   // until then.
   std::vector<std::string> sweep_roots;
-  for (const auto& r : a.from_runs.empty() ? std::vector<std::string>{dir} : a.from_runs)
-    sweep_roots.push_back((fs::path(r) / "").lexically_normal().parent_path().string());  // "a/" and "a" alike
+  for (const auto& r : a.from_runs.empty() ? std::vector<std::string>{dir} : a.from_runs) {
+    // "a/" and "a" alike; "." and "./" stay "." (their normal form's parent is empty).
+    const std::string root = (fs::path(r) / "").lexically_normal().parent_path().string();
+    sweep_roots.push_back(root.empty() ? "." : root);
+  }
 
   // The case's own orientation: the sweep's and the study's mesh; realisations turn it further.
   const int k0 = static_cast<int>(mesh_param(c, "orientation"));
