@@ -55,7 +55,6 @@ EarlierReportRun find_earlier_report_run(const std::vector<std::string>& roots, 
     // run folder (io/staging.hpp), and its report's log beside the run folder.
     for (const char* kept : {failed_folder, interrupted_folder})
       if (const auto s = run_in(root, dir / kept, resolved); s && stopped.error.empty()) {
-        stopped.root = root, stopped.build = s->build;
         stopped.error =
             fmt::format("the run in {} {}{}", dir.string(), s->status == "failed" ? "failed" : "was " + s->status,
                         s->message.empty() ? "" : ": " + s->message);

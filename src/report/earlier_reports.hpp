@@ -12,8 +12,8 @@ namespace dspdem::report {
 /// A planned run as found among the earlier reports' folders.
 struct EarlierReportRun {
   std::string dir;    ///< its completed run's folder; empty when no folder holds one
-  std::string root;   ///< the report folder it was found in
-  std::string build;  ///< the dspdem that made it (its summary's executable id)
+  std::string root;   ///< the report folder its completed run was found in
+  std::string build;  ///< the dspdem that made that run (its summary's executable id)
   std::string error;  ///< no completed run, but one that failed or was stopped: why
   /// When no folder holds its summary but one holds its log: that log (the earlier report
   /// started the run and lost it, as opposed to a run it never had).
