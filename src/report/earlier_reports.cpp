@@ -2,14 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <optional>
 
 #include "core/error.hpp"
-#include "core/file.hpp"
 #include "io/run_summary.hpp"
 #include "io/staging.hpp"
+#include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
 
 namespace dspdem::report {
@@ -21,8 +22,9 @@ namespace {
 // The run a folder holds (its summary and its case), checked to be of the case `resolved`;
 // nothing when the folder has no summary.json.
 std::optional<RunSummary> run_in(const std::string& root, const fs::path& dir, const std::string& resolved) {
-  if (!fs::exists(dir / "summary.json")) return std::nullopt;
-  const auto ran = read_file_if((dir / "case.resolved.toml").string());
+  const auto r = run_record(dir.string());
+  if (!r) return std::nullopt;
+  const auto& ran = r->resolved;
   DSPDEM_CHECK(ran.has_value(), "--from-run {}: {} has a summary.json but no case.resolved.toml to tell its case by",
                root, dir.string());
   // The case as it ran against the case as asked now (the same overrides, every default
@@ -33,7 +35,17 @@ std::optional<RunSummary> run_in(const std::string& root, const fs::path& dir, c
                "run's then, this report's now): give the same case and --set overrides it was run with; if they are, "
                "a default has changed since the run was made, and the run is not this dspdem's",
                root, dir.string(), first_difference(*ran, resolved));
-  return read_run_summary((dir / "summary.json").string());
+  return r->summary;
+}
+
+// The report folders that hold a completed run of runs[begin, end), in the order the runs
+// first meet them.
+std::vector<std::string> roots_in_order(const std::vector<EarlierReportRun>& runs, std::size_t begin, std::size_t end) {
+  std::vector<std::string> roots;
+  for (std::size_t i = begin; i < std::min(end, runs.size()); ++i)
+    if (!runs[i].dir.empty() && std::find(roots.begin(), roots.end(), runs[i].root) == roots.end())
+      roots.push_back(runs[i].root);
+  return roots;
 }
 
 }  // namespace
@@ -59,7 +71,8 @@ EarlierReportRun find_earlier_report_run(const std::vector<std::string>& roots, 
             fmt::format("the run in {} {}{}", dir.string(), s->status == "failed" ? "failed" : "was " + s->status,
                         s->message.empty() ? "" : ": " + s->message);
       }
-    if (stopped.lost_log.empty() && fs::exists(dir.string() + ".log")) stopped.lost_log = dir.string() + ".log";
+    if (const std::string log = run_log(dir.string()); stopped.lost_log.empty() && fs::exists(log))
+      stopped.lost_log = log;
   }
   // A completed run anywhere is taken over one that failed or was stopped elsewhere (a sweep
   // run again into another folder after a failure).
@@ -68,12 +81,13 @@ EarlierReportRun find_earlier_report_run(const std::vector<std::string>& roots, 
 
 std::string earlier_report_sources(const std::vector<EarlierReportRun>& runs, const std::string& out_dir) {
   // In the order the runs first meet them.
-  std::vector<std::string> roots, builds;
+  const std::vector<std::string> roots = roots_in_order(runs, 0, runs.size());
+  std::vector<std::string> builds;
   std::map<std::string, int> per_root, per_build;
   int shadowed = 0;
   for (const auto& r : runs) {
     if (r.dir.empty()) continue;
-    if (per_root[r.root]++ == 0) roots.push_back(r.root);
+    ++per_root[r.root];
     if (per_build[r.build]++ == 0) builds.push_back(r.build);
     shadowed += r.shadowed > 0;
   }
@@ -91,6 +105,15 @@ std::string earlier_report_sources(const std::vector<EarlierReportRun>& runs, co
       s += fmt::format("{}{} ({})", i ? ", " : "", build(builds[i]), runs_of(per_build[builds[i]]));
   }
   if (shadowed > 0) s += fmt::format("; {} also in a later folder, taken from the first", runs_of(shadowed));
+  return s;
+}
+
+std::string earlier_report_folders(const std::vector<EarlierReportRun>& runs, std::size_t begin, std::size_t end,
+                                   const std::string& sub, const std::string& out_dir) {
+  if (runs.empty()) return fmt::format("`{}/`", sub);
+  std::string s;
+  for (const auto& r : roots_in_order(runs, begin, end))
+    s += fmt::format("{}`{}/`", s.empty() ? "" : ", ", fs::proximate(fs::path(r) / sub, out_dir).string());
   return s;
 }
 

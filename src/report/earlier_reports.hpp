@@ -4,6 +4,7 @@
 // when it is a run of the case as it resolves now, so that runs of another case, or of the
 // same case with other overrides, are never mixed in silently.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -36,5 +37,12 @@ EarlierReportRun find_earlier_report_run(const std::vector<std::string>& roots, 
 /// `B` (8 runs), made by one build of dspdem (ID)" or "... by 2 builds: ID (12 runs), ..."
 /// (paths relative to `out_dir`). Runs with an empty dir are left out.
 std::string earlier_report_sources(const std::vector<EarlierReportRun>& runs, const std::string& out_dir);
+
+/// Where runs[begin, end) lie, for the report's text: their folder `sub` (e.g. "speeds") of
+/// each earlier report that holds any of them, relative to `out_dir`, in the order the runs
+/// first meet them: "`../a/speeds/`, `../b/speeds/`". Without --from-run (`runs` empty) the
+/// report's own: "`speeds/`". Empty when none of them holds a completed run.
+std::string earlier_report_folders(const std::vector<EarlierReportRun>& runs, std::size_t begin, std::size_t end,
+                                   const std::string& sub, const std::string& out_dir);
 
 }  // namespace dspdem::report

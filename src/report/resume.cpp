@@ -2,10 +2,9 @@
 
 #include <filesystem>
 
-#include "core/file.hpp"
 #include "core/log.hpp"
-#include "io/run_summary.hpp"
 #include "io/staging.hpp"
+#include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_case.hpp"
 
@@ -16,10 +15,9 @@ namespace fs = std::filesystem;
 EarlierRun earlier_run(const std::string& dir, const std::string& resolved) {
   const fs::path d(dir);
   auto same = [&](const fs::path& run, const char* status) {
-    if (!fs::exists(run / "summary.json")) return false;
-    const RunSummary s = read_run_summary((run / "summary.json").string());
-    const auto ran = read_file_if((run / "case.resolved.toml").string());
-    return ran && s.status == status && s.build == executable_id() && same_case(*ran, resolved);
+    const auto r = run_record(run.string());
+    return r && r->resolved && r->summary.status == status && r->summary.build == executable_id() &&
+           same_case(*r->resolved, resolved);
   };
   try {
     if (same(d, "completed")) return {Earlier::Finished, {}};

@@ -25,17 +25,25 @@ const std::vector<double>& Series::operator[](const std::string& name) const {
   fail("'{}' has no column '{}' (columns:{})", path_, name, known);
 }
 
+std::optional<RunRecord> run_record(const std::string& dir) {
+  const fs::path d(dir);
+  if (!fs::exists(d / "summary.json")) return std::nullopt;
+  return RunRecord{read_run_summary((d / "summary.json").string()), read_file_if((d / "case.resolved.toml").string())};
+}
+
+std::string run_log(const std::string& dir) { return dir + ".log"; }
+
 RunData RunData::open(const std::string& dir) {
   RunData r;
   r.dir = dir;
   const fs::path d(dir);
-  DSPDEM_CHECK(fs::exists(d / "summary.json"), "{}: no summary.json there (not the output folder of a finished run)",
-               dir);
-  r.summary = read_run_summary((d / "summary.json").string());
+  auto rec = run_record(dir);
+  DSPDEM_CHECK(rec.has_value(), "{}: no summary.json there (not the output folder of a finished run)", dir);
+  r.summary = std::move(rec->summary);
+  r.resolved_case = std::move(rec->resolved).value_or("");
   r.series = Series((d / "series.csv").string());
   r.frames = render::read_series(dir);
   if (fs::exists(d / "joints.pvd")) r.joint_frames = render::read_series(dir, "joints.pvd");
-  if (auto text = read_file_if((d / "case.resolved.toml").string())) r.resolved_case = std::move(*text);
   return r;
 }
 

@@ -2,6 +2,7 @@
 // frames (and the joints frames when there are joints), and its resolved case text. Every
 // scene's analysis starts here instead of reading the files itself.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,22 @@ class Series {
   std::vector<std::string> names_;
   std::vector<std::vector<double>> cols_;
 };
+
+/// What a run folder records of the run it holds: its summary.json, and the case as it ran
+/// (its case.resolved.toml; none when that file is missing). Read by --resume, which keeps a
+/// run only when it is the same, by --from-run, which refuses a run of another case, and by
+/// RunData::open.
+struct RunRecord {
+  RunSummary summary;
+  std::optional<std::string> resolved;
+};
+
+/// The record of the run in `dir`; nothing when the folder has no summary.json.
+std::optional<RunRecord> run_record(const std::string& dir);
+
+/// The log a report's run process writes beside its folder ("<dir>.log"): where a killed run
+/// leaves the only trace of itself.
+std::string run_log(const std::string& dir);
 
 struct RunData {
   std::string dir;

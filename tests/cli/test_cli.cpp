@@ -903,6 +903,38 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   EXPECT_NE(mmd.find("none run here: `../part_a` (3 runs), `../part_b` (3 runs), made by one build of dspdem ("),
             std::string::npos)
       << mmd;
+  // Its text points at the runs where they are, not at a speeds/ of its own that it does not
+  // have; a report of its own runs at its own.
+  for (const char* at : {"in its own folder under `../part_a/speeds/`, `../part_b/speeds/` with its",
+                         "is the sweep's own runs in `../part_a/speeds/`, `../part_b/speeds/`). Folders: "
+                         "`../part_a/orientations/`, `../part_b/orientations/`;",
+                         "`fragment_masses.csv` in its run's folder, `v<speed>/` under `../part_a/speeds/`, "
+                         "`../part_b/speeds/`;"})
+    EXPECT_NE(mmd.find(at), std::string::npos) << at << "\n" << mmd;
+  EXPECT_NE(md.find("in its own folder under `speeds/` with its"), std::string::npos) << md;
+  EXPECT_NE(md.find("Folders: `orientations/`;"), std::string::npos) << md;
+  // With one speed the paper describes, the headline still counts the meshes with its pattern
+  // there, as the table's row does, and says whether that is most.
+  const Result one = report("sphere_impact",
+                            fmt::format("--from-run {} --realisations 3 --speeds 7.5 --set mesh.sphere_plate.size=0.04 "
+                                        "--set time.end=1e-4 --set output.frame_interval=2.5e-5 --no-render",
+                                        (dir_ / "rep").string()),
+                            "one");
+  ASSERT_EQ(one.code, 0) << one.out;
+  int at_75 = 0;  // orientations.csv's rows at 7.5 m/s with paper_pattern 1
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<std::string> f;
+    std::stringstream ss(lines[k]);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    at_75 += f[0] == "7.5" && f[9] == "1";
+  }
+  bool one_row = false;
+  const auto one_headline = nlohmann::json::parse(slurp(dir_ / "one" / "headline.json"));
+  for (const auto& row : one_headline["rows"])
+    if (row["quantity"] == "meshes with the paper's pattern at 7.5 m/s")
+      one_row = row["dspdem"].get<std::string>().rfind(fmt::format("{} of 3 (95 %: ", at_75), 0) == 0 &&
+                row["agrees"] == (2 * at_75 > 3 ? "yes" : "no");
+  EXPECT_TRUE(one_row) << at_75 << " of 3 expected:\n" << one_headline.dump(1);
   // One part alone lacks the other speed's runs, and names the first missing.
   const Result half = merged("half", {dir_ / "part_a"}, "");
   EXPECT_EQ(half.code, 2) << half.out;

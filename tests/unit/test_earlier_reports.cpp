@@ -10,6 +10,7 @@
 #include "io/run_summary.hpp"
 #include "io/staging.hpp"
 #include "report/earlier_reports.hpp"
+#include "report/run_data.hpp"
 
 using namespace dspdem;
 namespace fs = std::filesystem;
@@ -133,4 +134,38 @@ TEST_F(EarlierReports, SourcesNameEachFolderAndEachBuildWithItsRuns) {
   EXPECT_EQ(report::earlier_report_sources(again, "/r/out"),
             "`../a` (2 runs), made by one build of dspdem (not recorded); 1 run also in a later folder, taken from the "
             "first");
+}
+
+TEST_F(EarlierReports, FoldersOfARangeOfRunsAreThoseOfTheReportsThatHoldThem) {
+  // The sweep's own speeds (runs 0-1) from b then a; the turned meshes' (2-3) from a alone,
+  // one of them lost; without --from-run the report's own folder.
+  const std::vector<report::EarlierReportRun> runs = {{"/r/b/speeds/v5", "/r/b", "B", "", ""},
+                                                      {"/r/a/speeds/v7.5", "/r/a", "B", "", ""},
+                                                      {"/r/a/orientations/v5_o1", "/r/a", "B", "", ""},
+                                                      {"", "", "", "", "/r/c/orientations/v7.5_o1.log"}};
+  EXPECT_EQ(report::earlier_report_folders(runs, 0, 2, "speeds", "/r/out"), "`../b/speeds/`, `../a/speeds/`");
+  EXPECT_EQ(report::earlier_report_folders(runs, 2, 4, "orientations", "/r/out"), "`../a/orientations/`");
+  EXPECT_EQ(report::earlier_report_folders(runs, 3, 4, "orientations", "/r/out"), "");
+  EXPECT_EQ(report::earlier_report_folders({}, 0, 2, "speeds", "/r/out"), "`speeds/`");
+  // A folder given as . (the report's own, --from-run .).
+  EXPECT_EQ(report::earlier_report_folders({{"./speeds/v5", ".", "B", "", ""}}, 0, 1, "speeds", "."), "`speeds/`");
+}
+
+TEST_F(EarlierReports, ARunsRecordIsItsSummaryAndItsCaseAsRun) {
+  // A folder without summary.json holds no run; one without its case is read, the case
+  // missing (what each reader then makes of that is its own: --from-run refuses it).
+  const std::string root = put_run("a", kCase, "build A");
+  const auto r = report::run_record(root + "/speeds/v5");
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->summary.build, "build A");
+  ASSERT_TRUE(r->resolved.has_value());
+  EXPECT_EQ(*r->resolved, kCase);
+  EXPECT_FALSE(report::run_record(root + "/speeds").has_value());
+  fs::remove(fs::path(root) / "speeds" / "v5" / "case.resolved.toml");
+  const auto no_case = report::run_record(root + "/speeds/v5");
+  ASSERT_TRUE(no_case.has_value());
+  EXPECT_FALSE(no_case->resolved.has_value());
+  EXPECT_THROW(report::find_earlier_report_run({root}, "speeds/v5", kCase), Error);
+  // The log a report's run process writes beside its folder, where a lost run is looked for.
+  EXPECT_EQ(report::run_log(root + "/speeds/v5"), root + "/speeds/v5.log");
 }

@@ -17,20 +17,23 @@ struct RealisationRun {
   std::string error;
 };
 
-/// Where the runs are: the case's own orientation, the meshes per speed, the report's folder
-/// and the folders the runs are in (earlier reports' with --from-run).
+/// Where the runs are: the case's own orientation, the meshes per speed, the report's folder,
+/// and as the text names them the folders the case's own mesh's runs and the turned meshes'
+/// are in (earlier reports' with --from-run; report/earlier_reports.hpp).
 struct RealisationSetup {
   int k0 = 0, realisations = 1;
   std::string dir;
-  std::vector<std::string> sweep_roots;
+  std::string speeds_folders, orientation_folders;
 };
 
-/// The meshes with the paper's pattern at every speed run, as text: "k of n (95 %: lo-hi)"
-/// (empty unless several speeds and a mesh whose runs all finished), and whether that is
-/// most. Issue 18 reads the paper's one mesh as the pattern dspdem should give on most.
+/// The meshes with the paper's pattern at every speed run that the paper describes (`speeds`;
+/// count_every_speed), as text: "k of n (95 %: lo-hi)" (empty when no such speed was run or
+/// no mesh has all its runs), and whether that is most. Issue 18 reads the paper's one mesh as
+/// the pattern dspdem should give on most.
 struct EverySpeed {
   std::string count;
   bool most = false;
+  std::vector<double> speeds;
 };
 
 /// The meshes that show the paper's pattern at each of their runs: by orientation, those that

@@ -80,7 +80,7 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
       continue;
     }
     Job j;
-    j.log = p.dir + ".log";
+    j.log = report::run_log(p.dir);
     if (e.state == Earlier::Interrupted) {
       ++continued;
       // The checkpoint judged, by its file: a search of the folder by the child could find
@@ -160,7 +160,8 @@ std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(c
 // When the sphere came apart, not only whether it had by the compared time: near the
 // splitting speed one mesh's large pieces come free just before the compared time and
 // another's just after it (src/scenes/sphere_impact/REFERENCE.md).
-std::string split_times(const std::vector<SphereImpactResult>& sweep, double frame_interval) {
+std::string split_times(const std::vector<SphereImpactResult>& sweep, double frame_interval,
+                        const std::string& speeds_folders) {
   std::vector<std::string> split, whole, unknown;
   for (const auto& r : sweep)
     if (r.history.empty())
@@ -176,8 +177,8 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
   };
   std::string s = fmt::format(
       "The largest piece frame by frame up to the compared time (frames every {:.3g} ms, so a time below is that of "
-      "the first frame to show it; per speed: `speeds/<v>/pieces_time.csv`). ",
-      1e3 * frame_interval);
+      "the first frame to show it; per speed: `pieces_time.csv` in its run's folder, `v<speed>/` under {}). ",
+      1e3 * frame_interval, speeds_folders);
   // A run older than fragments.csv has no history: that is not "no split".
   const std::string none =
       unknown.empty() ? "" : fmt::format(" No history at {} m/s (a run without fragments.csv).", list(unknown));
@@ -207,7 +208,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   // again (each found in the first folder that has it); the plan's folders are this report's
   // until then.
   std::vector<std::string> sweep_roots;
-  for (const auto& r : a.from_runs.empty() ? std::vector<std::string>{dir} : a.from_runs) {
+  for (const auto& r : a.from_runs) {
     // "a/" and "a" alike; "." and "./" stay "." (their normal form's parent is empty).
     const std::string root = (fs::path(r) / "").lexically_normal().parent_path().string();
     sweep_roots.push_back(root.empty() ? "." : root);
@@ -399,15 +400,18 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
   }
 
+  // Where the sweep's own runs are, for the text: this report's speeds/, or with --from-run
+  // the earlier reports' that hold them.
+  const std::string speeds_folders = report::earlier_report_folders(earlier, 0, n_sweep, "speeds", dir);
   report::Document doc(dir, dir);
   doc.title("Sphere impact (paper section 2.5): report");
   doc.para(fmt::format(
       "Case `{}` ({}): a sphere of diameter {:.0f} mm ({:.2f} kg, {} tetrahedra, {} joints) strikes a rigid plate; "
-      "one run per speed, each a separate process in its own folder under `speeds/` with its case.resolved.toml. "
+      "one run per speed, each a separate process in its own folder under {} with its case.resolved.toml. "
       "Compared {:.3g} ms after the first contact ({}). Reference data and sources: "
       "src/scenes/sphere_impact/REFERENCE.md in dspdem.",
       c.path, c.name, 1e3 * sweep.front().diameter, sweep.front().mass, sweep.front().elements, sweep.front().joints,
-      1e3 * t_cmp, as_paper));
+      speeds_folders, 1e3 * t_cmp, as_paper));
   doc.para(
       "The paper's pattern: no crack through the sphere at 2.5 and 5 m/s, a few large pieces at 7.5 m/s, a crushed "
       "base with many small pieces at 20 m/s and more. Here a crack is *through* when a second piece holds at least "
@@ -510,13 +514,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       for (std::size_t i = first_realisation; i < plan.size(); ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
     }
-    // The folders the turned meshes' runs came from (with --from-run, those of the roots that
-    // had any).
-    std::vector<std::string> from = a.from_runs.empty() ? sweep_roots : std::vector<std::string>{};
-    for (std::size_t i = first_realisation; i < earlier.size(); ++i)
-      if (!earlier[i].dir.empty() && std::find(from.begin(), from.end(), earlier[i].root) == from.end())
-        from.push_back(earlier[i].root);
-    every = sphere::realisation_tables(doc, speeds, by_speed, {k0, a.realisations, dir, from});
+    every = sphere::realisation_tables(
+        doc, speeds, by_speed,
+        {k0, a.realisations, dir, speeds_folders,
+         report::earlier_report_folders(earlier, first_realisation, plan.size(), "orientations", dir)});
   }
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");
@@ -526,11 +527,14 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     doc.figure("cracks montage", "images/montage_cracks.png");
   }
   doc.section("Fragment size distribution");
-  doc.para(fmt::format("Per speed: `speeds/<v>/fragment_masses.csv`; all speeds in `{}`.", "fragment_masses.csv"));
+  doc.para(
+      fmt::format("Per speed: `fragment_masses.csv` in its run's folder, `v<speed>/` under {}; all speeds in "
+                  "`fragment_masses.csv`.",
+                  speeds_folders));
   doc.figure("cumulative fragment mass distribution", "images/fragment_masses.png");
   doc.section("Cracks, pieces and contact force over time");
   doc.figures({{"crack area", "images/crack_area.png"}, {"plate force", "images/plate_force.png"}});
-  doc.para(split_times(sweep, c.frame_interval));
+  doc.para(split_times(sweep, c.frame_interval, speeds_folders));
   doc.figure("largest piece against time", "images/largest_piece.png");
   if (!reach_curves.empty()) {
     doc.para(fmt::format(
@@ -538,8 +542,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         "joints' area lies, over the diameter, each joint where it was at the start (so a piece flying off does not "
         "move its crack). It rises as broken joints spread up through the sphere, whether or not they have cut a "
         "piece free yet. The table's second figure is the highest broken joint (its centroid). Per speed: "
-        "`speeds/<v>/pieces_time.csv`.",
-        100 * SphereImpactResult::reach_fraction));
+        "`pieces_time.csv` in its run's folder, `v<speed>/` under {}.",
+        100 * SphereImpactResult::reach_fraction, speeds_folders));
     doc.figure("crack reach against time", "images/crack_reach.png");
   }
   doc.section("Where the impact energy went");
@@ -587,9 +591,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   report::Headline& h = doc.headline();
   h.scene = "sphere_impact", h.title = "Sphere impact (paper 2.5)";
   h.summary = fmt::format(
-      "A rock sphere {:.0f} mm across ({} tetrahedra, {} joints) strikes a rigid plate at {} speeds; the pieces are "
+      "A rock sphere {:.0f} mm across ({} tetrahedra, {} joints) strikes a rigid plate at {} speed{}; the pieces are "
       "compared {:.3g} ms after the first contact ({}).",
-      1e3 * sweep.front().diameter, sweep.front().elements, sweep.front().joints, sweep.size(), 1e3 * t_cmp, as_paper);
+      1e3 * sweep.front().diameter, sweep.front().elements, sweep.front().joints, sweep.size(),
+      sweep.size() == 1 ? "" : "s", 1e3 * t_cmp, as_paper);
   for (const auto& r : sweep)
     h.rows.push_back(
         {fmt::format("pieces at {:g} m/s", r.speed), sphere::expected_pattern(r.speed),
@@ -598,7 +603,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
          report::agrees(sphere::pattern_met(r)),
          "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage"});
   if (!every.count.empty())
-    h.rows.push_back({"meshes with the paper's pattern at every speed run that the paper describes",
+    h.rows.push_back({every.speeds.size() == 1
+                          ? fmt::format("meshes with the paper's pattern at {:g} m/s", every.speeds.front())
+                          : std::string("meshes with the paper's pattern at every speed run that the paper describes"),
                       "the pattern (one mesh)", every.count, report::agrees(every.most),
                       "Cli.ReportRealisationsRunEachSpeedAgainOnTurnedMeshes"});
   {
