@@ -161,6 +161,11 @@ int run_main(int argc, char** argv) {
                   "Runs per speed of a velocity sweep, the first the case itself, the others with the mesh turned "
                   "another way (mesh.<generator>.orientation): how often each speed gives the pattern")
       ->check(CLI::Range(1, 100));
+  rep->add_option("--draws", rpa.draws,
+                  "Runs of each speed on each mesh of a velocity sweep, the first the run itself, the others with "
+                  "the impact speed nudged by 1e-5 m/s per draw: how much of the pattern is chance on one mesh and "
+                  "how much the mesh's")
+      ->check(CLI::Range(1, 100));
   rep->add_option("-j,--jobs", rpa.jobs,
                   "Runs of a sweep or study at once, each a process with -t 1 (default: one per core)")
       ->check(CLI::Range(1, 256));

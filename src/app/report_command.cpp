@@ -23,9 +23,10 @@ int report_command(const report::ReportArgs& a) {
     }
   }
   const scenes::Scene& scene = scenes::of_case(c);
-  DSPDEM_CHECK(scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1),
-               "{}: --speeds, --study-speeds and --realisations belong to a velocity sweep; scene '{}' has none",
-               c.path, scene.name);
+  DSPDEM_CHECK(
+      scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1 && a.draws == 1),
+      "{}: --speeds, --study-speeds, --realisations and --draws belong to a velocity sweep; scene '{}' has none",
+      c.path, scene.name);
   DSPDEM_CHECK(scene.speed_sweep || a.from_runs.size() <= 1,
                "{}: --from-run given {} times: scene '{}' analyses one run (several folders merge the runs of a "
                "velocity sweep)",

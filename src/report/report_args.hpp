@@ -29,6 +29,7 @@ struct ReportArgs {
   std::vector<double> speeds;        ///< a sweep over impact speeds (the sphere impact), empty: the scene's own list
   std::vector<double> study_speeds;  ///< speeds of the sphere impact's study, empty: the scene's own (7.5, 20)
   int realisations = 1;  ///< runs per speed of a sweep, each with the mesh turned another way (the sphere impact)
+  int draws = 1;         ///< runs of each of those on the same mesh, the speed nudged (the sphere impact)
   int jobs = 0;          ///< runs of a sweep or study in parallel processes (0: one per core)
   RunPolicy runs;        ///< --resume and --checkpoint-wall
 };

@@ -938,7 +938,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   // One part alone lacks the other speed's runs, and names the first missing.
   const Result half = merged("half", {dir_ / "part_a"}, "");
   EXPECT_EQ(half.code, 2) << half.out;
-  EXPECT_NE(half.out.find("none has run speeds/v7.5 (the speeds/ and orientations/ folders"), std::string::npos)
+  EXPECT_NE(half.out.find("none has run speeds/v7.5 (the speeds/, orientations/ and draws/ folders"), std::string::npos)
       << half.out;
   // Runs of the case with other overrides are not this report's runs: refused, the folder
   // and the first line that differs named, rather than mixed in.
@@ -991,6 +991,83 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   const Result disc = report("brazilian_disc", "--realisations 2");
   EXPECT_EQ(disc.code, 2) << disc.out;
   EXPECT_NE(disc.out.find("scene 'brazilian_disc' has none"), std::string::npos) << disc.out;
+}
+
+TEST_F(Cli, ReportDrawsRunEachMeshAgainWithTheSpeedNudged) {
+  // --draws 3 on two meshes at one speed: each run twice more on its own mesh, the speed
+  // raised by 1e-5 m/s per draw, tabulated per mesh with the test whether the meshes differ;
+  // on the 330-tet sphere for 0.1 ms after contact (the machinery, not the numbers).
+  const std::string sets =
+      "--speeds 7.5 --realisations 2 --draws 3 --set mesh.sphere_plate.size=0.04 --set time.end=1e-4 "
+      "--set output.frame_interval=2.5e-5";
+  const Result r = report("sphere_impact", sets + " -j 2");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string md = slurp(dir_ / "rep" / "report.md");
+  EXPECT_NE(md.find("### Chance on one mesh against the mesh: 3 draws of each run"), std::string::npos) << md;
+  for (const char* d : {"v7.5_o0_d1", "v7.5_o0_d2", "v7.5_o1_d1", "v7.5_o1_d2"})
+    EXPECT_TRUE(fs::exists(dir_ / "rep" / "draws" / d / "summary.json")) << d;
+  // A turned mesh's draw runs on that mesh.
+  EXPECT_NE(slurp(dir_ / "rep" / "draws" / "v7.5_o1_d2" / "case.resolved.toml").find("orientation = 1"),
+            std::string::npos);
+  // draws.csv: every draw, the case's mesh first, draw 0 the run itself; each at its nudged
+  // speed and judged at the sweep's.
+  std::ifstream csv(dir_ / "rep" / "draws.csv");
+  std::vector<std::vector<std::string>> rows;
+  std::string head;
+  std::getline(csv, head);
+  EXPECT_EQ(head.rfind("speed,speed_run,orientation,draw,through_crack,few_large_pieces,paper_pattern,", 0), 0u)
+      << head;
+  for (std::string l; std::getline(csv, l);) {
+    std::vector<std::string> f;
+    std::stringstream ss(l);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    rows.push_back(f);
+  }
+  ASSERT_EQ(rows.size(), 6u);
+  int through = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    ASSERT_GE(rows[k].size(), 10u);
+    EXPECT_EQ(rows[k][0], "7.5");
+    EXPECT_EQ(rows[k][2], k < 3 ? "0" : "1");
+    EXPECT_EQ(rows[k][3], std::to_string(k % 3));
+    EXPECT_NEAR(std::stod(rows[k][1]), 7.5 + 1e-5 * (k % 3), 1e-12) << rows[k][1];
+    through += rows[k][4] == "1";
+  }
+  // Draw 0 is the sweep's and the turned mesh's own run: as orientations.csv has it.
+  std::ifstream oc(dir_ / "rep" / "orientations.csv");
+  std::vector<std::string> olines;
+  for (std::string l; std::getline(oc, l);) olines.push_back(l);
+  ASSERT_EQ(olines.size(), 3u);
+  for (int o : {0, 1}) {
+    std::vector<std::string> f;
+    std::stringstream ss(olines[1 + o]);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    ASSERT_GE(f.size(), 14u) << olines[1 + o];
+    EXPECT_EQ(f[6], rows[3 * o][8]) << olines[1 + o];   // the largest piece
+    EXPECT_EQ(f[13], rows[3 * o][9]) << olines[1 + o];  // the balance's largest error, which differs by draw
+  }
+  // The draws do not enter the realisations' count: two meshes, one run each.
+  EXPECT_NE(md.find("| 7.5 | a few large pieces | 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 7.5 | 0 | 3 | "), std::string::npos) << md;
+  EXPECT_NE(md.find("| 7.5 | 1 | 3 | "), std::string::npos) << md;
+  EXPECT_NE(md.find(fmt::format("| 7.5 | a crack through | {} of 6 |", through)), std::string::npos) << md;
+  // Analysed again from the folder, the same; one draw more than was run is named.
+  const Result again = report("sphere_impact", sets + " --from-run " + (dir_ / "rep").string(), "again");
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_EQ(slurp(dir_ / "again" / "draws.csv"), slurp(dir_ / "rep" / "draws.csv"));
+  EXPECT_NE(slurp(dir_ / "again" / "report.md").find("Folders: `../rep/draws/`;"), std::string::npos);
+  const Result more = report("sphere_impact",
+                             "--speeds 7.5 --realisations 2 --draws 4 --set mesh.sphere_plate.size=0.04 --set "
+                             "time.end=1e-4 --set output.frame_interval=2.5e-5 --from-run " +
+                                 (dir_ / "rep").string(),
+                             "more");
+  EXPECT_EQ(more.code, 2) << more.out;
+  EXPECT_NE(more.out.find("none has run draws/v7.5_o0_d3"), std::string::npos) << more.out;
+  EXPECT_NE(more.out.find("with as many --realisations and --draws"), std::string::npos) << more.out;
+  // A scene without a sweep refuses it.
+  const Result disc = report("brazilian_disc", "--draws 2");
+  EXPECT_EQ(disc.code, 2) << disc.out;
+  EXPECT_NE(disc.out.find("--draws belong to a velocity sweep"), std::string::npos) << disc.out;
 }
 
 TEST_F(Cli, ReportResumeKeepsFinishedRunsAndContinuesInterruptedOnes) {

@@ -22,6 +22,7 @@
 #include "run/process_pool.hpp"
 #include "run/render_run.hpp"
 #include "scenes/sphere_impact/analysis.hpp"
+#include "scenes/sphere_impact/draws.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 #include "scenes/sphere_impact/realisations.hpp"
 #include "scenes/sphere_impact/scene.hpp"
@@ -61,6 +62,7 @@ struct Planned {
   std::vector<std::string> sets;  // on top of the case's own overrides
   double speed = 0;
   int orientation = 0;  // its mesh's mesh.sphere_plate.orientation
+  int draw = 0;         // 0, or the draw of --draws (sphere_impact/draws.hpp)
 };
 
 // Each planned run is read in-process first (a bad override fails here, with its message,
@@ -273,6 +275,21 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       plan.push_back({name, fmt::format("orientation {}", k0 + r), (fs::path(dir) / "orientations" / name).string(),
                       sets, v, k0 + r});
     }
+  // Draws (--draws N): each run of the sweep and of the turned meshes N - 1 times more on its
+  // own mesh, the impact speed nudged; the study's runs are not drawn again.
+  const std::size_t first_draw = plan.size();
+  for (std::size_t i = 0; i < first_draw; ++i) {
+    if (i >= n_sweep && i < first_realisation) continue;
+    const double v = plan[i].speed;
+    const int o = plan[i].orientation;
+    for (int d = 1; d < a.draws; ++d) {
+      std::vector<std::string> sets = speed_overrides(c, sphere::draw_speed(v, d));
+      if (o != k0) sets.push_back(override_of("mesh.sphere_plate.orientation", o));
+      const std::string name = fmt::format("{}_o{}_d{}", speed_name(v), o, d);
+      plan.push_back({name, fmt::format("orientation {}, draw {}", o, d), (fs::path(dir) / "draws" / name).string(),
+                      sets, v, o, d});
+    }
+  }
   std::vector<std::string> errors(plan.size());
   // --from-run: where each run of the sweep was found, by plan index (the study's: none).
   std::vector<report::EarlierReportRun> earlier(a.from_runs.empty() ? 0 : plan.size());
@@ -296,8 +313,13 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                                     : e.error + (e.lost_log.empty() ? "" : fmt::format(" (see {})", e.lost_log));
         continue;
       }
-      fail("--from-run {}: none has run {} (the speeds/ and orientations/ folders of earlier reports of this sweep{})",
-           fmt::join(sweep_roots, ", "), rel, i >= first_realisation ? ", with as many --realisations" : "");
+      fail(
+          "--from-run {}: none has run {} (the speeds/, orientations/ and draws/ folders of earlier reports of this "
+          "sweep{})",
+          fmt::join(sweep_roots, ", "), rel,
+          i >= first_draw          ? ", with as many --realisations and --draws"
+          : i >= first_realisation ? ", with as many --realisations"
+                                   : "");
     }
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
@@ -442,8 +464,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     if (r.balance_max > 0.01) lost.push_back(fmt::format("{:g} m/s ({:.2g})", r.speed, r.balance_max));
   for (std::size_t i = first_realisation; i < plan.size(); ++i)
     if (errors[i].empty() && res[i].balance_max > 0.01)
-      lost.push_back(
-          fmt::format("{:g} m/s, orientation {} ({:.2g})", plan[i].speed, plan[i].orientation, res[i].balance_max));
+      lost.push_back(fmt::format("{:g} m/s, orientation {}{} ({:.2g})", plan[i].speed, plan[i].orientation,
+                                 plan[i].draw > 0 ? fmt::format(", draw {}", plan[i].draw) : "", res[i].balance_max));
   if (!lost.empty())
     doc.para(fmt::format(
         "**Energy balance lost** (more than 1 % of the largest term) at {}: energy was made or lost by the numerics, "
@@ -511,13 +533,26 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     };
     for (std::size_t si = 0; si < speeds.size(); ++si) {
       by_speed[si].push_back(run_of(si));  // the case's own run (k0) first, then the turned meshes
-      for (std::size_t i = first_realisation; i < plan.size(); ++i)
+      for (std::size_t i = first_realisation; i < first_draw; ++i)
         if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
     }
     every = sphere::realisation_tables(
         doc, speeds, by_speed,
         {k0, a.realisations, dir, speeds_folders,
-         report::earlier_report_folders(earlier, first_realisation, plan.size(), "orientations", dir)});
+         report::earlier_report_folders(earlier, first_realisation, first_draw, "orientations", dir)});
+  }
+  if (a.draws > 1) {
+    std::vector<std::vector<sphere::DrawRun>> by_speed(speeds.size());
+    auto draw_of = [&](std::size_t i) {
+      return sphere::DrawRun{plan[i].orientation, plan[i].draw, errors[i].empty() ? &res[i] : nullptr, errors[i]};
+    };
+    for (std::size_t si = 0; si < speeds.size(); ++si) {
+      by_speed[si].push_back(draw_of(si));
+      for (std::size_t i = first_realisation; i < plan.size(); ++i)
+        if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(draw_of(i));
+    }
+    sphere::draw_tables(doc, speeds, by_speed, a.draws, dir,
+                        report::earlier_report_folders(earlier, first_draw, plan.size(), "draws", dir));
   }
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");
@@ -613,10 +648,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     for (const auto& r : sweep) worst = std::max(worst, r.balance_max);
     for (std::size_t i = first_realisation; i < plan.size(); ++i)
       if (errors[i].empty()) worst = std::max(worst, res[i].balance_max);
-    h.rows.push_back(report::balance_row(worst, "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage",
-                                         a.realisations > 1
-                                             ? "energy balance, largest error over the speeds and orientations"
-                                             : "energy balance, largest error over the speeds"));
+    h.rows.push_back(report::balance_row(
+        worst, "SphereImpact.SweepFollowsThePapersPatternAndMatchesTheStoredMontage",
+        fmt::format("energy balance, largest error over the speeds{}{}", a.realisations > 1 ? " and orientations" : "",
+                    a.draws > 1 ? " and draws" : "")));
   }
   if (!a.no_render) {
     doc.thumbnail("fragments, every speed", "images/montage_fragments.png");
