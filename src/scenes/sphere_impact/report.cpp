@@ -524,18 +524,22 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                          nb.empty() ? "never falls" : "falls between " + nb,
                          lb.empty() ? "never rises" : "rises between " + lb));
   }
+  // The runs at speeds[si], by plan index: the sweep's own (the case's mesh, k0) first, then
+  // those of plan[first_realisation, end) at that speed (the turned meshes, then the draws).
+  auto at_speed = [&](std::size_t si, std::size_t end) {
+    std::vector<std::size_t> ix{si};
+    for (std::size_t i = first_realisation; i < end; ++i)
+      if (std::abs(plan[i].speed - speeds[si]) < 1e-9) ix.push_back(i);
+    return ix;
+  };
+  auto result_of = [&](std::size_t i) { return errors[i].empty() ? &res[i] : nullptr; };
   // Over the realisations: per speed and per mesh (realisations.hpp).
   sphere::EverySpeed every;
   if (a.realisations > 1) {
     std::vector<std::vector<sphere::RealisationRun>> by_speed(speeds.size());
-    auto run_of = [&](std::size_t i) {
-      return sphere::RealisationRun{plan[i].orientation, errors[i].empty() ? &res[i] : nullptr, errors[i]};
-    };
-    for (std::size_t si = 0; si < speeds.size(); ++si) {
-      by_speed[si].push_back(run_of(si));  // the case's own run (k0) first, then the turned meshes
-      for (std::size_t i = first_realisation; i < first_draw; ++i)
-        if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(run_of(i));
-    }
+    for (std::size_t si = 0; si < speeds.size(); ++si)
+      for (std::size_t i : at_speed(si, first_draw))
+        by_speed[si].push_back({plan[i].orientation, result_of(i), errors[i]});
     every = sphere::realisation_tables(
         doc, speeds, by_speed,
         {k0, a.realisations, dir, speeds_folders,
@@ -543,14 +547,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   }
   if (a.draws > 1) {
     std::vector<std::vector<sphere::DrawRun>> by_speed(speeds.size());
-    auto draw_of = [&](std::size_t i) {
-      return sphere::DrawRun{plan[i].orientation, plan[i].draw, errors[i].empty() ? &res[i] : nullptr, errors[i]};
-    };
-    for (std::size_t si = 0; si < speeds.size(); ++si) {
-      by_speed[si].push_back(draw_of(si));
-      for (std::size_t i = first_realisation; i < plan.size(); ++i)
-        if (std::abs(plan[i].speed - speeds[si]) < 1e-9) by_speed[si].push_back(draw_of(i));
-    }
+    for (std::size_t si = 0; si < speeds.size(); ++si)
+      for (std::size_t i : at_speed(si, plan.size()))
+        by_speed[si].push_back({plan[i].orientation, plan[i].draw, result_of(i), errors[i]});
     sphere::draw_tables(doc, speeds, by_speed, a.draws, dir,
                         report::earlier_report_folders(earlier, first_draw, plan.size(), "draws", dir));
   }
