@@ -850,6 +850,30 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
     ASSERT_GE(f.size(), 10u) << lines[k];
     every.try_emplace(f[1], true).first->second &= f[9] == "1";
   }
+  // When the large pieces came free (split_timing.hpp): per speed the count over the three
+  // meshes, rising to the meshes whose two_large_after_contact_ms is a time.
+  std::map<std::string, int> freed;
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<std::string> f;
+    std::stringstream ss(lines[k]);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    freed[f[0]] += std::stod(f[10]) >= 0;
+  }
+  EXPECT_NE(md.find("| speed [m/s] | meshes | two pieces >= 10 % by the compared frame |"), std::string::npos) << md;
+  std::ifstream freed_csv(dir_ / "rep" / "large_pieces_time.csv");
+  std::string freed_line;
+  std::getline(freed_csv, freed_line);
+  EXPECT_EQ(freed_line, "speed,after_contact_ms,meshes,with_two_large");
+  std::map<std::string, int> freed_last;  // each speed's last row: the count at the latest compared frame
+  for (std::string l; std::getline(freed_csv, l);) {
+    std::vector<std::string> f;
+    std::stringstream ss(l);
+    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    ASSERT_EQ(f.size(), 4u) << l;
+    EXPECT_EQ(f[2], "3") << l;
+    freed_last[f[0]] = std::stoi(f[3]);
+  }
+  EXPECT_EQ(freed_last, freed);
   const auto whole = std::count_if(every.begin(), every.end(), [](const auto& e) { return e.second; });
   const std::string count = fmt::format("{} of 3 (95 %: ", whole);
   EXPECT_NE(

@@ -26,6 +26,7 @@
 #include "scenes/sphere_impact/analysis.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 #include "scenes/sphere_impact/realisations.hpp"
+#include "scenes/sphere_impact/split_timing.hpp"
 #include "support/cli.hpp"
 #include "support/golden.hpp"
 #include "support/quick_report.hpp"
@@ -188,4 +189,48 @@ TEST(SpherePattern, TheEverySpeedCountLeavesOutTheSpeedsThePaperDoesNotDescribe)
   by_speed[2][0] = {0, nullptr, "lost"};
   EXPECT_EQ(sphere::count_every_speed(speeds, by_speed, true).failed, (std::vector<int>{0}));
   EXPECT_EQ(sphere::count_every_speed(speeds, by_speed, true).whole, (std::vector<int>{1, 3}));
+}
+
+// When the large pieces come free, over one speed's meshes: each mesh counted from its first
+// frame with two pieces of 10 %, up to its own compared frame (the runs' differ by up to a
+// frame), also after they broke up further; failed runs and runs without a history are left
+// out, not counted as whole.
+TEST(SpherePattern, TheSplitTimingCountsEachMeshFromItsFirstTwoLargePieces) {
+  // A history of frames every 0.025 ms up to `end_ms`, two large pieces from `two_ms` (none: -1)
+  // until `broken_up_ms` (none: -1), then broken up further (one large piece).
+  auto run = [](double end_ms, double two_ms, double broken_up_ms) {
+    SphereImpactResult r;
+    r.speed = 7.5;
+    for (int f = 1; 0.025 * f <= end_ms + 1e-9; ++f) {
+      SphereImpactResult::PiecesAt h;
+      h.frame = f, h.after_contact = 0.025e-3 * f;
+      const double ms = 0.025 * f;
+      const bool two = two_ms >= 0 && ms >= two_ms - 1e-9, broken_up = broken_up_ms >= 0 && ms >= broken_up_ms - 1e-9;
+      h.large_pieces = two && !broken_up ? 2 : 1;
+      r.history.push_back(h);
+    }
+    return r;
+  };
+  const SphereImpactResult late = run(0.75, 0.70, -1), last_frame = run(0.775, 0.775, -1), whole = run(0.75, -1, -1),
+                           early = run(0.75, 0.30, 0.40), old = SphereImpactResult{};
+  const std::vector<sphere::RealisationRun> runs = {{0, &late, ""},       {1, &last_frame, ""}, {2, &whole, ""},
+                                                    {3, nullptr, "lost"}, {4, &old, ""},        {5, &early, ""}};
+  const sphere::SplitTiming s = sphere::split_timing(7.5, runs);
+  ASSERT_EQ(s.meshes(), 4);
+  EXPECT_EQ(s.left_out, 2);
+  EXPECT_NEAR(s.first[0], 0.70e-3, 1e-15);
+  EXPECT_NEAR(s.first[1], 0.775e-3, 1e-15);  // at its own compared frame, a frame after the others'
+  EXPECT_EQ(s.first[2], -1.0);
+  EXPECT_NEAR(s.first[3], 0.30e-3, 1e-15);  // counted although broken up further since
+  EXPECT_NEAR(s.end[1], 0.775e-3, 1e-15);
+  EXPECT_EQ(s.by_end(), 3);                     // what the compared frames show
+  EXPECT_EQ(s.by_end(sphere::kLateWindow), 1);  // 0.1 ms before them: 0.30 only (0.70 > 0.65)
+  EXPECT_EQ(s.by_end(0.05e-3), 2);              // 0.70 <= 0.75 - 0.05, a frame's own time counts
+  EXPECT_EQ(s.by_end(0.05e-3 + 1e-9), 1);       // a nanosecond earlier, 0.70 is not yet
+  EXPECT_EQ(s.times(), (std::vector<double>{s.first[3], s.first[0], s.first[1]}));
+  // No run with a history: nothing to read.
+  const sphere::SplitTiming none = sphere::split_timing(7.5, {{0, nullptr, "lost"}, {1, &old, ""}});
+  EXPECT_EQ(none.meshes(), 0);
+  EXPECT_EQ(none.left_out, 2);
+  EXPECT_EQ(none.by_end(), 0);
 }
