@@ -192,15 +192,15 @@ TEST(SpherePattern, TheEverySpeedCountLeavesOutTheSpeedsThePaperDoesNotDescribe)
 }
 
 // When the large pieces come free, over one speed's meshes: each mesh counted from its first
-// frame with two pieces of 10 %, up to its own compared frame (the runs' differ by up to a
-// frame), also after they broke up further; failed runs and runs without a history are left
-// out, not counted as whole.
-TEST(SpherePattern, TheSplitTimingCountsEachMeshFromItsFirstTwoLargePieces) {
-  // A history of frames every 0.025 ms up to `end_ms`, two large pieces from `two_ms` (none: -1)
-  // until `broken_up_ms` (none: -1), then broken up further (one large piece).
+// frame with two pieces of 10 %, up to its own compared frame (the runs' compared frames differ
+// by up to a frame), also after they broke up further; failed runs and runs without a history
+// are left out, not counted as whole.
+TEST(SphereSplitTiming, CountsEachMeshFromItsFirstTwoLargePiecesUpToItsComparedFrame) {
+  // A history of frames every 0.025 ms up to `end_ms` (the compared frame), two large pieces
+  // from `two_ms` (none: -1) until `broken_up_ms` (none: -1), then one large piece.
   auto run = [](double end_ms, double two_ms, double broken_up_ms) {
     SphereImpactResult r;
-    r.speed = 7.5;
+    r.speed = 7.5, r.t_contact = 0.1e-3, r.t_compare = r.t_contact + 1e-3 * end_ms;
     for (int f = 1; 0.025 * f <= end_ms + 1e-9; ++f) {
       SphereImpactResult::PiecesAt h;
       h.frame = f, h.after_contact = 0.025e-3 * f;
@@ -212,25 +212,39 @@ TEST(SpherePattern, TheSplitTimingCountsEachMeshFromItsFirstTwoLargePieces) {
     return r;
   };
   const SphereImpactResult late = run(0.75, 0.70, -1), last_frame = run(0.775, 0.775, -1), whole = run(0.75, -1, -1),
-                           early = run(0.75, 0.30, 0.40), old = SphereImpactResult{};
+                           early = run(0.75, 0.30, 0.40), same_time = run(0.75, 0.70, -1), old = SphereImpactResult{};
   const std::vector<sphere::RealisationRun> runs = {{0, &late, ""},       {1, &last_frame, ""}, {2, &whole, ""},
-                                                    {3, nullptr, "lost"}, {4, &old, ""},        {5, &early, ""}};
+                                                    {3, nullptr, "lost"}, {4, &old, ""},        {5, &early, ""},
+                                                    {6, &same_time, ""}};
   const sphere::SplitTiming s = sphere::split_timing(7.5, runs);
-  ASSERT_EQ(s.meshes(), 4);
+  ASSERT_EQ(s.meshes(), 5);
   EXPECT_EQ(s.left_out, 2);
   EXPECT_NEAR(s.first[0], 0.70e-3, 1e-15);
   EXPECT_NEAR(s.first[1], 0.775e-3, 1e-15);  // at its own compared frame, a frame after the others'
   EXPECT_EQ(s.first[2], -1.0);
   EXPECT_NEAR(s.first[3], 0.30e-3, 1e-15);  // counted although broken up further since
   EXPECT_NEAR(s.end[1], 0.775e-3, 1e-15);
-  EXPECT_EQ(s.by_end(), 3);                     // what the compared frames show
+  EXPECT_EQ(s.by_end(), 4);                     // what the frames up to the compared ones show
   EXPECT_EQ(s.by_end(sphere::kLateWindow), 1);  // 0.1 ms before them: 0.30 only (0.70 > 0.65)
-  EXPECT_EQ(s.by_end(0.05e-3), 2);              // 0.70 <= 0.75 - 0.05, a frame's own time counts
+  EXPECT_EQ(s.by_end(0.05e-3), 3);              // 0.70 <= 0.75 - 0.05: a frame's own time counts
   EXPECT_EQ(s.by_end(0.05e-3 + 1e-9), 1);       // a nanosecond earlier, 0.70 is not yet
-  EXPECT_EQ(s.times(), (std::vector<double>{s.first[3], s.first[0], s.first[1]}));
+  // The step curve: one point per distinct time, with the meshes by then.
+  const auto st = sphere::steps(s);
+  ASSERT_EQ(st.size(), 3u);
+  EXPECT_EQ(st[0].second, 1);
+  EXPECT_NEAR(st[1].first, 0.70e-3, 1e-15);
+  EXPECT_EQ(st[1].second, 3);  // two meshes at 0.70 ms: one point
+  EXPECT_EQ(st[2].second, 4);
+  EXPECT_EQ(sphere::came_free(s.first), (std::vector<double>{s.first[3], s.first[0], s.first[4], s.first[1]}));
+  // One mesh's draws, in ms.
+  EXPECT_EQ(sphere::freed_range(s.first), "0.300-0.775 (4 of 5)");
+  EXPECT_EQ(sphere::freed_range({0.7e-3, -1}), "0.700 (1 of 2)");
+  EXPECT_EQ(sphere::freed_range({-1, -1}), "none (0 of 2)");
+  EXPECT_EQ(sphere::freed_range({}), "-");
   // No run with a history: nothing to read.
   const sphere::SplitTiming none = sphere::split_timing(7.5, {{0, nullptr, "lost"}, {1, &old, ""}});
   EXPECT_EQ(none.meshes(), 0);
   EXPECT_EQ(none.left_out, 2);
   EXPECT_EQ(none.by_end(), 0);
+  EXPECT_TRUE(sphere::steps(none).empty());
 }

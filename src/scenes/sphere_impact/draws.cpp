@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "report/homogeneity.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
+#include "scenes/sphere_impact/split_timing.hpp"
 
 namespace dspdem::sphere {
 
@@ -21,25 +22,11 @@ struct Mesh {
   int orientation = 0;
   std::vector<bool> through, few, met;
   std::vector<double> largest;
-  std::vector<double> freed;  // of the draws with a history: first two pieces of 10 % [s after contact], -1 none
+  std::vector<double> freed;  // draws with a history: first two pieces of 10 % [s after contact], -1 none
 };
 
 std::string share(const std::vector<bool>& v) {
   return fmt::format("{} of {}", std::count(v.begin(), v.end(), true), v.size());
-}
-
-// When the draws that came apart did [ms after contact], and how many of the draws with a history
-// did: on one mesh the moment spreads, and a compared time inside that spread makes the outcome
-// partly a draw of when, not of whether.
-std::string freed_range(const std::vector<double>& freed) {
-  std::vector<double> t;
-  for (double f : freed)
-    if (f >= 0) t.push_back(f);
-  if (t.empty()) return freed.empty() ? std::string("-") : fmt::format("none (0 of {})", freed.size());
-  const auto [lo, hi] = std::minmax_element(t.begin(), t.end());
-  const std::string when =
-      *lo == *hi ? fmt::format("{:.3f}", 1e3 * *lo) : fmt::format("{:.3f}-{:.3f}", 1e3 * *lo, 1e3 * *hi);
-  return fmt::format("{} ({} of {})", when, t.size(), freed.size());
 }
 
 // The permutation test's relabellings: its p near 0.05 has a standard error of about 0.0015.
@@ -76,7 +63,6 @@ void draw_tables(report::Document& doc, const std::vector<double>& speeds,
   std::ofstream csv(fs::path(dir) / "draws.csv");
   csv << "speed,speed_run,orientation,draw,through_crack,few_large_pieces,paper_pattern,pieces_10pct,largest,"
          "balance_max,two_large_after_contact_ms\n";
-  // two_large_after_contact_ms as in orientations.csv: -1 none by the compared time, nan no history.
   std::vector<std::string> failed;
   std::vector<std::vector<std::string>> rows, tests;
   for (std::size_t si = 0; si < speeds.size(); ++si) {
@@ -103,11 +89,9 @@ void draw_tables(report::Document& doc, const std::vector<double>& speeds,
         m.through.push_back(r.through_crack), m.few.push_back(a_few_large_pieces(r)), m.met.push_back(pattern_met(r));
         m.largest.push_back(r.fragments.largest_fraction());
         if (!r.history.empty()) m.freed.push_back(r.t_two_large());
-        const std::string t2 = two_large_ms(r, "nan");
         csv << fmt::format("{:g},{:.17g},{},{},{},{},{},{},{:.6f},{:.3e},{}\n", v, d->result->speed, d->orientation,
                            d->draw, int(r.through_crack), int(a_few_large_pieces(r)), int(pattern_met(r)),
-                           r.pieces_10pct, r.fragments.largest_fraction(), r.balance_max,
-                           t2 == "-" ? std::string("-1.000") : t2);
+                           r.pieces_10pct, r.fragments.largest_fraction(), r.balance_max, two_large_csv(r));
       }
     }
     for (const Mesh& m : meshes) {
@@ -147,7 +131,8 @@ void draw_tables(report::Document& doc, const std::vector<double>& speeds,
   }
   doc.table({"speed [m/s]", "orientation", "draws", "a crack through", "a few large pieces", "the paper's pattern",
              "largest piece: mean (range)",
-             "two pieces >= 10 % first [ms after contact]: range (draws that show them, of those with a history)"},
+             "two pieces >= 10 % first, by the compared frame [ms after contact]: range (draws that show them, of "
+             "those with a history)"},
             rows);
   if (!tests.empty()) {
     doc.para(fmt::format(

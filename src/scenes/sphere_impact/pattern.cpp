@@ -59,4 +59,9 @@ std::string two_large_ms(const SphereImpactResult& r, const char* unknown) {
   return t >= 0 ? fmt::format("{:.3f}", 1e3 * t) : std::string("-");
 }
 
+std::string two_large_csv(const SphereImpactResult& r) {
+  const std::string t = two_large_ms(r, "nan");
+  return t == "-" ? std::string("-1.000") : t;
+}
+
 }  // namespace dspdem::sphere

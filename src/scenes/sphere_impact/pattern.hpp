@@ -23,5 +23,8 @@ bool pattern_met(const SphereImpactResult& r);
 /// The first frame with two large pieces, in ms after the first contact: "-" when none by
 /// the compared time, `unknown` for a run without history (older than fragments.csv).
 std::string two_large_ms(const SphereImpactResult& r, const char* unknown);
+/// The same for a CSV column (orientations.csv, draws.csv): "-1.000" when none by the
+/// compared time, "nan" without a history.
+std::string two_large_csv(const SphereImpactResult& r);
 
 }  // namespace dspdem::sphere

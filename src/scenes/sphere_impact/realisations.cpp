@@ -120,12 +120,10 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
       split += fmt::format("{}{}: {}", n ? ", " : "", o, two_large_ms(r, "?"));
       ++n;
-      // -1: none by the compared time; nan: no history.
-      const std::string t2 = two_large_ms(r, "nan");
       csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{},{:.4f},{:.4f},{:.3e}\n", r.speed, o, r.elements,
                          r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
                          r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
-                         t2 == "-" ? std::string("-1.000") : t2, r.crack_reach, r.crack_top, r.balance_max);
+                         two_large_csv(r), r.crack_reach, r.crack_top, r.balance_max);
     }
     rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
                       report::count_of(through, n), pieces.empty() ? "-" : pieces, largest.empty() ? "-" : largest,

@@ -1,36 +1,37 @@
 #include "scenes/sphere_impact/split_timing.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 
 #include "render/plot.hpp"
+#include "report/onsets.hpp"
 #include "report/proportion.hpp"
 
 namespace dspdem::sphere {
 
 namespace {
 namespace fs = std::filesystem;
-// Frame times are written to about 1e-12 s; a time read from one run is "by" the same time read
-// from another within this.
+// A run's frame times and its compared time come from one clock but through different sums;
+// a first time "by" the compared time is so within this.
 constexpr double kSameTime = 1e-12;
+
+// The two middle values in ms, as onset_table prints them ("a" or "a to b"); +infinity: `none`.
+std::string middle_ms(const std::vector<double>& v, const char* none) {
+  const report::Middle m = report::middle(v);
+  auto ms = [none](double t) { return std::isinf(t) ? std::string(none) : fmt::format("{:.3f}", 1e3 * t); };
+  return m.low == m.high ? ms(m.low) : ms(m.low) + " to " + ms(m.high);
+}
 }  // namespace
 
 int SplitTiming::by_end(double before) const {
   int n = 0;
   for (std::size_t i = 0; i < first.size(); ++i) n += first[i] >= 0 && first[i] <= end[i] - before + kSameTime;
   return n;
-}
-
-std::vector<double> SplitTiming::times() const {
-  std::vector<double> t;
-  for (double f : first)
-    if (f >= 0) t.push_back(f);
-  std::sort(t.begin(), t.end());
-  return t;
 }
 
 SplitTiming split_timing(double speed, const std::vector<RealisationRun>& runs) {
@@ -44,27 +45,53 @@ SplitTiming split_timing(double speed, const std::vector<RealisationRun>& runs) 
     // The history runs up to the compared frame (analysis.hpp), so its first two large
     // pieces are the compared frame's or earlier.
     s.first.push_back(run.result->t_two_large());
-    s.end.push_back(run.result->history.back().after_contact);
+    s.end.push_back(run.result->t_compare - run.result->t_contact);
   }
   return s;
+}
+
+std::vector<double> came_free(const std::vector<double>& first) {
+  std::vector<double> t;
+  for (double f : first)
+    if (f >= 0) t.push_back(f);
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+std::vector<std::pair<double, int>> steps(const SplitTiming& s) {
+  std::vector<std::pair<double, int>> out;
+  int at = 0;
+  for (double t : came_free(s.first)) {
+    ++at;
+    if (!out.empty() && out.back().first == t)
+      out.back().second = at;
+    else
+      out.emplace_back(t, at);
+  }
+  return out;
+}
+
+std::string freed_range(const std::vector<double>& first) {
+  const std::vector<double> t = came_free(first);
+  if (t.empty()) return first.empty() ? std::string("-") : fmt::format("none (0 of {})", first.size());
+  const std::string when = t.front() == t.back() ? fmt::format("{:.3f}", 1e3 * t.front())
+                                                 : fmt::format("{:.3f}-{:.3f}", 1e3 * t.front(), 1e3 * t.back());
+  return fmt::format("{} ({} of {})", when, t.size(), first.size());
 }
 
 void split_timing_section(report::Document& doc, const std::vector<double>& speeds,
                           const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir) {
   std::vector<SplitTiming> per_speed;
-  for (std::size_t si = 0; si < speeds.size(); ++si) per_speed.push_back(split_timing(speeds[si], by_speed[si]));
-  std::erase_if(per_speed, [](const SplitTiming& s) { return s.meshes() < 2; });
+  std::vector<double> too_few;  // speeds with fewer than two runs to read
+  for (std::size_t si = 0; si < speeds.size(); ++si) {
+    SplitTiming s = split_timing(speeds[si], by_speed[si]);
+    if (s.meshes() < 2)
+      too_few.push_back(speeds[si]);
+    else
+      per_speed.push_back(std::move(s));
+  }
   if (per_speed.empty()) return;
 
-  doc.para(fmt::format(
-      "When the large pieces come free. The paper compares one moment. Per speed, the meshes whose sphere has "
-      "shown two pieces of at least 10 % of the mass by the compared time, and by {:g} ms before it (four of the "
-      "case's frames): where many came free in that last stretch, the count at the compared time hangs on the "
-      "moment as much as on the speed, and runs taken further (`--set time.end=...`) tell how many follow. A mesh "
-      "is counted from its first frame with two such pieces (they may break up further by the compared time, "
-      "which the pattern's count reads). Each run is read up to its own compared frame, the frame nearest the "
-      "compared time; the curve is in `large_pieces_time.csv` and `images/large_pieces_time.png`.",
-      1e3 * kLateWindow));
   std::vector<std::vector<std::string>> rows;
   std::vector<render::Curve> curves;
   std::ofstream csv(fs::path(dir) / "large_pieces_time.csv");
@@ -74,23 +101,21 @@ void split_timing_section(report::Document& doc, const std::vector<double>& spee
     const auto [lo, hi] = std::minmax_element(s.end.begin(), s.end.end());
     const std::string ends =
         *hi - *lo < 5e-7 ? fmt::format("{:.3f}", 1e3 * *lo) : fmt::format("{:.3f}-{:.3f}", 1e3 * *lo, 1e3 * *hi);
-    const std::vector<double> t = s.times();
-    std::string first_median = "-";
-    if (!t.empty()) {
-      const std::size_t m = t.size() / 2;
-      const double median = t.size() % 2 ? t[m] : 0.5 * (t[m - 1] + t[m]);
-      first_median = fmt::format("{:.3f}, {:.3f}", 1e3 * t.front(), 1e3 * median);
-    }
+    const std::vector<double> t = came_free(s.first);
+    std::vector<double> all = s.first;  // none by the compared frame: later, the largest
+    for (double& f : all)
+      if (f < 0) f = INFINITY;
     rows.push_back({fmt::format("{:g}", s.speed), std::to_string(n), report::count_of(k, n),
                     report::count_of(k_before, n), ends, k > 0 ? fmt::format("{} of {}", k - k_before, k) : "-",
-                    first_median, s.left_out > 0 ? std::to_string(s.left_out) : "-"});
-    // The count as a step curve: at each mesh's time it rises by one.
+                    t.empty() ? "-" : fmt::format("{:.3f}", 1e3 * t.front()), t.empty() ? "-" : middle_ms(t, "-"),
+                    middle_ms(all, "after the compared frame"), s.left_out > 0 ? std::to_string(s.left_out) : "-"});
+    // The count as a step curve: at each time it rises to the meshes by then.
     render::Curve c{fmt::format("{:g} m/s", s.speed), {0.0}, {0.0}};
-    csv << fmt::format("{:g},0,{},0\n", s.speed, n);
+    csv << fmt::format("{:g},{:.6f},{},0\n", s.speed, 0.0, n);
     int at = 0;
-    for (double ti : t) {
+    for (const auto& [ti, count] : steps(s)) {
       c.x.push_back(1e3 * ti), c.y.push_back(static_cast<double>(at) / n);
-      ++at;
+      at = count;
       c.x.push_back(1e3 * ti), c.y.push_back(static_cast<double>(at) / n);
       csv << fmt::format("{:g},{:.6f},{},{}\n", s.speed, 1e3 * ti, n, at);
     }
@@ -98,11 +123,25 @@ void split_timing_section(report::Document& doc, const std::vector<double>& spee
     csv << fmt::format("{:g},{:.6f},{},{}\n", s.speed, 1e3 * *hi, n, at);
     if (!t.empty()) curves.push_back(std::move(c));
   }
-  doc.table({"speed [m/s]", "meshes", "two pieces >= 10 % by the compared frame",
-             fmt::format("by {:g} ms before it", 1e3 * kLateWindow), "compared frames [ms after contact]",
-             fmt::format("came free in its last {:g} ms", 1e3 * kLateWindow),
-             "the first, the median of those [ms after contact]", "runs left out (failed, or no history)"},
-            rows);
+  doc.para(fmt::format(
+      "When the large pieces come free. The paper compares one moment. Per speed, the meshes whose sphere has "
+      "shown two pieces of at least 10 % of the mass by the compared time, and by {:g} ms before it: where many "
+      "came free in that last stretch, the count at the compared time hangs on the moment as much as on the speed, "
+      "and runs taken further (`--set time.end=...`) tell how many follow. A mesh is counted from its first frame "
+      "with two such pieces (they may break up further by the compared time, which the pattern's count reads). "
+      "Each run is read up to its own compared frame, the frame nearest the compared time. The median over all "
+      "meshes counts those without two such pieces as later than their compared frames. The count against the "
+      "time is in `large_pieces_time.csv`{}.{}",
+      1e3 * kLateWindow, curves.empty() ? "" : " and `images/large_pieces_time.png`",
+      too_few.empty()
+          ? ""
+          : fmt::format(" Not read, fewer than two runs with a history: {} m/s.", fmt::join(too_few, ", "))));
+  doc.table(
+      {"speed [m/s]", "meshes", "two pieces >= 10 % by the compared frame",
+       fmt::format("by {:g} ms before it", 1e3 * kLateWindow), "compared frames [ms after contact]",
+       fmt::format("came free in its last {:g} ms", 1e3 * kLateWindow), "the first [ms after contact]",
+       "median of those that came free [ms]", "median over all meshes [ms]", "runs left out (failed, or no history)"},
+      rows);
   if (curves.empty()) return;
   render::plot_curves(curves, "time after the first contact [ms]", "share of meshes with two pieces >= 10 %",
                       "when the large pieces come free", (fs::path(dir) / "images" / "large_pieces_time.png").string());
