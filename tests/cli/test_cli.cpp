@@ -43,6 +43,14 @@ Result run(const std::string& args) {
 // "" for a file that is not there (yet): the checks then name it.
 std::string slurp(const fs::path& p) { return dspdem::read_file_if(p).value_or(""); }
 
+// One CSV line's cells (no quoting: the report's CSV files have none).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> f;
+  std::stringstream ss(line);
+  for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+  return f;
+}
+
 // `cmd` through sh in a process group of its own, as a shell starts a foreground job, with
 // the stop signals at their defaults whatever this test was started with (a script's
 // background job has SIGINT ignored, and an ignored signal stays ignored in dspdem).
@@ -842,21 +850,14 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   }
   // Per mesh, the paper's pattern at every speed run: the meshes whose rows all have
   // paper_pattern 1, counted in the report and in the headline.
-  std::map<std::string, bool> every;
-  for (std::size_t k = 1; k < lines.size(); ++k) {
-    std::vector<std::string> f;
-    std::stringstream ss(lines[k]);
-    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
-    ASSERT_GE(f.size(), 10u) << lines[k];
-    every.try_emplace(f[1], true).first->second &= f[9] == "1";
-  }
-  // When the large pieces came free (split_timing.hpp): per speed the count over the three
+  // And when the large pieces came free (split_timing.hpp): per speed the count over the three
   // meshes, rising to the meshes whose two_large_after_contact_ms is a time.
+  std::map<std::string, bool> every;
   std::map<std::string, int> freed;
   for (std::size_t k = 1; k < lines.size(); ++k) {
-    std::vector<std::string> f;
-    std::stringstream ss(lines[k]);
-    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    const std::vector<std::string> f = csv_fields(lines[k]);
+    ASSERT_GE(f.size(), 11u) << lines[k];
+    every.try_emplace(f[1], true).first->second &= f[9] == "1";
     freed[f[0]] += std::stod(f[10]) >= 0;
   }
   EXPECT_NE(md.find("| speed [m/s] | meshes | two pieces >= 10 % by the compared frame |"), std::string::npos) << md;
@@ -866,9 +867,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   EXPECT_EQ(freed_line, "speed,after_contact_ms,meshes,with_two_large");
   std::map<std::string, int> freed_last;  // each speed's last row: the count at the latest compared frame
   for (std::string l; std::getline(freed_csv, l);) {
-    std::vector<std::string> f;
-    std::stringstream ss(l);
-    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    const std::vector<std::string> f = csv_fields(l);
     ASSERT_EQ(f.size(), 4u) << l;
     EXPECT_EQ(f[2], "3") << l;
     freed_last[f[0]] = std::stoi(f[3]);
@@ -947,9 +946,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   ASSERT_EQ(one.code, 0) << one.out;
   int at_75 = 0;  // orientations.csv's rows at 7.5 m/s with paper_pattern 1
   for (std::size_t k = 1; k < lines.size(); ++k) {
-    std::vector<std::string> f;
-    std::stringstream ss(lines[k]);
-    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    const std::vector<std::string> f = csv_fields(lines[k]);
     at_75 += f[0] == "7.5" && f[9] == "1";
   }
   bool one_row = false;
@@ -1042,10 +1039,7 @@ TEST_F(Cli, ReportDrawsRunEachMeshAgainWithTheSpeedNudged) {
   EXPECT_EQ(head.rfind("speed,speed_run,orientation,draw,through_crack,few_large_pieces,paper_pattern,", 0), 0u)
       << head;
   for (std::string l; std::getline(csv, l);) {
-    std::vector<std::string> f;
-    std::stringstream ss(l);
-    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
-    rows.push_back(f);
+    rows.push_back(csv_fields(l));
   }
   ASSERT_EQ(rows.size(), 6u);
   int through = 0;
@@ -1063,9 +1057,7 @@ TEST_F(Cli, ReportDrawsRunEachMeshAgainWithTheSpeedNudged) {
   for (std::string l; std::getline(oc, l);) olines.push_back(l);
   ASSERT_EQ(olines.size(), 3u);
   for (int o : {0, 1}) {
-    std::vector<std::string> f;
-    std::stringstream ss(olines[1 + o]);
-    for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    const std::vector<std::string> f = csv_fields(olines[1 + o]);
     ASSERT_GE(f.size(), 14u) << olines[1 + o];
     EXPECT_EQ(f[6], rows[3 * o][8]) << olines[1 + o];    // the largest piece
     EXPECT_EQ(f[13], rows[3 * o][9]) << olines[1 + o];   // the balance's largest error, which differs by draw
