@@ -1,6 +1,7 @@
 #include "report/onsets.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace dspdem::report {
@@ -26,6 +27,30 @@ Middle middle(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return {v[(n - 1) / 2], v[n / 2]};
+}
+
+MedianInterval median_interval(std::vector<double> v, double level) {
+  const int n = static_cast<int>(v.size());
+  MedianInterval out;
+  if (n == 0 || !(level > 0 && level < 1)) return out;
+  // Bin(n, 1/2)'s cumulative tail, term by term from P(B = 0) = 2^-n (n is a count of runs,
+  // at most a few hundred: 2^-n stays a normal double up to n = 1022).
+  const double alpha = (1.0 - level) / 2.0;
+  double term = std::ldexp(1.0, -n), tail = term;
+  int r = 0;
+  double tail_r = 0;  // P(B <= r - 1) of the rank taken
+  for (int k = 0; k < (n + 1) / 2 && tail <= alpha; ++k) {
+    r = k + 1, tail_r = tail;
+    term *= static_cast<double>(n - k) / (k + 1);
+    tail += term;
+  }
+  if (r == 0) return out;
+  std::sort(v.begin(), v.end());
+  out.rank = r;
+  out.lo = v[r - 1];
+  out.hi = v[n - r];
+  out.coverage = 1.0 - 2.0 * tail_r;
+  return out;
 }
 
 }  // namespace dspdem::report

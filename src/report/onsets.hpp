@@ -42,4 +42,21 @@ struct Middle {
 /// an empty v.
 Middle middle(std::vector<double> v);
 
+/// A distribution-free interval for the median of the population the values were drawn from:
+/// the order statistics x(r) and x(n - r + 1) with r the largest rank whose binomial tail
+/// P(B <= r - 1), B ~ Bin(n, 1/2), is at most (1 - level) / 2, so that the interval covers the
+/// median with probability `coverage` >= level whatever the distribution (W. R. Thompson, Ann.
+/// Math. Stat. 7:122-128, 1936; the ranks as tabled by M. J. Campbell and M. J. Gardner, BMJ
+/// 296:1454-1456, 1988). Why order statistics: the values (times, speeds) are censored, a mesh
+/// that never came apart counted as +infinity, and ranks need nothing else of them. An upper
+/// end of +infinity says the median may lie beyond what was run.
+struct MedianInterval {
+  double lo = std::nan(""), hi = std::nan("");
+  double coverage = std::nan("");  ///< the exact coverage of the ranks taken
+  int rank = 0;                    ///< r (1-based); 0: too few values for `level` (n <= 5 at 95 %)
+};
+
+/// As `middle`: +infinity entries count as the largest, no NaN entries; `level` in (0, 1).
+MedianInterval median_interval(std::vector<double> v, double level = 0.95);
+
 }  // namespace dspdem::report

@@ -808,8 +808,10 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
     return rows;
   };
   const auto rows = onset_rows(md);
-  ASSERT_EQ(rows.size(), 4u) << md;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
+  ASSERT_EQ(rows.size(), 5u) << md;
+  // The median's interval (report::median_interval) needs six meshes: with three, said so.
+  EXPECT_EQ(rows[4], (std::vector<std::string>{"its 95 % interval", "too few meshes", "too few meshes"})) << md;
+  for (std::size_t k = 0; k < 4; ++k) {
     ASSERT_EQ(rows[k].size(), 3u) << md;
     EXPECT_EQ(rows[k][0], k < 3 ? std::to_string(k) : "median");
     for (int c : {1, 2})
@@ -861,6 +863,9 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
     freed[f[0]] += std::stod(f[10]) >= 0;
   }
   EXPECT_NE(md.find("| speed [m/s] | meshes | two pieces >= 10 % by the compared frame |"), std::string::npos) << md;
+  // Three meshes give the median no 95 % interval (report::median_interval needs six): said so.
+  EXPECT_NE(md.find("| its 95 % interval [ms] |"), std::string::npos) << md;
+  EXPECT_NE(md.find(" | too few meshes | "), std::string::npos) << md;
   std::ifstream freed_csv(dir_ / "rep" / "large_pieces_time.csv");
   std::string freed_line;
   std::getline(freed_csv, freed_line);
@@ -1003,7 +1008,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   EXPECT_EQ(runs_of_event(md2, "broken (the largest piece < 90 %)"), " of 5") << md2;  // the lost run left out
   // Its first speeds are then upper bounds only, and say so; the others' do not.
   const auto rows2 = onset_rows(md2);
-  ASSERT_EQ(rows2.size(), 4u) << md2;
+  ASSERT_EQ(rows2.size(), 5u) << md2;  // three meshes, the median and its interval
   for (int c : {1, 2}) {
     EXPECT_NE(rows2[1][c].find("(a run below failed)"), std::string::npos) << rows2[1][c];
     EXPECT_EQ(rows2[0][c].find("failed"), std::string::npos) << rows2[0][c];

@@ -70,3 +70,41 @@ TEST(Onsets, MiddleOfOddAndEvenCountsWithNeverAsTheLargest) {
   EXPECT_TRUE(std::isinf(never.low));
   EXPECT_TRUE(std::isnan(middle({}).low));
 }
+
+TEST(Onsets, MedianIntervalTakesTheTabledRanksWithTheirExactCoverage) {
+  // The 95 % ranks for the median as Campbell & Gardner (BMJ 296:1454, 1988) table them, with
+  // the coverage 1 - 2 P(B <= r - 1), B ~ Bin(n, 1/2), from exact binomial sums: n = 10 takes
+  // the 2nd and 9th values (1 - 2 * 11/1024), n = 20 the 6th and 15th (1 - 2 * 21700/2^20),
+  // n = 40 the 14th and 27th.
+  struct Row {
+    int n, lo, hi;
+    double coverage;
+  };
+  for (const Row& row : {Row{10, 2, 9, 1.0 - 22.0 / 1024.0}, Row{20, 6, 15, 1.0 - 2.0 * 21700.0 / 1048576.0},
+                         Row{40, 14, 27, 0.9615226917157997}}) {
+    std::vector<double> v;
+    for (int k = row.n; k >= 1; --k) v.push_back(0.1 * k);  // given in reverse: sorted inside
+    const MedianInterval m = median_interval(v);
+    EXPECT_EQ(m.rank, row.lo) << row.n;
+    EXPECT_DOUBLE_EQ(m.lo, 0.1 * row.lo) << row.n;
+    EXPECT_DOUBLE_EQ(m.hi, 0.1 * row.hi) << row.n;
+    EXPECT_NEAR(m.coverage, row.coverage, 1e-12) << row.n;
+  }
+  // Five values cannot give 95 %: even the extremes cover the median with 1 - 2/32 only.
+  const MedianInterval five = median_interval({1, 2, 3, 4, 5});
+  EXPECT_EQ(five.rank, 0);
+  EXPECT_TRUE(std::isnan(five.lo));
+  // Six can, with the extremes (1 - 2/64); a lower level takes inner ranks.
+  const MedianInterval six = median_interval({6, 5, 4, 3, 2, 1});
+  EXPECT_EQ(six.rank, 1);
+  EXPECT_DOUBLE_EQ(six.coverage, 1.0 - 2.0 / 64.0);
+  EXPECT_EQ(median_interval({1, 2, 3, 4, 5, 6}, 0.5).rank, 2);  // P(B <= 1) = 7/64 <= 0.25
+  // A censored upper half: the meshes that never came apart are +infinity, and so is the
+  // interval's upper end once it reaches them.
+  const double inf = INFINITY;
+  std::vector<double> t = {0.6, 0.7, 0.8, 0.9, 1.0, 1.1, inf, inf, inf, inf};
+  const MedianInterval cens = median_interval(t);
+  EXPECT_DOUBLE_EQ(cens.lo, 0.7);
+  EXPECT_TRUE(std::isinf(cens.hi));
+  EXPECT_TRUE(std::isnan(median_interval({}).lo));
+}
