@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "core/error.hpp"
+
 namespace dspdem::report {
 
 std::vector<Onset> first_onsets(const std::vector<SweepPoint>& points) {
@@ -31,18 +33,19 @@ Middle middle(std::vector<double> v) {
 
 MedianInterval median_interval(std::vector<double> v, double level) {
   const int n = static_cast<int>(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    DSPDEM_CHECK(!std::isnan(v[i]), "internal: value {} of {} for a median's interval is NaN", i, v.size());
   MedianInterval out;
   if (n == 0 || !(level > 0 && level < 1)) return out;
-  // Bin(n, 1/2)'s cumulative tail, term by term from P(B = 0) = 2^-n (n is a count of runs,
-  // at most a few hundred: 2^-n stays a normal double up to n = 1022).
-  const double alpha = (1.0 - level) / 2.0;
-  double term = std::ldexp(1.0, -n), tail = term;
+  // Bin(n, 1/2)'s cumulative tail term by term, each P(B = k) from logarithms: 2^-n itself
+  // underflows from n = 1075 on.
+  const double alpha = (1.0 - level) / 2.0, log_half_n = n * std::log(0.5), log_n1 = std::lgamma(n + 1.0);
+  auto pmf = [&](int k) { return std::exp(log_n1 - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) + log_half_n); };
+  double tail = pmf(0), tail_r = 0;  // tail: P(B <= k); tail_r: P(B <= r - 1) of the rank taken
   int r = 0;
-  double tail_r = 0;  // P(B <= r - 1) of the rank taken
   for (int k = 0; k < (n + 1) / 2 && tail <= alpha; ++k) {
     r = k + 1, tail_r = tail;
-    term *= static_cast<double>(n - k) / (k + 1);
-    tail += term;
+    tail += pmf(k + 1);
   }
   if (r == 0) return out;
   std::sort(v.begin(), v.end());

@@ -4,8 +4,11 @@
 // speed and not at the next, so "first" is the lowest value at which it holds, not a value
 // from which on it always does.
 #pragma once
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace dspdem::report {
@@ -45,18 +48,31 @@ Middle middle(std::vector<double> v);
 /// A distribution-free interval for the median of the population the values were drawn from:
 /// the order statistics x(r) and x(n - r + 1) with r the largest rank whose binomial tail
 /// P(B <= r - 1), B ~ Bin(n, 1/2), is at most (1 - level) / 2, so that the interval covers the
-/// median with probability `coverage` >= level whatever the distribution (W. R. Thompson, Ann.
-/// Math. Stat. 7:122-128, 1936; the ranks as tabled by M. J. Campbell and M. J. Gardner, BMJ
-/// 296:1454-1456, 1988). Why order statistics: the values (times, speeds) are censored, a mesh
-/// that never came apart counted as +infinity, and ranks need nothing else of them. An upper
-/// end of +infinity says the median may lie beyond what was run.
+/// median with probability at least `coverage` >= level whatever the distribution (W. R.
+/// Thompson, Ann. Math. Stat. 7:122-128, 1936; the ranks as tabled by M. J. Campbell and M. J.
+/// Gardner, BMJ 296:1454-1456, 1988); exactly `coverage` for continuous values, more with ties
+/// (swept speeds, frame times). Why order statistics: the values (times, speeds) are censored,
+/// a mesh that never came apart counted as +infinity, and ranks need nothing else of them as
+/// long as every value is censored at the same point (the runs read to one time): a value
+/// censored early could lie below the median and lift x(r). An upper end of +infinity says
+/// the median may lie beyond what was run.
 struct MedianInterval {
   double lo = std::nan(""), hi = std::nan("");
-  double coverage = std::nan("");  ///< the exact coverage of the ranks taken
+  double coverage = std::nan("");  ///< 1 - 2 P(B <= r - 1): what the ranks guarantee
   int rank = 0;                    ///< r (1-based); 0: too few values for `level` (n <= 5 at 95 %)
 };
 
-/// As `middle`: +infinity entries count as the largest, no NaN entries; `level` in (0, 1).
+/// As `middle`: +infinity entries count as the largest; a NaN entry is an error (it has no
+/// rank); `level` in (0, 1), else rank 0.
 MedianInterval median_interval(std::vector<double> v, double level = 0.95);
+
+/// "lo to hi (c %)", each end written by `write` (which says what +infinity means), c the
+/// coverage the ranks guarantee; one end when both are the same; `too_few` at rank 0.
+template <class Write>
+std::string median_interval_text(const MedianInterval& i, Write write, const std::string& too_few) {
+  if (i.rank == 0) return too_few;
+  const std::string lo = write(i.lo), hi = write(i.hi);
+  return fmt::format("{} ({:.1f} %)", lo == hi ? lo : lo + " to " + hi, 100 * i.coverage);
+}
 
 }  // namespace dspdem::report

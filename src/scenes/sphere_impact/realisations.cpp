@@ -45,11 +45,9 @@ void onset_table(report::Document& doc, const std::vector<report::SweepPoint>& t
       if (x.highest_known > top) top = x.highest_known;
     }
     const report::Middle m = report::middle(v);
-    const report::MedianInterval i = report::median_interval(v);
+    auto write = [&](double x) { return speed(x, top); };
     return std::pair{m.low == m.high ? speed(m.low, top) : speed(m.low, top) + " to " + speed(m.high, top),
-                     i.rank == 0
-                         ? std::string("too few meshes")
-                         : fmt::format("{} to {} ({:.1f} %)", speed(i.lo, top), speed(i.hi, top), 100 * i.coverage)};
+                     report::median_interval_text(report::median_interval(v), write, "too few meshes")};
   };
   std::vector<std::vector<std::string>> rows;
   for (std::size_t k = 0; k < t.size(); ++k) {
@@ -65,7 +63,8 @@ void onset_table(report::Document& doc, const std::vector<report::SweepPoint>& t
       "speeds run [m/s]: the lowest speed at which it shows (at the lowest speed run: at or below it). A run is "
       "chaotic, so a higher speed need not show it again. With an even number of meshes the median lies between "
       "the two values given; its interval is distribution-free (the order statistics whose ranks cover the median "
-      "with at least 95 %, their exact coverage given; it needs six meshes). The paper shows no crack through at 5 m/s "
+      "with at least 95 %, the coverage they guarantee given; it needs six meshes; of the first speed on the grid "
+      "run, so an end of 7.5 means above the speed run below it). The paper shows no crack through at 5 m/s "
       "and several fairly large regions at 7.5, "
       "and no speed between: its first speed for both lies above 5 and at most 7.5 m/s.");
   doc.table({"orientation", "first through crack", "first a few large pieces"}, rows);

@@ -27,13 +27,11 @@ std::string middle_ms(const std::vector<double>& v, const char* none) {
   return m.low == m.high ? ms(m.low) : ms(m.low) + " to " + ms(m.high);
 }
 
-// The median's distribution-free interval (report::median_interval) in ms, with the exact
-// coverage of its ranks; +infinity: `none`.
+// The median's distribution-free interval (report::median_interval) in ms, with the coverage
+// its ranks guarantee; +infinity: `none`.
 std::string median_interval_ms(const std::vector<double>& v, const char* none) {
-  const report::MedianInterval i = report::median_interval(v);
-  if (i.rank == 0) return "too few meshes";
   auto ms = [none](double t) { return std::isinf(t) ? std::string(none) : fmt::format("{:.3f}", 1e3 * t); };
-  return fmt::format("{} to {} ({:.1f} %)", ms(i.lo), ms(i.hi), 100 * i.coverage);
+  return report::median_interval_text(report::median_interval(v), ms, "too few meshes");
 }
 }  // namespace
 
@@ -141,8 +139,9 @@ void split_timing_section(report::Document& doc, const std::vector<double>& spee
       "with two such pieces (they may break up further by the compared time, which the pattern's count reads). "
       "Each run is read up to its own compared frame, the frame nearest the compared time. The median over all "
       "meshes counts those without two such pieces as later than their compared frames; its interval is "
-      "distribution-free (the order statistics whose ranks cover the median with at least 95 %, their exact "
-      "coverage given; it needs six meshes), so it holds for these censored times. The count against the "
+      "distribution-free (the order statistics whose ranks cover the median with at least 95 %, the coverage "
+      "they guarantee given; it needs six meshes) and holds for these censored times as long as the meshes are "
+      "read to about one time (the compared frames above). The count against the "
       "time is in `large_pieces_time.csv`{}.{}",
       1e3 * kLateWindow, curves.empty() ? "" : " and `images/large_pieces_time.png`",
       too_few.empty()
