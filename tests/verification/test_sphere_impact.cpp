@@ -22,9 +22,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "scenes/sphere_impact/analysis.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
+#include "scenes/sphere_impact/pattern_over_time.hpp"
 #include "scenes/sphere_impact/realisations.hpp"
 #include "scenes/sphere_impact/split_timing.hpp"
 #include "support/cli.hpp"
@@ -247,4 +249,64 @@ TEST(SphereSplitTiming, CountsEachMeshFromItsFirstTwoLargePiecesUpToItsComparedF
   EXPECT_EQ(none.left_out, 2);
   EXPECT_EQ(none.by_end(), 0);
   EXPECT_TRUE(sphere::steps(none).empty());
+}
+
+TEST(SpherePatternOverTime, ReadsEachRunAtItsLastFrameByEachTimeAndCountsMeshesAtEverySpeed) {
+  // Frames every 0.25 ms from 0.25 to `end_ms` (the compared frame); at each, the largest and
+  // second piece and the pieces of 10 %, given per frame from `from_ms` on (before it: whole).
+  auto run = [](double speed, double end_ms, double from_ms, double largest, double second, int large) {
+    SphereImpactResult r;
+    r.speed = speed, r.t_contact = 0.1e-3, r.t_compare = r.t_contact + 1e-3 * end_ms;
+    for (int f = 1; 0.25 * f <= end_ms + 1e-9; ++f) {
+      SphereImpactResult::PiecesAt h;
+      h.frame = f, h.after_contact = 0.25e-3 * f;
+      const bool on = 0.25 * f >= from_ms - 1e-9;
+      h.largest = on ? largest : 0.999, h.second = on ? second : 0.001, h.large_pieces = on ? large : 1;
+      r.history.push_back(h);
+    }
+    return r;
+  };
+  // At 5 m/s: whole throughout; cut through from 1.0 ms (a piece of 2 %); crushed to 0.85 from
+  // 1.5 ms (no second piece of 1 %, but the largest under 90 %). At 7.5 m/s: two large pieces
+  // from 1.0 ms; from 1.25 ms; never; seven of 10 % from 0.75 ms (too many for "a few").
+  const SphereImpactResult w0 = run(5, 2.0, 99, 0, 0, 1), w1 = run(5, 2.0, 1.0, 0.97, 0.02, 1),
+                           w2 = run(5, 2.0, 1.5, 0.85, 0.005, 1), f0 = run(7.5, 2.0, 1.0, 0.6, 0.35, 2),
+                           f1 = run(7.5, 2.0, 1.25, 0.5, 0.4, 2), f2 = run(7.5, 2.0, 99, 0, 0, 1),
+                           f3 = run(7.5, 2.0, 0.75, 0.12, 0.11, 7), crushed = run(20, 2.0, 0.25, 0.3, 0.1, 1);
+  // The paper's pattern by the frame at or before the time; nothing after the compared frame,
+  // before the first frame, or at a speed whose pattern the history does not keep.
+  EXPECT_EQ(sphere::pattern_at(w1, 0.99e-3), std::optional<bool>(true));  // the 0.75 ms frame
+  EXPECT_EQ(sphere::pattern_at(w1, 1.0e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(w2, 1.5e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(f0, 1.0e-3), std::optional<bool>(true));
+  EXPECT_EQ(sphere::pattern_at(f3, 1.0e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(f0, 2.0e-3 + 1e-9), std::nullopt);
+  EXPECT_EQ(sphere::pattern_at(f0, 0.2e-3), std::nullopt);
+  EXPECT_EQ(sphere::pattern_at(crushed, 1.0e-3), std::nullopt);
+  EXPECT_EQ(sphere::pattern_at(SphereImpactResult{}, 1.0e-3), std::nullopt);
+  // From the paper's 0.75 ms every 0.25 ms, before the earliest compared frame.
+  const std::vector<double> times = sphere::reading_times(2.0e-3);
+  ASSERT_EQ(times.size(), 5u);
+  EXPECT_DOUBLE_EQ(times.front(), 0.75e-3);
+  EXPECT_DOUBLE_EQ(times.back(), 1.75e-3);
+  EXPECT_TRUE(sphere::reading_times(0.75e-3).empty());
+  // Meshes 0-3 at 5 and 7.5 m/s, pairs (w0, f0), (w1, f1), (w2, f2), (lost, f3); 20 m/s not read.
+  const std::vector<double> speeds = {5, 7.5, 20};
+  const std::vector<std::vector<sphere::RealisationRun>> by_speed = {
+      {{0, &w0, ""}, {1, &w1, ""}, {2, &w2, ""}, {3, nullptr, "lost"}},
+      {{0, &f0, ""}, {1, &f1, ""}, {2, &f2, ""}, {3, &f3, ""}},
+      {{0, &crushed, ""}}};
+  const auto c = sphere::pattern_over_time(times, speeds, by_speed);
+  ASSERT_EQ(c.size(), 5u);
+  // Per time: 5 m/s whole on (3, 2, 2, 1, 1) of 3; 7.5 m/s a few large on (0, 1, 2, 2, 2) of 4;
+  // at both, of the three meshes with both runs: (0, 1, 1, 1, 1), mesh 0 (w0 with f0) from 1.0 ms.
+  const int whole[] = {3, 2, 2, 1, 1}, few[] = {0, 1, 2, 2, 2}, both[] = {0, 1, 1, 1, 1};
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_EQ(c[k].met.size(), 2u);  // 5 and 7.5 m/s; 20 m/s is not read
+    EXPECT_EQ(c[k].read, (std::vector<int>{3, 4})) << k;
+    EXPECT_EQ(c[k].met[0], whole[k]) << k;
+    EXPECT_EQ(c[k].met[1], few[k]) << k;
+    EXPECT_EQ(c[k].every_read, 3) << k;
+    EXPECT_EQ(c[k].every_met, both[k]) << k;
+  }
 }

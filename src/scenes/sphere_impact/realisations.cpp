@@ -14,6 +14,7 @@
 #include "report/proportion.hpp"
 #include "scenes/sphere_impact/breakage.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
+#include "scenes/sphere_impact/pattern_over_time.hpp"
 #include "scenes/sphere_impact/split_timing.hpp"
 
 namespace dspdem::sphere {
@@ -163,6 +164,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       "In brackets, the 95 % interval of the share of meshes that show it (Wilson's score interval): which meshes "
       "show a pattern near its threshold is a draw, and with few meshes a count is read with that spread.");
   split_timing_section(doc, speeds, by_speed, where.dir);
+  pattern_over_time_section(doc, speeds, by_speed, where.dir);
   // "k of n (95 %: lo-hi), orientations ...; not counted, a run failed: ..."; empty when no
   // mesh has all its runs.
   auto text_of = [](const MeshCount& c) {

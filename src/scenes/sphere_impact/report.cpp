@@ -392,10 +392,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   for (const auto& r : sweep) labels.push_back(fmt::format("{:g} m/s", r.speed)), runs.push_back(r.run_dir);
   const double t_cmp = c.t_end;
   // A case run to another time (`--set time.end=...`) must not read as the paper's moment.
-  constexpr double kPaperTime = 0.75e-3;  // the paper's Fig. 22
-  const std::string as_paper = std::abs(t_cmp - kPaperTime) < 1e-9
+  const std::string as_paper = std::abs(t_cmp - sphere::kPaperTime) < 1e-9
                                    ? std::string("as in the paper's Fig. 22")
-                                   : fmt::format("the paper's Fig. 22: {:g} ms", 1e3 * kPaperTime);
+                                   : fmt::format("the paper's Fig. 22: {:g} ms", 1e3 * sphere::kPaperTime);
   if (!a.no_render) {
     MontageArgs m;
     m.run_dirs = runs, m.labels = labels;

@@ -11,14 +11,12 @@
 #include "render/plot.hpp"
 #include "report/onsets.hpp"
 #include "report/proportion.hpp"
+#include "scenes/sphere_impact/pattern.hpp"
 
 namespace dspdem::sphere {
 
 namespace {
 namespace fs = std::filesystem;
-// A run's frame times and its compared time come from one clock but through different sums;
-// a first time "by" the compared time is so within this.
-constexpr double kSameTime = 1e-12;
 
 // The two middle values in ms, as onset_table prints them ("a" or "a to b"); +infinity: `none`.
 std::string middle_ms(const std::vector<double>& v, const char* none) {

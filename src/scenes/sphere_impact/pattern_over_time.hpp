@@ -1,0 +1,49 @@
+// The paper's pattern read at earlier times than the compared one, from each run's history:
+// when a sweep is run on past the paper's moment (`--set time.end=...`), per time from the
+// paper's 0.75 ms on, how many meshes show the pattern at each speed the history can judge,
+// and at all of them. Why: at 7.5 m/s dspdem's few large pieces come free over 0.5-1.8 ms
+// after the contact (REFERENCE.md, sessions 93-94), so the count at one moment is one point
+// of a curve; this gives the curve for the whole pattern, which needs every speed read at the
+// same time.
+#pragma once
+#include <optional>
+#include <vector>
+
+#include "report/document.hpp"
+#include "scenes/sphere_impact/realisations.hpp"
+
+namespace dspdem::sphere {
+
+/// Whether a run shows the paper's pattern for its speed at `after_contact` [s], read at the
+/// last frame of its history at or before that time: no crack through up to 5 m/s, 2 to 6
+/// pieces of at least 10 % at 7.5 m/s. Empty when the history cannot say: no history, the
+/// time before its first frame or after its compared frame, or a speed whose pattern the
+/// history does not keep (20 m/s and above need the single elements; a speed between is not
+/// the paper's).
+std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact);
+
+/// The times read [s after the contact]: the paper's moment and every 0.25 ms after it, before
+/// `last` (the earliest compared frame of the runs); empty when `last` is not later than the
+/// paper's moment.
+std::vector<double> reading_times(double last);
+
+/// One time's counts: per speed read, the meshes with the pattern and those read; and the
+/// meshes read at every such speed, with those showing the pattern at all of them.
+struct PatternCount {
+  double after_contact = 0;
+  std::vector<int> met, read;
+  int every_met = 0, every_read = 0;
+};
+
+/// At each of `times`, over `speeds` (by_speed[s] their runs, each with its orientation): a
+/// mesh counts at a speed when its run there can be read (pattern_at), and towards every
+/// speed when all its runs at `speeds` can.
+std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, const std::vector<double>& speeds,
+                                            const std::vector<std::vector<RealisationRun>>& by_speed);
+
+/// Writes the section into `doc` when the runs go on past the paper's moment and a speed the
+/// history can judge was run on at least two meshes; pattern_over_time.csv into `dir`.
+void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
+                               const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
+
+}  // namespace dspdem::sphere
