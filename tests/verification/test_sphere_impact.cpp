@@ -22,8 +22,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 
+#include "report/document.hpp"
 #include "scenes/sphere_impact/analysis.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 #include "scenes/sphere_impact/pattern_over_time.hpp"
@@ -309,4 +311,66 @@ TEST(SpherePatternOverTime, ReadsEachRunAtItsLastFrameByEachTimeAndCountsMeshesA
     EXPECT_EQ(c[k].every_read, 3) << k;
     EXPECT_EQ(c[k].every_met, both[k]) << k;
   }
+}
+
+TEST(SpherePatternOverTime, JudgesAsTheComparedFrameAndWritesItsSectionOnlyPastThePaperMoment) {
+  // One frame every 0.1 ms from 0.02 ms on (never on a time read), with the given pieces.
+  auto run = [](double speed, double end_ms, double largest, double second, int large) {
+    SphereImpactResult r;
+    r.speed = speed, r.t_contact = 0.1e-3, r.t_compare = r.t_contact + 1e-3 * end_ms;
+    for (int f = 0; 0.02 + 0.1 * f <= end_ms + 1e-9; ++f) {
+      SphereImpactResult::PiecesAt h;
+      h.frame = f, h.after_contact = 1e-3 * (0.02 + 0.1 * f);
+      h.largest = largest, h.second = second, h.large_pieces = large;
+      r.history.push_back(h);
+    }
+    return r;
+  };
+  // On the thresholds, as through_crack and a_few_large_pieces judge the compared frame: a
+  // second piece of exactly 1 % cuts through, a largest of exactly 90 % does not; 6 pieces of
+  // 10 % are a few, 7 are not; 10 m/s (not the paper's) is not read.
+  EXPECT_EQ(sphere::pattern_at(run(5, 2.0, 0.95, 0.01, 1), 1e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(run(5, 2.0, 0.90, 0.009, 1), 1e-3), std::optional<bool>(true));
+  EXPECT_EQ(sphere::pattern_at(run(5, 2.0, 0.899, 0.009, 1), 1e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(run(7.5, 2.0, 0.15, 0.15, 6), 1e-3), std::optional<bool>(true));
+  EXPECT_EQ(sphere::pattern_at(run(7.5, 2.0, 0.12, 0.12, 7), 1e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(run(10, 2.0, 0.5, 0.4, 2), 1e-3), std::nullopt);
+  // The frame before the time, not the one after: at 0.75 ms the 0.72 ms frame, not 0.82 ms's.
+  SphereImpactResult change = run(7.5, 2.0, 0.999, 0.001, 1);
+  for (auto& h : change.history)
+    if (h.after_contact > 0.75e-3) h.large_pieces = 2;
+  EXPECT_EQ(sphere::pattern_at(change, 0.75e-3), std::optional<bool>(false));
+  EXPECT_EQ(sphere::pattern_at(change, 0.82e-3), std::optional<bool>(true));
+  // Compared frames a little after 0.75 or 2 ms read nothing again at those times.
+  EXPECT_TRUE(sphere::reading_times(0.7525e-3).empty());
+  EXPECT_EQ(sphere::reading_times(2.012e-3).size(), 5u);  // 0.75-1.75 ms
+  EXPECT_EQ(sphere::reading_times(1.0e-3).size(), 1u);    // the paper's moment alone
+  // The section: written for runs past the paper's moment, not for runs compared at it.
+  const fs::path dir = fs::temp_directory_path() / "dspdem_pattern_over_time";
+  fs::create_directories(dir);
+  const SphereImpactResult a = run(5, 2.0, 0.99, 0.005, 1), b = run(7.5, 2.0, 0.6, 0.3, 2),
+                           c = run(7.5, 2.0, 0.95, 0.02, 1), d = run(20, 2.0, 0.3, 0.1, 1);
+  const std::vector<std::vector<sphere::RealisationRun>> by_speed = {
+      {{0, &a, ""}, {1, &a, ""}}, {{0, &b, ""}, {1, &c, ""}}, {{0, &d, ""}, {1, nullptr, "lost"}}};
+  report::Document doc(dir.string(), dir.string());
+  sphere::pattern_over_time_section(doc, {5, 7.5, 20}, by_speed, dir.string());
+  EXPECT_NE(doc.text().find("| after the contact [ms] | 5 m/s: no through crack | 7.5 m/s: a few large pieces | "
+                            "at 5, 7.5 m/s alike |"),
+            std::string::npos)
+      << doc.text();
+  EXPECT_NE(doc.text().find("| 1.75 | 2 of 2 (95 %: "), std::string::npos) << doc.text();
+  EXPECT_NE(doc.text().find("Not read over time: 20 m/s"), std::string::npos) << doc.text();
+  std::ifstream csv(dir / "pattern_over_time.csv");
+  std::string line, last;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "after_contact_ms,scope,speed,meshes_read,with_pattern");
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines, last = line;
+  EXPECT_EQ(lines, 15);  // five times, two speeds and the meshes at both
+  EXPECT_EQ(last, "1.750,every,,2,1");
+  const SphereImpactResult early = run(7.5, 0.7525, 0.6, 0.3, 2);
+  report::Document none(dir.string(), dir.string());
+  sphere::pattern_over_time_section(none, {7.5}, {{{0, &early, ""}, {1, &early, ""}}}, dir.string());
+  EXPECT_TRUE(none.text().empty()) << none.text();
+  fs::remove_all(dir);
 }

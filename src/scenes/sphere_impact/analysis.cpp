@@ -52,7 +52,7 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
       r.frame = static_cast<Index>(i);
   r.t_compare = run.frames[static_cast<std::size_t>(r.frame)].time;
   std::size_t k = 0;  // the series row at (or just after) the compared frame
-  while (k + 1 < n && t[k] < r.t_compare - 1e-12) ++k;
+  while (k + 1 < n && t[k] < r.t_compare - kSameTime) ++k;
   for (std::size_t i = 0; i <= k; ++i) {
     if (std::abs(fy[i]) > r.plate_force_peak) r.plate_force_peak = std::abs(fy[i]), r.t_plate_force_peak = t[i];
     if (r.t_first_broken < 0 && broken[i] > 0) r.t_first_broken = t[i];
@@ -81,8 +81,7 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   r.pieces_1pct = r.fragments.count_at_least(0.01);
   r.pieces_10pct = r.fragments.count_at_least(SphereImpactResult::large_piece_fraction);
   r.second_fraction = r.fragments.count() > 1 ? r.fragments.masses[1] / r.fragments.total_mass : 0.0;
-  r.through_crack = r.second_fraction >= SphereImpactResult::through_piece_fraction ||
-                    r.fragments.largest_fraction() < SphereImpactResult::intact_fraction;
+  r.through_crack = SphereImpactResult::cut_through(r.fragments.largest_fraction(), r.second_fraction);
 
   // Up to the compared frame only: each run goes on past it by its own allowance for the gap
   // (over its speed), so later frames would cover a different window at each speed.

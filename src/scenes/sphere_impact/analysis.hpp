@@ -12,6 +12,10 @@
 
 namespace dspdem {
 
+/// A run's frame times, its series' times and its compared time come from one clock but
+/// through different sums: two of them are the same time within this [s].
+inline constexpr double kSameTime = 1e-12;
+
 struct SphereImpactResult {
   std::string run_dir;
   double speed = 0;  ///< impact speed [m/s] (the [[initial]] velocity's magnitude)
@@ -27,6 +31,13 @@ struct SphereImpactResult {
   /// A "large piece" holds at least this fraction of the mass (the paper's "a few large
   /// pieces" at 7.5 m/s: REFERENCE.md, "Not found, and what the case and the scene chose").
   static constexpr double large_piece_fraction = 0.10;
+  /// The two criteria, one definition for the compared frame and each frame of the history.
+  static bool cut_through(double largest, double second) {
+    return second >= through_piece_fraction || largest < intact_fraction;
+  }
+  /// "A few large pieces": 2 to 6 of at least large_piece_fraction (the paper's Fig. 22 shows
+  /// three or four at 7.5 m/s).
+  static bool few_large(int large_pieces) { return large_pieces >= 2 && large_pieces <= 6; }
   int pieces_1pct = 0, pieces_10pct = 0;  ///< fragments holding at least 1 % / large_piece_fraction of the mass
   bool through_crack = false;             ///< a second piece of at least through_piece_fraction
   double second_fraction = 0;             ///< second largest piece over the mass

@@ -37,7 +37,7 @@ std::string expected_pattern(double v) {
 // tested again.
 bool a_few_large_pieces(const SphereImpactResult& r) {
   static_assert(SphereImpactResult::through_piece_fraction <= SphereImpactResult::large_piece_fraction);
-  return r.pieces_10pct >= 2 && r.pieces_10pct <= 6;
+  return SphereImpactResult::few_large(r.pieces_10pct);
 }
 
 bool pattern_met(const SphereImpactResult& r) {

@@ -15,9 +15,6 @@ enum class SpeedBand { Whole, FewLarge, FewLargeAssumed, Crushed };
 
 /// The paper's compared time, after the first contact (its Fig. 22) [s].
 inline constexpr double kPaperTime = 0.75e-3;
-/// A run's frame times and its compared time come from one clock but through different sums:
-/// two of them are the same time within this [s].
-inline constexpr double kSameTime = 1e-12;
 
 SpeedBand speed_band(double v);
 /// The paper's description at a speed: what dspdem should show.

@@ -33,14 +33,16 @@ std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact
   for (const auto& h : r.history)
     if (h.after_contact <= after_contact + kSameTime) at = &h;
   if (at == nullptr) return {};
-  if (speed_band(r.speed) == SpeedBand::FewLarge) return at->large_pieces >= 2 && at->large_pieces <= 6;
-  // No crack through, as the result's through_crack reads it at the compared frame.
-  return at->second < SphereImpactResult::through_piece_fraction && at->largest >= SphereImpactResult::intact_fraction;
+  // The criteria the compared frame is judged by (pattern_met).
+  if (speed_band(r.speed) == SpeedBand::FewLarge) return SphereImpactResult::few_large(at->large_pieces);
+  return !SphereImpactResult::cut_through(at->largest, at->second);
 }
 
 std::vector<double> reading_times(double last) {
   std::vector<double> t;
-  for (int k = 0; kPaperTime + k * kStep < last - kSameTime; ++k) t.push_back(kPaperTime + k * kStep);
+  // Half a step short of `last`: the compared frame is the one nearest the compared time, on
+  // either side of it, and the counts above already read it there.
+  for (int k = 0; kPaperTime + k * kStep < last - 0.5 * kStep; ++k) t.push_back(kPaperTime + k * kStep);
   return t;
 }
 
@@ -76,11 +78,15 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir) {
   // The earliest compared frame bounds the times every run can be read at.
   double last = INFINITY;
+  int no_history = 0;  // runs of the speeds read that failed or have no history
   std::vector<double> read_speeds, not_read;
   for (std::size_t si = 0; si < speeds.size(); ++si) {
     (readable(speeds[si]) ? read_speeds : not_read).push_back(speeds[si]);
-    for (const RealisationRun& run : by_speed[si])
-      if (run.result && !run.result->history.empty()) last = std::min(last, compared_after_contact(*run.result));
+    for (const RealisationRun& run : by_speed[si]) {
+      const bool has = run.result && !run.result->history.empty();
+      if (has) last = std::min(last, compared_after_contact(*run.result));
+      no_history += readable(speeds[si]) && !has;
+    }
   }
   if (!std::isfinite(last)) return;  // no run with a history
   const std::vector<double> times = reading_times(last);
@@ -88,33 +94,44 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
   const std::vector<PatternCount> counts = pattern_over_time(times, speeds, by_speed);
   if (*std::max_element(counts.front().read.begin(), counts.front().read.end()) < 2) return;
 
+  const bool every = read_speeds.size() > 1;
   std::vector<std::string> head = {"after the contact [ms]"};
   for (double v : read_speeds) head.push_back(fmt::format("{:g} m/s: {}", v, expected_pattern(v)));
-  if (read_speeds.size() > 1) head.push_back("at every speed read");
+  if (every) head.push_back(fmt::format("at {} m/s alike", fmt::join(read_speeds, ", ")));
   std::vector<std::vector<std::string>> rows;
   std::ofstream csv(fs::path(dir) / "pattern_over_time.csv");
-  csv << "after_contact_ms,speed,meshes_read,with_pattern\n";
+  // scope: "speed", or "every" for the meshes read at all the speeds read (speed left empty).
+  csv << "after_contact_ms,scope,speed,meshes_read,with_pattern\n";
   for (const PatternCount& c : counts) {
     std::vector<std::string> row = {fmt::format("{:.2f}", 1e3 * c.after_contact)};
     for (std::size_t k = 0; k < read_speeds.size(); ++k) {
       row.push_back(c.read[k] > 0 ? report::count_of(c.met[k], c.read[k]) : "-");
-      csv << fmt::format("{:.3f},{:g},{},{}\n", 1e3 * c.after_contact, read_speeds[k], c.read[k], c.met[k]);
+      csv << fmt::format("{:.3f},speed,{:g},{},{}\n", 1e3 * c.after_contact, read_speeds[k], c.read[k], c.met[k]);
     }
-    if (read_speeds.size() > 1) {
+    if (every) {
       row.push_back(c.every_read > 0 ? report::count_of(c.every_met, c.every_read) : "-");
-      csv << fmt::format("{:.3f},every,{},{}\n", 1e3 * c.after_contact, c.every_read, c.every_met);
+      csv << fmt::format("{:.3f},every,,{},{}\n", 1e3 * c.after_contact, c.every_read, c.every_met);
     }
     rows.push_back(std::move(row));
   }
-  doc.para(fmt::format(
+  std::string text = fmt::format(
       "The paper's pattern read at earlier times. The runs go on to {:.3f} ms after the contact or later, past the "
-      "paper's {:g} ms: each run is read from its history at its last frame at or before each time, {:g} ms apart, "
-      "up to the earliest compared frame (the counts above read each run at its own). A speed's pattern is the "
-      "paper's at that speed; a mesh counts at every speed read when all its runs there could be read. Not read "
-      "over time{}: 20 m/s and above (the history keeps no single-element count) and the speeds between 5 and "
-      "20 m/s other than 7.5 (not described by the paper). Also in `pattern_over_time.csv`.",
-      1e3 * last, 1e3 * kPaperTime, 1e3 * kStep,
-      not_read.empty() ? std::string() : fmt::format(" ({} m/s run)", fmt::join(not_read, ", "))));
+      "paper's {:g} ms: each run is read from its history at its last frame at or before each time, every {:g} ms "
+      "from the paper's moment to half a step before the earliest compared frame (the counts above read each run at "
+      "its own). A speed's pattern is the paper's at that speed.",
+      1e3 * last, 1e3 * kPaperTime, 1e3 * kStep);
+  if (every)
+    text += fmt::format(
+        " The last column counts the meshes whose runs at {} m/s could all be read and all show it{}.",
+        fmt::join(read_speeds, ", "),
+        not_read.empty() ? "" : ", so it is not the count at every speed run when other speeds were run too");
+  if (!not_read.empty())
+    text += fmt::format(
+        " Not read over time: {} m/s (20 m/s and above need the single elements, which the history does not keep; "
+        "a speed between 5 and 20 m/s other than 7.5 is not one the paper describes).",
+        fmt::join(not_read, ", "));
+  if (no_history > 0) text += fmt::format(" Left out: {} run(s) that failed or have no history.", no_history);
+  doc.para(text + " Also in `pattern_over_time.csv`.");
   doc.table(head, rows);
 }
 

@@ -22,9 +22,10 @@ namespace dspdem::sphere {
 /// the paper's).
 std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact);
 
-/// The times read [s after the contact]: the paper's moment and every 0.25 ms after it, before
-/// `last` (the earliest compared frame of the runs); empty when `last` is not later than the
-/// paper's moment.
+/// The times read [s after the contact]: the paper's moment and every 0.25 ms after it, up to
+/// half a step (0.125 ms) before `last`, the earliest compared frame of the runs (which may lie
+/// a little either side of the compared time); empty when the runs were compared at the paper's
+/// moment.
 std::vector<double> reading_times(double last);
 
 /// One time's counts: per speed read, the meshes with the pattern and those read; and the
