@@ -19,6 +19,7 @@
 //   fails CI.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -346,7 +347,7 @@ TEST(SpherePatternOverTime, JudgesAsTheComparedFrameAndWritesItsSectionOnlyPastT
   EXPECT_EQ(sphere::reading_times(2.012e-3).size(), 5u);  // 0.75-1.75 ms
   EXPECT_EQ(sphere::reading_times(1.0e-3).size(), 1u);    // the paper's moment alone
   // The section: written for runs past the paper's moment, not for runs compared at it.
-  const fs::path dir = fs::temp_directory_path() / "dspdem_pattern_over_time";
+  const fs::path dir = fs::temp_directory_path() / fmt::format("dspdem_pattern_over_time_{}", ::getpid());
   fs::create_directories(dir);
   const SphereImpactResult a = run(5, 2.0, 0.99, 0.005, 1), b = run(7.5, 2.0, 0.6, 0.3, 2),
                            c = run(7.5, 2.0, 0.95, 0.02, 1), d = run(20, 2.0, 0.3, 0.1, 1);

@@ -39,7 +39,7 @@ struct SphereImpactResult {
   /// three or four at 7.5 m/s).
   static bool few_large(int large_pieces) { return large_pieces >= 2 && large_pieces <= 6; }
   int pieces_1pct = 0, pieces_10pct = 0;  ///< fragments holding at least 1 % / large_piece_fraction of the mass
-  bool through_crack = false;             ///< a second piece of at least through_piece_fraction
+  bool through_crack = false;             ///< cut_through at the compared frame
   double second_fraction = 0;             ///< second largest piece over the mass
   long broken_joints = 0, joints = 0;
   double crack_area = 0;  ///< broken joints' area at the compared time [m^2]

@@ -7,6 +7,7 @@
 // same time.
 #pragma once
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "report/document.hpp"
@@ -42,8 +43,9 @@ struct PatternCount {
 std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, const std::vector<double>& speeds,
                                             const std::vector<std::vector<RealisationRun>>& by_speed);
 
-/// Writes the section into `doc` when the runs go on past the paper's moment and a speed the
-/// history can judge was run on at least two meshes; pattern_over_time.csv into `dir`.
+/// Writes the section into `doc` when the runs go on past the paper's moment and at the
+/// paper's moment at least two meshes could be read at one speed the history can judge;
+/// pattern_over_time.csv into `dir`.
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
 

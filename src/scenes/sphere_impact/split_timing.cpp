@@ -11,7 +11,6 @@
 #include "render/plot.hpp"
 #include "report/onsets.hpp"
 #include "report/proportion.hpp"
-#include "scenes/sphere_impact/pattern.hpp"
 
 namespace dspdem::sphere {
 
