@@ -66,10 +66,9 @@ void onset_table(report::Document& doc, const std::vector<report::SweepPoint>& t
       "the two values given; its interval is distribution-free (the order statistics whose ranks cover the median "
       "with at least 95 %, the coverage they guarantee given; it needs six meshes; of the first speed on the grid "
       "run, so an end of 7.5 means above the speed run below it; where a run failed below a mesh's first speed, "
-      "that speed is only an upper bound and the interval looser than it says). The paper shows no crack through at 5 "
-      "m/s "
-      "and several fairly large regions at 7.5, "
-      "and no speed between: its first speed for both lies above 5 and at most 7.5 m/s.");
+      "that speed is only an upper bound and the interval looser than it says). The paper shows no crack through at "
+      "5 m/s and several fairly large regions at 7.5, and no speed between: its first speed for both lies above 5 "
+      "and at most 7.5 m/s.");
   doc.table({"orientation", "first through crack", "first a few large pieces"}, rows);
 }
 

@@ -17,18 +17,22 @@ namespace dspdem::sphere {
 namespace {
 namespace fs = std::filesystem;
 
-// The two middle values in ms, as onset_table prints them ("a" or "a to b"); +infinity: `none`.
+// A time in ms; +infinity: `none`.
+std::string ms_or(double t, const char* none) {
+  return std::isinf(t) ? std::string(none) : fmt::format("{:.3f}", 1e3 * t);
+}
+
+// The two middle values in ms, as onset_table prints them ("a" or "a to b").
 std::string middle_ms(const std::vector<double>& v, const char* none) {
   const report::Middle m = report::middle(v);
-  auto ms = [none](double t) { return std::isinf(t) ? std::string(none) : fmt::format("{:.3f}", 1e3 * t); };
-  return m.low == m.high ? ms(m.low) : ms(m.low) + " to " + ms(m.high);
+  return m.low == m.high ? ms_or(m.low, none) : ms_or(m.low, none) + " to " + ms_or(m.high, none);
 }
 
 // The median's distribution-free interval (report::median_interval) in ms, with the coverage
-// its ranks guarantee; +infinity: `none`.
+// its ranks guarantee.
 std::string median_interval_ms(const std::vector<double>& v, const char* none) {
-  auto ms = [none](double t) { return std::isinf(t) ? std::string(none) : fmt::format("{:.3f}", 1e3 * t); };
-  return report::median_interval_text(report::median_interval(v), ms, "too few meshes");
+  return report::median_interval_text(
+      report::median_interval(v), [none](double t) { return ms_or(t, none); }, "too few meshes");
 }
 }  // namespace
 
