@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "report/shuffle.hpp"
 
 namespace dspdem::report {
 
@@ -36,17 +37,6 @@ double spread(const std::vector<int>& sizes, const std::vector<char>& pooled) {
     s += static_cast<double>(k) * k / n;
   }
   return s;
-}
-
-// A uniform integer in [0, n): the rejection keeps it unbiased, and unlike
-// std::uniform_int_distribution (whose algorithm the standard leaves open) it draws the same
-// numbers with every standard library.
-std::uint64_t below(std::mt19937_64& g, std::uint64_t n) {
-  const std::uint64_t limit = std::mt19937_64::max() - std::mt19937_64::max() % n;
-  for (;;) {
-    const std::uint64_t r = g();
-    if (r < limit) return r % n;
-  }
 }
 
 }  // namespace
@@ -88,7 +78,7 @@ Homogeneity homogeneity(const std::vector<std::vector<bool>>& groups, int shuffl
   std::mt19937_64 g(seed);
   int extreme = 0;
   for (int s = 0; s < shuffles; ++s) {
-    for (std::size_t i = pooled.size() - 1; i > 0; --i) std::swap(pooled[i], pooled[below(g, i + 1)]);
+    shuffle_in_place(pooled, g);
     extreme += spread(sizes, pooled) >= observed - tie;
   }
   h.shuffles = shuffles, h.as_extreme = extreme;

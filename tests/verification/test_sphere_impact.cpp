@@ -31,6 +31,7 @@
 #include "scenes/sphere_impact/pattern.hpp"
 #include "scenes/sphere_impact/pattern_over_time.hpp"
 #include "scenes/sphere_impact/realisations.hpp"
+#include "scenes/sphere_impact/split_precursors.hpp"
 #include "scenes/sphere_impact/split_timing.hpp"
 #include "support/cli.hpp"
 #include "support/golden.hpp"
@@ -372,6 +373,76 @@ TEST(SpherePatternOverTime, JudgesAsTheComparedFrameAndWritesItsSectionOnlyPastT
   const SphereImpactResult early = run(7.5, 0.7525, 0.6, 0.3, 2);
   report::Document none(dir.string(), dir.string());
   sphere::pattern_over_time_section(none, {7.5}, {{{0, &early, ""}, {1, &early, ""}}}, dir.string());
+  EXPECT_TRUE(none.text().empty()) << none.text();
+  fs::remove_all(dir);
+}
+
+TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNoneCameApartBefore) {
+  // Frames every 0.1 ms from 0.05 ms to the compared 2 ms; two large pieces from `apart_ms` on
+  // (99: never); the cracks' reach and the fragments by the frame: `reach` and `frags` up to
+  // 0.3 ms, 1.0 and 500 after it (so that a frame read after 0.3 ms would show).
+  auto run = [](double apart_ms, double reach, long frags, double end_ms = 2.0) {
+    SphereImpactResult r;
+    r.speed = 7.5, r.t_contact = 0.1e-3, r.t_compare = r.t_contact + 1e-3 * end_ms;
+    for (int f = 0; 0.05 + 0.1 * f <= end_ms + 1e-9; ++f) {
+      SphereImpactResult::PiecesAt h;
+      h.frame = f, h.after_contact = 1e-3 * (0.05 + 0.1 * f);
+      const bool early = h.after_contact <= 0.3e-3;
+      h.crack_reach = early ? reach : 1.0, h.fragments = early ? frags : 500;
+      h.large_pieces = 0.05 + 0.1 * f >= apart_ms - 1e-9 ? 2 : 1;
+      r.history.push_back(h);
+    }
+    return r;
+  };
+  // Six meshes: the higher the reach and the fewer the fragments, the sooner apart; two never
+  // (tied last, whatever their reach).
+  std::vector<SphereImpactResult> m = {run(0.55, 0.6, 10), run(0.75, 0.5, 20), run(0.95, 0.4, 30),
+                                       run(1.45, 0.3, 40), run(99, 0.25, 50),  run(99, 0.2, 60)};
+  std::vector<sphere::RealisationRun> runs;
+  for (int i = 0; i < 6; ++i) runs.push_back({i, &m[i], ""});
+  const sphere::SplitPrecursors s = sphere::split_precursors(7.5, runs);
+  ASSERT_EQ(s.meshes(), 6);
+  EXPECT_EQ(s.came_apart, 4);
+  EXPECT_EQ(s.apart_early, 0);
+  EXPECT_DOUBLE_EQ(s.reach[2], 0.4);  // the 0.25 ms frame, not the 0.35 ms one
+  EXPECT_TRUE(std::isinf(s.first[5]));
+  ASSERT_TRUE(s.readable());
+  // Reach ranks 6..1 against time ranks 1, 2, 3, 4, 5.5, 5.5: a tie at the end keeps rho just
+  // above -1 (-0.986); the fragments the mirror image.
+  EXPECT_LT(s.with_reach.rho, -0.95);
+  EXPECT_NEAR(s.with_fragments.rho, -s.with_reach.rho, 1e-15);
+  EXPECT_LT(s.with_reach.p_permutation, 0.01);  // exact: 2 * 2 / 720 = 0.0056
+  // Not read: a mesh compared before the early time, one without a joints frame; the speed is
+  // left out when a mesh came apart by the early time or fewer than six were read.
+  const SphereImpactResult short_run = run(99, 0.3, 30, 0.25), no_joints = run(99, -1, 30), early = run(0.25, 0.9, 5);
+  runs.push_back({6, &short_run, ""}), runs.push_back({7, &no_joints, ""}), runs.push_back({8, nullptr, "lost"});
+  const sphere::SplitPrecursors t = sphere::split_precursors(7.5, runs);
+  EXPECT_EQ(t.meshes(), 6);
+  EXPECT_EQ(t.not_read, 3);
+  EXPECT_EQ(t.with_reach.rho, s.with_reach.rho);
+  runs.push_back({9, &early, ""});
+  EXPECT_FALSE(sphere::split_precursors(7.5, runs).readable());
+  runs.resize(5);
+  EXPECT_FALSE(sphere::split_precursors(7.5, runs).readable());
+  // The section and its CSV: every mesh read, at every speed, the readable ones in the table.
+  const fs::path dir = fs::temp_directory_path() / fmt::format("dspdem_split_precursors_{}", ::getpid());
+  fs::create_directories(dir);
+  std::vector<sphere::RealisationRun> six;
+  for (int i = 0; i < 6; ++i) six.push_back({i, &m[i], ""});
+  report::Document doc(dir.string(), dir.string());
+  sphere::split_precursors_section(doc, {7.5, 10}, {six, {{0, &early, ""}}}, dir.string());
+  EXPECT_NE(doc.text().find("| 7.5 | 6 | 4 of 6 | -0."), std::string::npos) << doc.text();
+  EXPECT_NE(doc.text().find("Not read: 10 m/s (1 came apart by then)."), std::string::npos) << doc.text();
+  std::ifstream csv(dir / "split_precursors.csv");
+  std::string line, last;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "speed,orientation,two_large_ms,crack_reach_0.3ms,fragments_0.3ms");
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines, last = line;
+  EXPECT_EQ(lines, 7);
+  EXPECT_EQ(last, "10,0,0.250000,0.9000,5");
+  report::Document none(dir.string(), dir.string());
+  sphere::split_precursors_section(none, {10}, {{{0, &early, ""}}}, dir.string());
   EXPECT_TRUE(none.text().empty()) << none.text();
   fs::remove_all(dir);
 }

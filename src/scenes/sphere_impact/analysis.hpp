@@ -84,6 +84,13 @@ struct SphereImpactResult {
       if (h.large_pieces >= 2) return h.after_contact;
     return -1;
   }
+  /// The last frame of `history` at or before `after_contact` [s]; nullptr when none.
+  const PiecesAt* history_at(double after_contact) const {
+    const PiecesAt* at = nullptr;
+    for (const auto& h : history)
+      if (h.after_contact <= after_contact + kSameTime) at = &h;
+    return at;
+  }
   double wall_s = 0, dt = 0;
   long steps = 0, elements = 0;
 };

@@ -29,9 +29,7 @@ double compared_after_contact(const SphereImpactResult& r) { return r.t_compare 
 
 std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact) {
   if (r.history.empty() || !readable(r.speed) || after_contact > compared_after_contact(r) + kSameTime) return {};
-  const SphereImpactResult::PiecesAt* at = nullptr;
-  for (const auto& h : r.history)
-    if (h.after_contact <= after_contact + kSameTime) at = &h;
+  const SphereImpactResult::PiecesAt* at = r.history_at(after_contact);
   if (at == nullptr) return {};
   // The criteria the compared frame is judged by (pattern_met).
   if (speed_band(r.speed) == SpeedBand::FewLarge) return SphereImpactResult::few_large(at->large_pieces);

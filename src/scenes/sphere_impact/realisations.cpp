@@ -15,6 +15,7 @@
 #include "scenes/sphere_impact/breakage.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 #include "scenes/sphere_impact/pattern_over_time.hpp"
+#include "scenes/sphere_impact/split_precursors.hpp"
 #include "scenes/sphere_impact/split_timing.hpp"
 
 namespace dspdem::sphere {
@@ -165,6 +166,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       "In brackets, the 95 % interval of the share of meshes that show it (Wilson's score interval): which meshes "
       "show a pattern near its threshold is a draw, and with few meshes a count is read with that spread.");
   split_timing_section(doc, speeds, by_speed, where.dir);
+  split_precursors_section(doc, speeds, by_speed, where.dir);
   pattern_over_time_section(doc, speeds, by_speed, where.dir);
   // "k of n (95 %: lo-hi), orientations ...; not counted, a run failed: ..."; empty when no
   // mesh has all its runs.

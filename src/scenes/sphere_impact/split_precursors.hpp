@@ -1,0 +1,50 @@
+// What a mesh's split time goes with: per speed, over the meshes of a sweep (`--realisations`),
+// the time its large pieces come free against two measures read early, before any has come
+// free: how far up its cracks reach, and how many fragments it has (at the contact, mostly
+// single elements crushed off). Why: at 7.5 m/s the meshes' pieces come free over 0.5-1.8 ms
+// after the contact, long after the plate force's peak, and what sets a mesh's time was sought
+// in the mesh itself for four sessions without a measure that held on new meshes (REFERENCE.md,
+// sessions 69, 91-94); this asks instead how early the run itself shows it.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "report/document.hpp"
+#include "report/rank_correlation.hpp"
+#include "scenes/sphere_impact/realisations.hpp"
+
+namespace dspdem::sphere {
+
+/// When the early measures are read [s after the first contact]: at 7.5 m/s the plate force
+/// has peaked on every one of eighty meshes by then (0.05-0.28 ms) and none has come apart
+/// (the first at 0.51 ms; REFERENCE.md, sessions 94-95).
+inline constexpr double kEarlyRead = 3e-4;
+
+/// One speed's meshes read at kEarlyRead.
+struct SplitPrecursors {
+  double speed = 0;
+  std::vector<int> orientation;
+  /// Per mesh read: its first two large pieces [s after the contact], +infinity when none by
+  /// its compared frame (later than every mesh that came apart); its cracks' reach (over the
+  /// diameter) and its fragments at kEarlyRead.
+  std::vector<double> first, reach, fragments;
+  int came_apart = 0;   ///< meshes whose pieces came free by their compared frames
+  int apart_early = 0;  ///< of those, by kEarlyRead: the measures are then not ahead of the time
+  int not_read = 0;     ///< runs failed, without a history, or compared before kEarlyRead
+  report::RankCorrelation with_reach, with_fragments;  ///< Spearman against `first`
+
+  int meshes() const { return static_cast<int>(first.size()); }
+  /// Read when at least kMinMeshes meshes were, two of them came apart, and none by kEarlyRead.
+  bool readable() const { return meshes() >= kMinMeshes && came_apart >= 2 && apart_early == 0; }
+  static constexpr int kMinMeshes = 6;
+};
+
+/// From one speed's runs; the correlations only when readable().
+SplitPrecursors split_precursors(double speed, const std::vector<RealisationRun>& runs);
+
+/// Writes the section into `doc` when some speed is readable, and split_precursors.csv (every
+/// mesh read, at every speed) into `dir`; by_speed[s]: the runs at speeds[s].
+void split_precursors_section(report::Document& doc, const std::vector<double>& speeds,
+                              const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
+
+}  // namespace dspdem::sphere
