@@ -43,6 +43,7 @@ double spread(const std::vector<double>& r, double mean) { return co_spread(r, r
 
 RankCorrelation spearman(const std::vector<double>& x, const std::vector<double>& y, int shuffles, std::uint64_t seed) {
   DSPDEM_CHECK(x.size() == y.size(), "spearman: {} values against {} (they must be paired)", x.size(), y.size());
+  DSPDEM_CHECK(shuffles >= 0, "spearman: {} shuffles (at least 0)", shuffles);
   RankCorrelation c;
   c.n = static_cast<int>(x.size());
   const std::vector<double> rx = midranks(x);

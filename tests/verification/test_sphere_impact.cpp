@@ -379,8 +379,8 @@ TEST(SpherePatternOverTime, JudgesAsTheComparedFrameAndWritesItsSectionOnlyPastT
 
 TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNoneCameApartBefore) {
   // Frames every 0.1 ms from 0.05 ms to the compared 2 ms; two large pieces from `apart_ms` on
-  // (99: never); the cracks' reach and the fragments by the frame: `reach` and `frags` up to
-  // 0.3 ms, 1.0 and 500 after it (so that a frame read after 0.3 ms would show).
+  // (99: never); the cracks' reach and the fragments by the frame f: `reach` + 0.01 f and
+  // `frags` + f up to 0.3 ms, 1.0 and 500 after it (so that reading another frame would show).
   auto run = [](double apart_ms, double reach, long frags, double end_ms = 2.0) {
     SphereImpactResult r;
     r.speed = 7.5, r.t_contact = 0.1e-3, r.t_compare = r.t_contact + 1e-3 * end_ms;
@@ -388,7 +388,8 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
       SphereImpactResult::PiecesAt h;
       h.frame = f, h.after_contact = 1e-3 * (0.05 + 0.1 * f);
       const bool early = h.after_contact <= 0.3e-3;
-      h.crack_reach = early ? reach : 1.0, h.fragments = early ? frags : 500;
+      h.crack_reach = early && reach >= 0 ? reach + 0.01 * f : early ? reach : 1.0;
+      h.fragments = early ? frags + f : 500;
       h.large_pieces = 0.05 + 0.1 * f >= apart_ms - 1e-9 ? 2 : 1;
       r.history.push_back(h);
     }
@@ -404,7 +405,8 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
   ASSERT_EQ(s.meshes(), 6);
   EXPECT_EQ(s.came_apart, 4);
   EXPECT_EQ(s.apart_early, 0);
-  EXPECT_DOUBLE_EQ(s.reach[2], 0.4);  // the 0.25 ms frame, not the 0.35 ms one
+  EXPECT_DOUBLE_EQ(s.reach[2], 0.42);  // the 0.25 ms frame, not the 0.35 ms one nor an earlier one
+  EXPECT_DOUBLE_EQ(s.fragments[2], 32);
   EXPECT_TRUE(std::isinf(s.first[5]));
   ASSERT_TRUE(s.readable());
   // Reach ranks 6..1 against time ranks 1, 2, 3, 4, 5.5, 5.5: a tie at the end keeps rho just
@@ -412,16 +414,27 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
   EXPECT_LT(s.with_reach.rho, -0.95);
   EXPECT_NEAR(s.with_fragments.rho, -s.with_reach.rho, 1e-15);
   EXPECT_LT(s.with_reach.p_permutation, 0.01);  // exact: 2 * 2 / 720 = 0.0056
-  // Not read: a mesh compared before the early time, one without a joints frame; the speed is
-  // left out when a mesh came apart by the early time or fewer than six were read.
-  const SphereImpactResult short_run = run(99, 0.3, 30, 0.25), no_joints = run(99, -1, 30), early = run(0.25, 0.9, 5);
+  // Not read: a mesh compared before the early time, one without a joints frame, a failed one,
+  // and one never apart but compared at 1.0 ms, before another came apart (1.45 ms). The speed
+  // is left out when a mesh came apart by the early time, read or not, or fewer than six were
+  // read.
+  const SphereImpactResult short_run = run(99, 0.3, 30, 0.25), no_joints = run(99, -1, 30),
+                           cut_short = run(99, 0.1, 70, 1.0), early = run(0.25, 0.9, 5),
+                           early_no_joints = run(0.25, -1, 5);
   runs.push_back({6, &short_run, ""}), runs.push_back({7, &no_joints, ""}), runs.push_back({8, nullptr, "lost"});
+  runs.push_back({9, &cut_short, ""});
   const sphere::SplitPrecursors t = sphere::split_precursors(7.5, runs);
   EXPECT_EQ(t.meshes(), 6);
-  EXPECT_EQ(t.not_read, 3);
+  EXPECT_EQ(t.not_read, 4);
   EXPECT_EQ(t.with_reach.rho, s.with_reach.rho);
-  runs.push_back({9, &early, ""});
-  EXPECT_FALSE(sphere::split_precursors(7.5, runs).readable());
+  auto with = [&](const SphereImpactResult& r) {
+    std::vector<sphere::RealisationRun> more = runs;
+    more.push_back({10, &r, ""});
+    return sphere::split_precursors(7.5, more);
+  };
+  EXPECT_FALSE(with(early).readable());
+  EXPECT_EQ(with(early_no_joints).apart_early, 1);
+  EXPECT_FALSE(with(early_no_joints).readable());
   runs.resize(5);
   EXPECT_FALSE(sphere::split_precursors(7.5, runs).readable());
   // The section and its CSV: every mesh read, at every speed, the readable ones in the table.
@@ -440,7 +453,7 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
   int lines = 0;
   while (std::getline(csv, line)) ++lines, last = line;
   EXPECT_EQ(lines, 7);
-  EXPECT_EQ(last, "10,0,0.250000,0.9000,5");
+  EXPECT_EQ(last, "10,0,0.250000,0.9200,7");
   report::Document none(dir.string(), dir.string());
   sphere::split_precursors_section(none, {10}, {{{0, &early, ""}}}, dir.string());
   EXPECT_TRUE(none.text().empty()) << none.text();

@@ -3,8 +3,8 @@
 // free: how far up its cracks reach, and how many fragments it has (at the contact, mostly
 // single elements crushed off). Why: at 7.5 m/s the meshes' pieces come free over 0.5-1.8 ms
 // after the contact, long after the plate force's peak, and what sets a mesh's time was sought
-// in the mesh itself for four sessions without a measure that held on new meshes (REFERENCE.md,
-// sessions 69, 91-94); this asks instead how early the run itself shows it.
+// in the mesh itself with four measures, none of which held on new meshes (REFERENCE.md,
+// sessions 69, 91, 92 and 94); this asks instead how early the run itself shows it.
 #pragma once
 #include <string>
 #include <vector>
@@ -28,7 +28,7 @@ struct SplitPrecursors {
   /// its compared frame (later than every mesh that came apart); its cracks' reach (over the
   /// diameter) and its fragments at kEarlyRead.
   std::vector<double> first, reach, fragments;
-  int came_apart = 0;   ///< meshes whose pieces came free by their compared frames
+  int came_apart = 0;   ///< meshes read whose pieces came free by their compared frames
   int apart_early = 0;  ///< of those, by kEarlyRead: the measures are then not ahead of the time
   int not_read = 0;     ///< runs failed, without a history, or compared before kEarlyRead
   report::RankCorrelation with_reach, with_fragments;  ///< Spearman against `first`
