@@ -3,8 +3,8 @@
 // the Pearson correlation of the midranks (ties share the mean of their ranks), and its
 // two-sided permutation p (the observed pairing counted among the shuffles: B. Phipson and
 // G. K. Smyth, Stat. Appl. Genet. Mol. Biol. 9:39, 2010, so never zero). Why a permutation
-// test: the sphere impact's meshes are tens, times of meshes that never split are tied at the
-// end, and the t approximation to rho's distribution wants neither.
+// test: a scene's runs are often tens, values censored at one time (an event that never came)
+// are tied at the end, and the t approximation to rho's distribution wants neither.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -16,7 +16,7 @@ namespace dspdem::report {
 std::vector<double> midranks(const std::vector<double>& v);
 
 /// Pairings drawn by default: the p's standard error is then under 0.0016 at p = 0.05.
-inline constexpr int kDefaultShuffles = 20000;
+inline constexpr int kSpearmanShuffles = 20000;
 
 struct RankCorrelation {
   int n = 0;
@@ -30,7 +30,7 @@ struct RankCorrelation {
 /// Spearman's rho of paired `x` and `y` (the same length; Error otherwise) and its permutation
 /// p with `shuffles` pairings drawn from a generator seeded with `seed`: the same p on every
 /// machine and thread count. shuffles < 0: Error.
-RankCorrelation spearman(const std::vector<double>& x, const std::vector<double>& y, int shuffles = kDefaultShuffles,
+RankCorrelation spearman(const std::vector<double>& x, const std::vector<double>& y, int shuffles = kSpearmanShuffles,
                          std::uint64_t seed = 20261206);
 
 }  // namespace dspdem::report

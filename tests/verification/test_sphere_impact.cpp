@@ -413,7 +413,7 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
   // above -1 (-0.986); the fragments the mirror image.
   EXPECT_LT(s.with_reach.rho, -0.95);
   EXPECT_NEAR(s.with_fragments.rho, -s.with_reach.rho, 1e-15);
-  EXPECT_LT(s.with_reach.p_permutation, 0.01);  // exact: 2 * 2 / 720 = 0.0056
+  EXPECT_LT(s.with_reach.p_permutation, 0.01);  // exact 4 / 720 = 0.0056, its standard error 0.0005 at 20000
   // Not read: a mesh compared before the early time, one without a joints frame, a failed one,
   // and one never apart but compared at 1.0 ms, before another came apart (1.45 ms). The speed
   // is left out when a mesh came apart by the early time, read or not, or fewer than six were
@@ -449,11 +449,11 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
   std::ifstream csv(dir / "split_precursors.csv");
   std::string line, last;
   std::getline(csv, line);
-  EXPECT_EQ(line, "speed,orientation,two_large_ms,crack_reach_0.3ms,fragments_0.3ms");
+  EXPECT_EQ(line, "speed,orientation,two_large_ms,compared_ms,crack_reach_0.3ms,fragments_0.3ms");
   int lines = 0;
   while (std::getline(csv, line)) ++lines, last = line;
   EXPECT_EQ(lines, 7);
-  EXPECT_EQ(last, "10,0,0.250000,0.9200,7");
+  EXPECT_EQ(last, "10,0,0.250000,2.000000,0.9200,7");
   report::Document none(dir.string(), dir.string());
   sphere::split_precursors_section(none, {10}, {{{0, &early, ""}}}, dir.string());
   EXPECT_TRUE(none.text().empty()) << none.text();

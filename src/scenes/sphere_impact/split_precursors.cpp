@@ -15,6 +15,9 @@ namespace fs = std::filesystem;
 
 std::string rho_text(const report::RankCorrelation& c) {
   if (!c.defined) return "- (one value on every mesh)";
+  // None reached it: p's 95 % upper bound is about 3 / shuffles (the rule of three), as draws.cpp.
+  if (c.as_extreme == 0)
+    return fmt::format("{:+.2f} (p < {:.2g}: no pairing of {} reached it)", c.rho, 3.0 / c.shuffles, c.shuffles);
   return fmt::format("{:+.2f} (p {:.2g})", c.rho, c.p_permutation);
 }
 }  // namespace
@@ -57,6 +60,7 @@ SplitPrecursors split_precursors(double speed, const std::vector<RealisationRun>
     }
     s.orientation.push_back(m.orientation);
     s.first.push_back(m.first), s.reach.push_back(m.reach), s.fragments.push_back(m.fragments);
+    s.compared.push_back(m.end);
     s.came_apart += !std::isinf(m.first);
   }
   if (s.readable()) {
@@ -76,14 +80,15 @@ void split_precursors_section(report::Document& doc, const std::vector<double>& 
   }
   if (!any) return;
   std::ofstream csv(fs::path(dir) / "split_precursors.csv");
-  csv << fmt::format("speed,orientation,two_large_ms,crack_reach_{0:g}ms,fragments_{0:g}ms\n", 1e3 * kEarlyRead);
+  csv << fmt::format("speed,orientation,two_large_ms,compared_ms,crack_reach_{0:g}ms,fragments_{0:g}ms\n",
+                     1e3 * kEarlyRead);
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> left;
   for (const SplitPrecursors& s : all) {
     for (int i = 0; i < s.meshes(); ++i)
-      csv << fmt::format("{:g},{},{},{:.4f},{:g}\n", s.speed, s.orientation[i],
-                         std::isinf(s.first[i]) ? std::string() : fmt::format("{:.6f}", 1e3 * s.first[i]), s.reach[i],
-                         s.fragments[i]);
+      csv << fmt::format("{:g},{},{},{:.6f},{:.4f},{:g}\n", s.speed, s.orientation[i],
+                         std::isinf(s.first[i]) ? std::string() : fmt::format("{:.6f}", 1e3 * s.first[i]),
+                         1e3 * s.compared[i], s.reach[i], s.fragments[i]);
     if (!s.readable()) {
       left.push_back(s.apart_early > 0 ? fmt::format("{:g} m/s ({} came apart by then)", s.speed, s.apart_early)
                      : s.meshes() < SplitPrecursors::kMinMeshes
@@ -107,7 +112,7 @@ void split_precursors_section(report::Document& doc, const std::vector<double>& 
       "and none by {0:g} ms. A run is not read when it failed, has no history or no joints frame by then, was compared "
       "before then, or did not come apart and was compared before the latest mesh that did (it cannot be ranked after "
       "it). Every mesh read is in `split_precursors.csv`.{3}",
-      1e3 * kEarlyRead, report::kDefaultShuffles, SplitPrecursors::kMinMeshes,
+      1e3 * kEarlyRead, report::kSpearmanShuffles, SplitPrecursors::kMinMeshes,
       left.empty() ? "" : fmt::format(" Not read: {}.", fmt::join(left, "; "))));
   doc.table({"speed [m/s]", "meshes read", "came apart by the compared frame",
              fmt::format("rho with the cracks' reach at {:g} ms (p)", 1e3 * kEarlyRead),
