@@ -255,6 +255,21 @@ TEST(SphereSplitTiming, CountsEachMeshFromItsFirstTwoLargePiecesUpToItsComparedF
   EXPECT_TRUE(sphere::steps(none).empty());
 }
 
+namespace {
+// A CSV the report wrote: its header, how many rows follow it, and the last.
+struct CsvEnds {
+  std::string header, last;
+  int rows = 0;
+};
+CsvEnds csv_ends(const fs::path& path) {
+  CsvEnds c;
+  std::ifstream in(path);
+  std::getline(in, c.header);
+  for (std::string line; std::getline(in, line);) ++c.rows, c.last = line;
+  return c;
+}
+}  // namespace
+
 TEST(SpherePatternOverTime, ReadsEachRunAtItsLastFrameByEachTimeAndCountsMeshesAtEverySpeed) {
   // Frames every 0.25 ms from 0.25 to `end_ms` (the compared frame); at each, the largest and
   // second piece and the pieces of 10 %, given per frame from `from_ms` on (before it: whole).
@@ -362,14 +377,10 @@ TEST(SpherePatternOverTime, JudgesAsTheComparedFrameAndWritesItsSectionOnlyPastT
       << doc.text();
   EXPECT_NE(doc.text().find("| 1.75 | 2 of 2 (95 %: "), std::string::npos) << doc.text();
   EXPECT_NE(doc.text().find("Not read over time: 20 m/s"), std::string::npos) << doc.text();
-  std::ifstream csv(dir / "pattern_over_time.csv");
-  std::string line, last;
-  std::getline(csv, line);
-  EXPECT_EQ(line, "after_contact_ms,scope,speed,meshes_read,with_pattern");
-  int lines = 0;
-  while (std::getline(csv, line)) ++lines, last = line;
-  EXPECT_EQ(lines, 15);  // five times, two speeds and the meshes at both
-  EXPECT_EQ(last, "1.750,every,,2,1");
+  const CsvEnds csv = csv_ends(dir / "pattern_over_time.csv");
+  EXPECT_EQ(csv.header, "after_contact_ms,scope,speed,meshes_read,with_pattern");
+  EXPECT_EQ(csv.rows, 15);  // five times, two speeds and the meshes at both
+  EXPECT_EQ(csv.last, "1.750,every,,2,1");
   const SphereImpactResult early = run(7.5, 0.7525, 0.6, 0.3, 2);
   report::Document none(dir.string(), dir.string());
   sphere::pattern_over_time_section(none, {7.5}, {{{0, &early, ""}, {1, &early, ""}}}, dir.string());
@@ -446,14 +457,10 @@ TEST(SphereSplitPrecursors, ReadsEachMeshAtTheEarlyTimeAndCorrelatesOnlyWhereNon
   sphere::split_precursors_section(doc, {7.5, 10}, {six, {{0, &early, ""}}}, dir.string());
   EXPECT_NE(doc.text().find("| 7.5 | 6 | 4 of 6 | -0."), std::string::npos) << doc.text();
   EXPECT_NE(doc.text().find("Not read: 10 m/s (1 came apart by then)."), std::string::npos) << doc.text();
-  std::ifstream csv(dir / "split_precursors.csv");
-  std::string line, last;
-  std::getline(csv, line);
-  EXPECT_EQ(line, "speed,orientation,two_large_ms,compared_ms,crack_reach_0.3ms,fragments_0.3ms");
-  int lines = 0;
-  while (std::getline(csv, line)) ++lines, last = line;
-  EXPECT_EQ(lines, 7);
-  EXPECT_EQ(last, "10,0,0.250000,2.000000,0.9200,7");
+  const CsvEnds csv = csv_ends(dir / "split_precursors.csv");
+  EXPECT_EQ(csv.header, "speed,orientation,two_large_ms,compared_ms,crack_reach_0.3ms,fragments_0.3ms");
+  EXPECT_EQ(csv.rows, 7);
+  EXPECT_EQ(csv.last, "10,0,0.250000,2.000000,0.9200,7");
   report::Document none(dir.string(), dir.string());
   sphere::split_precursors_section(none, {10}, {{{0, &early, ""}}}, dir.string());
   EXPECT_TRUE(none.text().empty()) << none.text();

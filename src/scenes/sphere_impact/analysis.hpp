@@ -84,6 +84,8 @@ struct SphereImpactResult {
       if (h.large_pieces >= 2) return h.after_contact;
     return -1;
   }
+  /// The compared frame's time after the first contact [s]: where `history` ends.
+  double compared_after_contact() const { return t_compare - t_contact; }
   /// The last frame of `history` at or before `after_contact` [s]; nullptr when none.
   const PiecesAt* history_at(double after_contact) const {
     const PiecesAt* at = nullptr;

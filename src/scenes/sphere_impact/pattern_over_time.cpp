@@ -23,12 +23,10 @@ bool readable(double v) {
   const SpeedBand b = speed_band(v);
   return b == SpeedBand::Whole || b == SpeedBand::FewLarge;
 }
-
-double compared_after_contact(const SphereImpactResult& r) { return r.t_compare - r.t_contact; }
 }  // namespace
 
 std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact) {
-  if (r.history.empty() || !readable(r.speed) || after_contact > compared_after_contact(r) + kSameTime) return {};
+  if (r.history.empty() || !readable(r.speed) || after_contact > r.compared_after_contact() + kSameTime) return {};
   const SphereImpactResult::PiecesAt* at = r.history_at(after_contact);
   if (at == nullptr) return {};
   // The criteria the compared frame is judged by (pattern_met).
@@ -82,7 +80,7 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
     (readable(speeds[si]) ? read_speeds : not_read).push_back(speeds[si]);
     for (const RealisationRun& run : by_speed[si]) {
       const bool has = run.result && !run.result->history.empty();
-      if (has) last = std::min(last, compared_after_contact(*run.result));
+      if (has) last = std::min(last, run.result->compared_after_contact());
       no_history += readable(speeds[si]) && !has;
     }
   }

@@ -42,7 +42,7 @@ SplitPrecursors split_precursors(double speed, const std::vector<RealisationRun>
     s.apart_early += t >= 0 && t <= kEarlyRead + kSameTime;
     // The history ends at the compared frame (analysis.hpp): one compared before the early
     // read would be read at its last frame, not at kEarlyRead.
-    const double end = r->t_compare - r->t_contact;
+    const double end = r->compared_after_contact();
     const SphereImpactResult::PiecesAt* at = end >= kEarlyRead - kSameTime ? r->history_at(kEarlyRead) : nullptr;
     if (at == nullptr || at->crack_reach < 0) {
       ++s.not_read;

@@ -53,7 +53,7 @@ SplitTiming split_timing(double speed, const std::vector<RealisationRun>& runs) 
     // The history runs up to the compared frame (analysis.hpp), so its first two large
     // pieces are the compared frame's or earlier.
     s.first.push_back(run.result->t_two_large());
-    s.end.push_back(run.result->t_compare - run.result->t_contact);
+    s.end.push_back(run.result->compared_after_contact());
   }
   return s;
 }
