@@ -271,10 +271,13 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       };
       joint::JointSet& js = m.joints;
       js.param.resize(js.size());
+      m.zone_joints.assign(c.bodies.size(), 0);
       for (Index j = 0; j < js.size(); ++j) {
         const Index mat = material[js.ea[j]];
         const Index za = zone[js.ea[j]];
-        const JointMaterial& jm = c.joint_materials[za >= 0 && zone[js.eb[j]] == za ? za : mat];
+        const bool in_zone = za >= 0 && zone[js.eb[j]] == za;
+        if (in_zone) ++m.zone_joints[cfg_body[js.ea[j]]];
+        const JointMaterial& jm = c.joint_materials[in_zone ? za : mat];
         const Real h = 0.5 * (height(js.ea[j], js.area0[j]) + height(js.eb[j], js.area0[j]));
         joint::CohesiveParams p;
         p.kn = jm.kn > 0 ? jm.kn : jm.penalty * c.materials[mat].E / h;

@@ -258,6 +258,18 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         "{} node(s) were split into unconnected copies with no joint between them (elements meeting only at an "
         "edge or a vertex, or across a tet/hex interface): the pieces there are not tied together",
         model.joint_report.split_without_joint);
+  for (std::size_t b = 0; b < model.zone_joints.size(); ++b) {
+    const BodyConfig& bc = c.bodies[b];
+    if (bc.zone_material.empty()) continue;
+    if (model.zone_joints[b] > 0)
+      log::info("  joint zone of body '{}': {} joint(s) take the joint parameters of material '{}'", bc.name,
+                model.zone_joints[b], bc.zone_material);
+    else  // no two of the zone's elements share a face: the zone changes nothing
+      log::warn(
+          "[[bodies]] '{}': no joint lies inside its zone (zone_groups, zone box), so none takes the joint "
+          "parameters of material '{}'; a zone needs at least two of its elements with a face in common",
+          bc.name, bc.zone_material);
+  }
   // The elements' own critical steps are kept: with extrinsic insertion and the step left to
   // dspdem, closed joints have no spring yet, so the step starts from the elements and the
   // contact and is recomputed each time joints open (in the loop below; it only falls). A

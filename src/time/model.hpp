@@ -47,6 +47,9 @@ struct Model {
   std::vector<std::string> body_names;
   joint::JointSet joints;
   joint::InsertionReport joint_report;
+  /// Per body of the case: how many joints took its zone material (zone_groups, zone box);
+  /// a zone whose elements share no face takes none, which the run reports.
+  std::vector<Index> zone_joints;
   contact::ContactSystem contact;  ///< disabled unless [contact] enabled
   std::vector<RigidBody> rigid;    ///< bodies with kinematics = "rigid"
 

@@ -500,6 +500,7 @@ TEST(Joints, ZoneGroupsTakeTheZoneMaterialsJointParameters) {
   mesh.groups.push_back(end);
   const Model m = build_model(c, mesh);
   ASSERT_EQ(m.joints.size(), 2);
+  EXPECT_EQ(m.zone_joints, std::vector<Index>{1}) << "one joint inside the zone, counted for the run's log";
   const Index nt = m.mesh.blocks[0].size();
   for (Index j = 0; j < 2; ++j) {
     const Index a = std::min(m.joints.ea[j], m.joints.eb[j]) - nt, b = std::max(m.joints.ea[j], m.joints.eb[j]) - nt;
@@ -533,11 +534,14 @@ TEST(Joints, AZoneBoxTakesTheElementsWhoseCentroidsLieInIt) {
   ASSERT_EQ(coh.size(), 2u);
   EXPECT_EQ(coh.at(edge), 10e6) << "a joint across the box's edge keeps the body's material";
   EXPECT_EQ(coh.at(inside), 99e6) << "the joint inside the box";
-  // A box over the middle element alone holds no joint of its own: both keep the body's.
+  EXPECT_EQ(build_model(c, mesh).zone_joints, std::vector<Index>{1});
+  // A box over the middle element alone holds no joint of its own: both keep the body's, and
+  // the count the run warns on is 0.
   c.bodies[0].zone_box.emplace(Vec3(0.1, -1, -1), Vec3(0.2, 1, 1));
   coh = cohesions();
   EXPECT_EQ(coh.at(edge), 10e6);
   EXPECT_EQ(coh.at(inside), 10e6);
+  EXPECT_EQ(build_model(c, mesh).zone_joints, std::vector<Index>{0});
   // The box's faces belong to it: a lower face through the middle element's centroid (as the
   // builder computes it, so equal to the last bit) takes that element in.
   const Real x1 = element_centroid(mesh, mesh.blocks[1], 1).x();
