@@ -275,6 +275,34 @@ TEST_F(Cli, AnOpenEnergyLedgerIsWarnedOnceWithItsStepAndTheRunGoesOn) {
   EXPECT_NE(slurp(dir_ / "b" / "summary.json").find("\"status\": \"completed\""), std::string::npos);
 }
 
+TEST_F(Cli, AJointZoneIsCountedInTheLogAndOneHoldingNoJointIsWarnedOf) {
+  // The good beam (40 x 4 x 4 hexes of 25 mm) made fracturable, with a stronger joint material
+  // in a zone box. Over the first two layers of hexes (32 elements) the box holds 64 faces
+  // between its own elements: 16 across the layers and 24 in each layer. Around one hex it
+  // holds none, and a zone that changes nothing is warned of, also under -q.
+  std::string text = replace(good_, "damping_mode = \"mass\"",
+                             "damping_mode = \"mass\"\ntensile_strength = 3.0e6\nfracture_energy_I = 100.0\n"
+                             "cohesion = 10.0e6\nfriction_angle = 30.0\nfracture_energy_II = 1000.0\n"
+                             "[materials.strong]\ndensity = 2400.0\nE = 30.0e9\nnu = 0.2\n"
+                             "tensile_strength = 6.0e6\nfracture_energy_I = 200.0\ncohesion = 20.0e6\n"
+                             "friction_angle = 30.0\nfracture_energy_II = 2000.0");
+  text = replace(text, "material = \"concrete\"",
+                 "material = \"concrete\"\nfracture = \"all\"\nzone_material = \"strong\"\n"
+                 "zone_box_min = [0.0, 0.0, 0.0]\nzone_box_max = [0.05, 0.1, 0.1]");
+  text = replace(text, "end = 2.0e-3", "end = 2.0e-6");
+  const fs::path c = write("zone.toml", text);
+  const Result r = run("run " + c.string() + " --out " + (dir_ / "a").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("joint zone of body 'beam': 64 joint(s) take the joint parameters of material 'strong'"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+  const Result one = run("-q run " + c.string() + " --out " + (dir_ / "b").string() +
+                         " --set \"bodies.0.zone_box_max=[0.025, 0.025, 0.025]\"");
+  ASSERT_EQ(one.code, 0) << one.out;
+  EXPECT_NE(one.out.find("warning: [[bodies]] 'beam': no joint lies inside its zone"), std::string::npos) << one.out;
+}
+
 TEST_F(Cli, ProgressLineOnRequest) {
   const Result r =
       run("run " + write("good.toml", good_).string() + " --out " + (dir_ / "out").string() + " --progress");
