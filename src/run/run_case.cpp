@@ -264,10 +264,11 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (model.zone_joints[b] > 0)
       log::info("  joint zone of body '{}': {} joint(s) take the joint parameters of material '{}'", bc.name,
                 model.zone_joints[b], bc.zone_material);
-    else  // no two of the zone's elements share a face: the zone changes nothing
+    else  // no two of the zone's fracturable elements share a face: the zone changes nothing
       log::warn(
           "[[bodies]] '{}': no joint lies inside its zone (zone_groups, zone box), so none takes the joint "
-          "parameters of material '{}'; a zone needs at least two of its elements with a face in common",
+          "parameters of material '{}'; a zone needs two of its fracturable elements (fracture = \"all\" or in "
+          "fracture_groups) sharing a face",
           bc.name, bc.zone_material);
   }
   // The elements' own critical steps are kept: with extrinsic insertion and the step left to

@@ -48,7 +48,7 @@ struct Model {
   joint::JointSet joints;
   joint::InsertionReport joint_report;
   /// Per body of the case: how many joints took its zone material (zone_groups, zone box);
-  /// a zone whose elements share no face takes none, which the run reports.
+  /// a zone in which no two fracturable elements share a face takes none, which the run warns of.
   std::vector<Index> zone_joints;
   contact::ContactSystem contact;  ///< disabled unless [contact] enabled
   std::vector<RigidBody> rigid;    ///< bodies with kinematics = "rigid"
