@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "report/homogeneity.hpp"
+#include "report/permutation_bound.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
 #include "scenes/sphere_impact/split_timing.hpp"
 
@@ -45,12 +46,16 @@ std::vector<std::string> test_row(double v, const char* event, const std::vector
     return {fmt::format("{:g}", v), event, shown, "-", "one mesh with finished draws: nothing to compare", "-", "-"};
   if (h.shown == 0 || h.shown == h.runs)
     return {fmt::format("{:g}", v), event, shown, "-", h.shown == 0 ? "none shows it" : "every run shows it", "-", "-"};
-  return {fmt::format("{:g}", v), event, shown, fmt::format("{:.1f} ({})", h.chi2, h.dof),
+  const std::string perm = h.as_extreme == 0 ? fmt::format("< {:.2g} (no shuffle of {} reached it)",
+                                                           report::p_bound_when_none_reached(h.shuffles), h.shuffles)
+                                             : fmt::format("{:.4f}", h.p_permutation);
+  return {fmt::format("{:g}", v),
+          event,
+          shown,
+          fmt::format("{:.1f} ({})", h.chi2, h.dof),
           h.chi2_valid ? p_text(h.p_chi2)
                        : fmt::format("{} (not valid: least expected count {:.1f})", p_text(h.p_chi2), h.min_expected),
-          // None reached it: p's 95 % upper bound is about 3 / shuffles (the rule of three).
-          h.as_extreme == 0 ? fmt::format("< {:.2g} (no shuffle of {} reached it)", 3.0 / h.shuffles, h.shuffles)
-                            : fmt::format("{:.4f}", h.p_permutation),
+          perm,
           fmt::format("{:.2f}", h.between_share)};
 }
 

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "report/permutation_bound.hpp"
+
 namespace dspdem::sphere {
 
 namespace {
@@ -15,9 +17,9 @@ namespace fs = std::filesystem;
 
 std::string rho_text(const report::RankCorrelation& c) {
   if (!c.defined) return "- (one value on every mesh)";
-  // None reached it: p's 95 % upper bound is about 3 / shuffles (the rule of three), as draws.cpp.
   if (c.as_extreme == 0)
-    return fmt::format("{:+.2f} (p < {:.2g}: no pairing of {} reached it)", c.rho, 3.0 / c.shuffles, c.shuffles);
+    return fmt::format("{:+.2f} (p < {:.2g}: no pairing of {} reached it)", c.rho,
+                       report::p_bound_when_none_reached(c.shuffles), c.shuffles);
   return fmt::format("{:+.2f} (p {:.2g})", c.rho, c.p_permutation);
 }
 }  // namespace
