@@ -765,7 +765,36 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
                : type == "displacement_difference" ? MT::DisplacementDifference
                : type == "velocity"                ? MT::Velocity
                : type == "momentum"                ? MT::Momentum
+               : type == "broken_joints"           ? MT::BrokenJoints
+               : type == "crack_area"              ? MT::CrackArea
                                                    : MT::MaxDisplacement;
+      if (m.counts_joints()) {
+        // Joints are counted where they lie (a box), not by a node group; a component
+        // of a count means nothing.
+        for (const char* k : {"group", "group2", "component"})
+          if (s.has(k))
+            fail("{}: [[monitors]] '{}': a {} monitor counts joints in a box (box_min, box_max) and takes no {}",
+                 s.where(k), m.name, type, k);
+        if (s.has("box_min") || s.has("box_max")) {
+          if (!s.has("box_min") || !s.has("box_max"))
+            fail("{}: [[monitors]] '{}': box_min and box_max come together", s.where(), m.name);
+          const Vec3 lo = s.vec3("box_min"), hi = s.vec3("box_max");
+          for (int i = 0; i < 3; ++i)
+            if (!(hi(i) > lo(i)))
+              fail("{}: [[monitors]] '{}': box_max must lie above box_min on every axis ({} is {:g}, not above {:g})",
+                   s.where("box_max"), m.name, "xyz"[i], hi(i), lo(i));
+          m.box.emplace(lo, hi);
+        }
+        for (const auto& o : c.monitors)
+          DSPDEM_CHECK(o.name != m.name, "{}: monitor name '{}' used twice", s.where("name"), m.name);
+        s.finish();
+        c.monitors.push_back(m);
+        continue;
+      }
+      for (const char* k : {"box_min", "box_max"})
+        if (s.has(k))
+          fail("{}: [[monitors]] '{}': {} is for broken_joints and crack_area monitors, not {}", s.where(k), m.name, k,
+               type);
       if (s.has("group"))
         m.group = s.str("group");
       else

@@ -348,9 +348,30 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     ms.cfg = mc;
     if (!mc.group.empty())
       ms.nodes = need_group(me, mc.group, mc.where).nodes;
-    else
+    else if (!mc.counts_joints())
       for (Index n = 0; n < me.n_nodes(); ++n) ms.nodes.push_back(n);
     if (!mc.group2.empty()) ms.nodes2 = need_group(me, mc.group2, mc.where).nodes;
+    if (mc.counts_joints()) {
+      const joint::JointSet& js = m.joints;
+      ms.joint_in.assign(js.size(), 0);
+      Index in = 0;
+      for (Index j = 0; j < js.size(); ++j) {
+        Vec3 centroid = Vec3::Zero();
+        for (int k = 0; k < js.npf[j]; ++k) centroid += node_pos(me.x, js.a[4 * static_cast<std::size_t>(j) + k]);
+        centroid /= js.npf[j];
+        if (!mc.box || mc.box->contains(centroid)) ms.joint_in[j] = 1, ++in;
+      }
+      // A count over no joints is zero whatever happens: a mistake, not a measurement.
+      if (in == 0 && js.size() == 0)
+        fail("{}: monitor '{}' counts broken joints, but the model has none (no body with fracture)", mc.where,
+             mc.name);
+      if (in == 0)
+        fail(
+            "{}: monitor '{}': the box from box_min [{:g}, {:g}, {:g}] to box_max [{:g}, {:g}, {:g}] holds no joint's "
+            "face centroid (of {} joints)",
+            mc.where, mc.name, mc.box->min().x(), mc.box->min().y(), mc.box->min().z(), mc.box->max().x(),
+            mc.box->max().y(), mc.box->max().z(), js.size());
+    }
     if (mc.type == MonitorConfig::Type::Reaction) {
       ms.dof_in_group.assign(3 * static_cast<std::size_t>(me.n_nodes()), 0);
       bool any = false;

@@ -71,6 +71,11 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   j["joint_added_compliance"] = num(s.joint_added_compliance);
   j["broken_joints"] = s.broken_joints;
   j["crack_area"] = num(s.crack_area);
+  if (!s.monitor_joints.empty()) {
+    json mj = json::object();
+    for (const auto& [name, n] : s.monitor_joints) mj[name] = n;
+    j["monitor_joints"] = mj;
+  }
   j["fragments"] = s.fragments;
   j["total_mass"] = num(s.total_mass);
   j["largest_fragment_masses"] = masses;
@@ -120,6 +125,13 @@ RunSummary read_run_summary(const std::string& path) {
   get(j, "joint_added_compliance", s.joint_added_compliance, path);
   get(j, "broken_joints", s.broken_joints, path);
   get(j, "crack_area", s.crack_area, path);
+  if (const auto mj = j.find("monitor_joints"); mj != j.end()) {  // only with joint monitors, and not in older folders
+    if (!mj->is_object()) fail("'{}': 'monitor_joints' must be an object (monitor name: joints)", path);
+    for (const auto& [name, n] : mj->items()) {
+      if (!n.is_number_integer()) fail("'{}': monitor_joints '{}' must be an integer", path, name);
+      s.monitor_joints.emplace_back(name, n.get<long>());
+    }
+  }
   get(j, "fragments", s.fragments, path);
   get(j, "total_mass", s.total_mass, path);
   get(j, "element_steps_per_s", s.element_steps_per_s, path);

@@ -5,6 +5,7 @@
 #pragma once
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
@@ -46,6 +47,9 @@ struct RunSummary {
   int processes = 1;  ///< MPI processes of a distributed run (mpirun -n)
   long nodes = 0, elements = 0, frames = 0, joints = 0, broken_joints = 0;
   double joint_added_compliance = 0, crack_area = 0;
+  /// Per broken_joints / crack_area monitor: the joints its box holds, so that its column
+  /// reads as a share ("79 % of the contact zone's joints broken"); read back sorted by name.
+  std::vector<std::pair<std::string, long>> monitor_joints;
   long fragments = 0;
   double total_mass = 0;
   std::vector<double> largest_fragment_masses;  ///< the ten largest, descending [kg]

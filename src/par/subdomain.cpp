@@ -195,6 +195,10 @@ Subdomain make_subdomain(const Model& g, const std::vector<int>& part, int r) {
     };
     own(gs.nodes, ls.nodes);
     own(gs.nodes2, ls.nodes2);
+    if (!gs.joint_in.empty()) {  // each joint counted by the process that owns it
+      ls.joint_in.resize(keep.size());
+      for (std::size_t l = 0; l < keep.size(); ++l) ls.joint_in[l] = gs.joint_in[keep[l]] && m.joint_owned[l];
+    }
     if (!gs.dof_in_group.empty()) {
       ls.dof_in_group.assign(3 * sd.node_global.size(), 0);
       for (Index l = 0; l < m.owned_nodes; ++l)

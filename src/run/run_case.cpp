@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstring>
@@ -326,6 +327,10 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   const int n_ranks = par::size(), my_rank = par::rank();
   const bool distributed = n_ranks > 1;
   const Index whole_nodes = fem.n_nodes, whole_elements = fem.n_elements, whole_joints = model.joints.size();
+  std::vector<std::pair<std::string, long>> monitor_joints;  // the whole model's, for summary.json
+  for (const MonitorSet& ms : model.monitors)
+    if (ms.cfg.counts_joints())
+      monitor_joints.emplace_back(ms.cfg.name, std::count(ms.joint_in.begin(), ms.joint_in.end(), 1));
   Distribution* dist = nullptr;  // a distributed run's exchange and reductions
 #if DSPDEM_HAVE_MPI
   std::unique_ptr<par::MpiHalo> halo;
@@ -563,6 +568,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     s.nodes = whole_nodes, s.elements = whole_elements, s.frames = static_cast<long>(frames.size());
     s.joints = whole_joints, s.joint_added_compliance = joint_compliance;
     s.broken_joints = e.broken_joints, s.crack_area = e.crack_area;
+    s.monitor_joints = monitor_joints;
     s.fragments = frag.count;
     for (Real mm : frag.mass) s.total_mass += mm;
     for (std::size_t i = 0; i < std::min<std::size_t>(10, frag.mass.size()); ++i)

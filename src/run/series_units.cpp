@@ -17,6 +17,10 @@ const char* monitor_unit(MonitorConfig::Type t) {
       return "m/s";
     case MonitorConfig::Type::Momentum:
       return "kg m/s";
+    case MonitorConfig::Type::BrokenJoints:
+      return "count";
+    case MonitorConfig::Type::CrackArea:
+      return "m^2";
   }
   return "";
 }

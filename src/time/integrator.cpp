@@ -675,6 +675,17 @@ Real Integrator::monitor(const MonitorSet& ms) const {
       if (dist_) dist_->max(&mx, 1);
       return mx;
     }
+    case T::BrokenJoints:
+    case T::CrackArea: {
+      // A distributed run's mask holds its own joints only (par/subdomain.cpp).
+      const joint::JointSet& js = m_.joints;
+      const bool area = ms.cfg.type == T::CrackArea;
+      Real s = 0;
+      for (Index j = 0; j < js.size(); ++j)
+        if (ms.joint_in[j] && js.status[j] == joint::JointStatus::Broken) s += area ? js.area0[j] : 1.0;
+      if (dist_) dist_->sum(&s, 1);
+      return s;
+    }
   }
   return 0;
 }

@@ -33,6 +33,7 @@ struct MonitorSet {
   MonitorConfig cfg;
   std::vector<Index> nodes, nodes2;
   std::vector<char> dof_in_group;  ///< reaction monitors: 3 x n_nodes mask
+  std::vector<char> joint_in;      ///< broken_joints / crack_area monitors: per joint, counted
 };
 
 struct Model {

@@ -157,6 +157,29 @@ TEST(CaseReader, OverrideReplacesAWholeArrayElement) {
   expect_error(walls, {"(--set)", "'type'"}, {"walls.1={name = \"q\"}"});
 }
 
+TEST(CaseReader, JointMonitorsTakeABoxNotAGroup) {
+  // broken_joints and crack_area count joints where they lie: a box, both corners, the lower
+  // below the upper; a group or a component would be silently meaningless, so they are errors,
+  // and a box on a node monitor too.
+  const std::string m = std::string(kGood) + "[[monitors]]\nname = \"low\"\ntype = \"broken_joints\"\n";
+  const CaseConfig all = read_case(write_case(m));
+  ASSERT_EQ(all.monitors.size(), 1u);
+  EXPECT_EQ(all.monitors[0].type, MonitorConfig::Type::BrokenJoints);
+  EXPECT_FALSE(all.monitors[0].box.has_value()) << "no box: every joint";
+  const std::string lo = "monitors.0.box_min=[-1.0, -1.0, -1.0]", hi = "monitors.0.box_max=[1.0, 0.5, 1.0]";
+  const CaseConfig boxed = read_case(write_case(m), {lo, hi});
+  ASSERT_TRUE(boxed.monitors[0].box.has_value());
+  EXPECT_EQ(boxed.monitors[0].box->max(), Vec3(1.0, 0.5, 1.0));
+  expect_error(m, {"'low'", "box_min and box_max come together"}, {lo});
+  expect_error(m, {"'low'", "box_max must lie above box_min", "(y is -2"}, {lo, "monitors.0.box_max=[1.0, -2.0, 1.0]"});
+  expect_error(m, {"'low'", "takes no group"}, {"monitors.0.group=\"caps\""});
+  expect_error(m, {"'low'", "takes no component"}, {"monitors.0.component=\"y\""});
+  expect_error(replace(m, "broken_joints", "crack_area"), {"crack_area monitor", "takes no group"},
+               {"monitors.0.group=\"caps\""});
+  expect_error(replace(m, "\"broken_joints\"", "\"reaction\"\ngroup = \"caps\""),
+               {"'low'", "box_min is for broken_joints and crack_area monitors, not reaction"}, {lo, hi});
+}
+
 TEST(CaseReader, JointZonesNeedBothKeysAndJointParameters) {
   const std::string joint =
       "nu = 0.2\ntensile_strength = 3.0e6\nfracture_energy_I = 10.0\ncohesion = 4.0e6\n"

@@ -22,6 +22,7 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   s.nodes = 52328, s.elements = 13082, s.frames = 31, s.joints = 24779, s.broken_joints = 17;
   s.joint_added_compliance = 0.0175, s.crack_area = 0.0123, s.fragments = 3, s.total_mass = 2.85;
   s.largest_fragment_masses = {1.4, 1.3, 0.15};
+  s.monitor_joints = {{"contact_cracks", 200}, {"upper_half_cracks", 2100}};
   s.element_steps_per_s = 4.5e6;
   s.energy.kinetic = 1.5, s.energy.fracture_I = 0.25, s.energy.kick = 3.5e-7, s.energy.balance_error = NAN;
   s.born_split = {7, 0.125, 0.4}, s.born_unseen = {1, 2.5, 0.3}, s.born_wall = {0, 0.0, 0.0};
@@ -38,6 +39,7 @@ TEST(RunSummary, RoundTripKeepsEveryFieldAndNonFiniteEnergies) {
   EXPECT_EQ(r.joints, 24779);
   EXPECT_EQ(r.processes, 4);
   EXPECT_EQ(r.largest_fragment_masses, s.largest_fragment_masses);
+  EXPECT_EQ(r.monitor_joints, s.monitor_joints);
   EXPECT_EQ(r.energy.fracture_I, 0.25);
   EXPECT_TRUE(std::isnan(r.energy.balance_error));  // written as null, never as "nan"
   EXPECT_EQ(r.energy.kick, 3.5e-7);
@@ -88,6 +90,30 @@ TEST(RunSummary, AMissingKeyOrBrokenFileIsNamed) {
   std::ofstream(p) << "{\"case\": ";
   EXPECT_THROW(read_run_summary(p.string()), Error);
   EXPECT_THROW(read_run_summary((fs::temp_directory_path() / "dspdem_no_such_summary.json").string()), Error);
+}
+
+// Joint monitors' box sizes: absent without such monitors (and in older folders), a wrong
+// type named.
+TEST(RunSummary, MonitorJointsAreOptionalAndCheckedWhenThere) {
+  RunSummary s;
+  s.case_name = "c", s.status = "completed";
+  const fs::path p = fs::temp_directory_path() / "dspdem_summary_monitor_joints.json";
+  write_run_summary(p.string(), s);
+  std::ifstream in(p);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  EXPECT_EQ(text.find("monitor_joints"), std::string::npos) << "written only when there are joint monitors";
+  EXPECT_TRUE(read_run_summary(p.string()).monitor_joints.empty());
+  const std::size_t at = text.find("\"fragments\"");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "\"monitor_joints\": {\"low\": 2.5},\n  ");
+  std::ofstream(p) << text;
+  try {
+    read_run_summary(p.string());
+    ADD_FAILURE() << "a non-integer joint count was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("monitor_joints 'low'"), std::string::npos) << e.what();
+  }
 }
 
 // Run folders written before the ledger's kick term was recorded have no "kick": it reads

@@ -561,6 +561,77 @@ TEST(Joints, AZoneBoxTakesTheElementsWhoseCentroidsLieInIt) {
   }
 }
 
+TEST(Joints, JointMonitorsFindTheCrackWhereTheBarIsWeak) {
+  // A hex bar (6 x 2 x 2 cells, 120 x 40 x 40 mm) with joints on every face, pulled slowly
+  // along x; the joints between the cells at x = 60-100 mm (a zone box) take f_t = 1 MPa
+  // against the body's 3 MPa, so the bar must break across the plane x = 80 mm, the only
+  // cross-section in the zone. The broken_joints and crack_area monitors over a box round
+  // that plane must then read its 4 faces and its whole cross-section, 1.6e-3 m^2 (to the
+  // rounding of 4 face areas), those over the rest of the bar nothing, and those without a
+  // box the run's totals at every row.
+  CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
+  Material weak = c.materials[0];
+  weak.name = "weak";
+  c.materials.push_back(weak);
+  make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  c.joint_materials[1].ft = 1e6;
+  c.bodies[0].zone_material = "weak";
+  c.bodies[0].zone_box.emplace(Vec3(0.06, -1, -1), Vec3(0.10, 1, 1));
+  c.boundaries.push_back(fixed("xmin"));
+  BoundaryConfig pull;
+  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
+  pull.dof[1] = pull.dof[2] = false;
+  pull.ramp = 2e-5;
+  c.boundaries.push_back(pull);
+  auto monitor = [](const char* name, MonitorConfig::Type type, Real x0, Real x1) {
+    MonitorConfig mc;
+    mc.name = name, mc.type = type;
+    if (x1 > x0) mc.box.emplace(Vec3(x0, -1, -1), Vec3(x1, 1, 1));
+    return mc;
+  };
+  using T = MonitorConfig::Type;
+  c.monitors = {monitor("plane", T::BrokenJoints, 0.075, 0.085), monitor("plane_area", T::CrackArea, 0.075, 0.085),
+                monitor("below", T::BrokenJoints, -1, 0.075),    monitor("above", T::BrokenJoints, 0.085, 1),
+                monitor("all", T::BrokenJoints, 0, 0),           monitor("all_area", T::CrackArea, 0, 0)};
+  Model m = build_model(c, box_mesh(CellType::Hex8, 6, 2, 2, Vec3(0.12, 0.04, 0.04)));
+  Integrator it(m, 0.9 * critical_dt(m));
+  auto read = [&](int k) { return it.monitor(m.monitors[static_cast<std::size_t>(k)]); };
+  int rows = 0;
+  while (read(0) < 4 && it.time() < 0.05) {
+    for (int s = 0; s < 20; ++s) it.step();
+    const Energy e = it.energy();
+    ASSERT_EQ(read(4), static_cast<Real>(e.broken_joints)) << "t = " << it.time();
+    ASSERT_EQ(read(5), e.crack_area) << "t = " << it.time();
+    ++rows;
+  }
+  RecordProperty("broken_at", fmt::format("{:.4g} s after {} rows", it.time(), rows));
+  EXPECT_EQ(read(0), 4.0) << "the weak plane's four faces";
+  EXPECT_NEAR(read(1), 0.04 * 0.04, 1e-15) << "its whole cross-section";
+  EXPECT_EQ(read(2), 0.0) << "no joint below the plane";
+  EXPECT_EQ(read(3), 0.0) << "no joint above the plane";
+  EXPECT_EQ(read(4), 4.0);
+  // A box that holds no joint is an error naming the monitor; so is a joint monitor on a
+  // model without joints.
+  c.monitors = {monitor("nowhere", T::BrokenJoints, 0.2, 0.3)};
+  const Mesh mesh = box_mesh(CellType::Hex8, 6, 2, 2, Vec3(0.12, 0.04, 0.04));
+  try {
+    build_model(c, mesh);
+    ADD_FAILURE() << "a joint monitor over no joint was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("monitor 'nowhere'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("holds no joint"), std::string::npos) << e.what();
+  }
+  c.bodies[0].fracture = BodyConfig::Fracture::None;
+  c.bodies[0].zone_box.reset(), c.bodies[0].zone_material.clear();
+  c.monitors = {monitor("any", T::CrackArea, 0, 0)};
+  try {
+    build_model(c, mesh);
+    ADD_FAILURE() << "a joint monitor on a model without joints was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the model has none"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Joints, AZoneBoxTakesOnlyItsOwnBodysElementsAcrossBlocks) {
   // Two bodies apart in one mesh: tetrahedra "t" over x in [0, 0.2] (block 0) and three hexes
   // "h" over x in [0.3, 0.6] (block 1, centroids 0.35, 0.45, 0.55). "t"'s box spans the whole

@@ -63,6 +63,13 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   r.broken_joints = static_cast<long>(broken[k]);
   r.crack_area = area[k];
   r.joints = sum.joints;
+  for (const MonitorConfig& mc : c.monitors)
+    if (mc.type == MonitorConfig::Type::BrokenJoints && s.has(mc.name)) {
+      SphereImpactResult::Region g{mc.name, static_cast<long>(s[mc.name][k]), -1};
+      for (const auto& [name, n] : sum.monitor_joints)
+        if (name == mc.name) g.joints = n;
+      r.regions.push_back(g);
+    }
   const auto& bal = s["balance_error"];
   r.balance_max = *std::max_element(bal.begin(), bal.end());
   auto at_k = [&](const char* key) { return s.has(key) ? s[key][k] : 0.0; };

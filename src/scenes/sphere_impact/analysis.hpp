@@ -42,6 +42,14 @@ struct SphereImpactResult {
   bool through_crack = false;             ///< cut_through at the compared frame
   double second_fraction = 0;             ///< second largest piece over the mass
   long broken_joints = 0, joints = 0;
+  /// The case's broken_joints monitors at the compared time: where the joints broke (e.g.
+  /// within 20 mm of the contact against the upper half). `joints`: those its box holds
+  /// (summary.json; -1 for a run older than that record).
+  struct Region {
+    std::string name;
+    long broken = 0, joints = -1;
+  };
+  std::vector<Region> regions;
   double crack_area = 0;  ///< broken joints' area at the compared time [m^2]
   /// How far up the cracks reach at the compared time, over the diameter, from the sphere's
   /// lowest point along the impact's axis, with each joint where it was at the start:

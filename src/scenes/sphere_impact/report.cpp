@@ -454,6 +454,30 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
              "cracks reach / top [D]", "fragments", "of one element", "pieces >= 1 %", "pieces >= 10 %", "largest",
              "second", "through crack", "plate force peak [kN]", "rebound v_y [m/s]", "balance max", "wall [s]"},
             rows);
+  // Where the joints broke: the case's broken_joints monitors, if it has any (the crushing
+  // under the contact against the cracks that must reach the upper half to split it).
+  const auto with_regions =
+      std::find_if(sweep.begin(), sweep.end(), [](const SphereImpactResult& r) { return !r.regions.empty(); });
+  if (with_regions != sweep.end()) {
+    std::vector<std::string> head = {"speed [m/s]", "broken joints"};
+    for (const auto& g : with_regions->regions)
+      head.push_back(g.joints >= 0 ? fmt::format("{} (of {} joints)", g.name, g.joints) : g.name);
+    std::vector<std::vector<std::string>> reg;
+    for (const auto& r : sweep) {
+      if (r.regions.size() != with_regions->regions.size()) continue;
+      std::vector<std::string> row = {fmt::format("{:g}", r.speed), std::to_string(r.broken_joints)};
+      for (const auto& g : r.regions)
+        row.push_back(fmt::format(
+            "{}{} ({:.0f} % of the broken)", g.broken,
+            g.joints > 0 ? fmt::format(", {:.0f} % of its joints", 100.0 * g.broken / g.joints) : std::string(),
+            r.broken_joints > 0 ? 100.0 * g.broken / r.broken_joints : 0.0));
+      reg.push_back(row);
+    }
+    doc.para(
+        "Where the joints broke by the compared time: the case's `broken_joints` monitors, each over a box of the "
+        "joints' positions at the start (their columns in each run's series.csv give the course in time).");
+    doc.table(head, reg);
+  }
   // A ledger lost by more than 1 % means energy was made or lost by the numerics (a contact
   // born deep created 208 J in one sphere run that completed): say so beside the numbers.
   // The turned meshes' runs too: their numbers feed the pattern's counts, and a friction-2.0
