@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -307,6 +308,22 @@ void apply_override(toml::table& root, const std::string& ov) {
 }
 
 int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 : c == "z" ? 2 : 3; }
+
+/// A box given as two corner keys (a body's joint zone, a joint monitor's region): both or
+/// neither, the lower corner below the upper on every axis. `what` names the table's entry in
+/// messages ("[[bodies]] 'sphere'").
+std::optional<Eigen::AlignedBox<Real, 3>> read_box(Section& s, const std::string& what, const std::string& lo_key,
+                                                   const std::string& hi_key) {
+  if (!s.has(lo_key) && !s.has(hi_key)) return std::nullopt;
+  if (!s.has(lo_key) || !s.has(hi_key))
+    fail("{}: {}: {} and {} come together", s.where(s.has(lo_key) ? lo_key : hi_key), what, lo_key, hi_key);
+  const Vec3 lo = s.vec3(lo_key), hi = s.vec3(hi_key);
+  for (int i = 0; i < 3; ++i)
+    if (!(lo(i) < hi(i)))
+      fail("{}: {}: {} must lie above {} on every axis ({} is {:g}, not above {:g})", s.where(hi_key), what, hi_key,
+           lo_key, "xyz"[i], hi(i), lo(i));
+  return Eigen::AlignedBox<Real, 3>(lo, hi);
+}
 }  // namespace
 
 CaseConfig read_case(const std::string& path, const std::vector<std::string>& overrides) {
@@ -555,18 +572,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       }
       b.zone_groups = s.strings("zone_groups");
       b.zone_material = s.str("zone_material");
-      if (s.has("zone_box_min") || s.has("zone_box_max")) {
-        if (!s.has("zone_box_min") || !s.has("zone_box_max"))
-          fail("{}: [[bodies]] '{}': zone_box_min and zone_box_max come together", s.where(), b.name);
-        const Vec3 lo = s.vec3("zone_box_min"), hi = s.vec3("zone_box_max");
-        for (int i = 0; i < 3; ++i)
-          if (!(lo(i) < hi(i)))
-            fail(
-                "{}: [[bodies]] '{}': zone_box_max must lie above zone_box_min on every axis ({} is {:g}, not above "
-                "{:g})",
-                s.where("zone_box_max"), b.name, "xyz"[i], hi(i), lo(i));
-        b.zone_box.emplace(lo, hi);
-      }
+      b.zone_box = read_box(s, fmt::format("[[bodies]] '{}'", b.name), "zone_box_min", "zone_box_max");
       const bool zone = !b.zone_groups.empty() || b.zone_box;
       if (zone || !b.zone_material.empty()) {
         if (!b.zone_groups.empty() && b.zone_material.empty())
@@ -775,36 +781,23 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
           if (s.has(k))
             fail("{}: [[monitors]] '{}': a {} monitor counts joints in a box (box_min, box_max) and takes no {}",
                  s.where(k), m.name, type, k);
-        if (s.has("box_min") || s.has("box_max")) {
-          if (!s.has("box_min") || !s.has("box_max"))
-            fail("{}: [[monitors]] '{}': box_min and box_max come together", s.where(), m.name);
-          const Vec3 lo = s.vec3("box_min"), hi = s.vec3("box_max");
-          for (int i = 0; i < 3; ++i)
-            if (!(hi(i) > lo(i)))
-              fail("{}: [[monitors]] '{}': box_max must lie above box_min on every axis ({} is {:g}, not above {:g})",
-                   s.where("box_max"), m.name, "xyz"[i], hi(i), lo(i));
-          m.box.emplace(lo, hi);
-        }
-        for (const auto& o : c.monitors)
-          DSPDEM_CHECK(o.name != m.name, "{}: monitor name '{}' used twice", s.where("name"), m.name);
-        s.finish();
-        c.monitors.push_back(m);
-        continue;
+        m.box = read_box(s, fmt::format("[[monitors]] '{}'", m.name), "box_min", "box_max");
+      } else {
+        for (const char* k : {"box_min", "box_max"})
+          if (s.has(k))
+            fail("{}: [[monitors]] '{}': {} is for broken_joints and crack_area monitors, not {}", s.where(k), m.name,
+                 k, type);
+        if (s.has("group"))
+          m.group = s.str("group");
+        else
+          DSPDEM_CHECK(m.type == MT::MaxDisplacement || m.type == MT::Momentum, "{}: [[monitors]] '{}' needs a group",
+                       s.where(), m.name);
+        if (s.has("group2"))
+          m.group2 = s.str("group2");
+        else
+          DSPDEM_CHECK(m.type != MT::DisplacementDifference, "{}: [[monitors]] '{}' needs group2", s.where(), m.name);
+        m.component = component_index(s.str("component"));
       }
-      for (const char* k : {"box_min", "box_max"})
-        if (s.has(k))
-          fail("{}: [[monitors]] '{}': {} is for broken_joints and crack_area monitors, not {}", s.where(k), m.name, k,
-               type);
-      if (s.has("group"))
-        m.group = s.str("group");
-      else
-        DSPDEM_CHECK(m.type == MT::MaxDisplacement || m.type == MT::Momentum, "{}: [[monitors]] '{}' needs a group",
-                     s.where(), m.name);
-      if (s.has("group2"))
-        m.group2 = s.str("group2");
-      else
-        DSPDEM_CHECK(m.type != MT::DisplacementDifference, "{}: [[monitors]] '{}' needs group2", s.where(), m.name);
-      m.component = component_index(s.str("component"));
       for (const auto& o : c.monitors)
         DSPDEM_CHECK(o.name != m.name, "{}: monitor name '{}' used twice", s.where("name"), m.name);
       s.finish();

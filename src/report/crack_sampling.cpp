@@ -84,6 +84,25 @@ CrackReach crack_reach(const std::vector<CrackPiece>& where, const std::vector<i
   return r;
 }
 
+std::vector<long> count_by_band(const std::vector<CrackPiece>& where, const std::vector<int>& states,
+                                const Vec3& origin, const Vec3& dir, const std::vector<double>& edges, int min_state) {
+  DSPDEM_CHECK(where.size() == states.size(), "count_by_band: {} joint positions for {} joint states", where.size(),
+               states.size());
+  DSPDEM_CHECK(edges.size() >= 2 && std::is_sorted(edges.begin(), edges.end()),
+               "count_by_band: the band edges must be ascending, at least two");
+  std::vector<long> n(edges.size() - 1, 0);
+  for (std::size_t j = 0; j < where.size(); ++j) {
+    if (states[j] < min_state) continue;
+    const double s = (where[j].centroid - origin).dot(dir);
+    if (s < edges.front() || s > edges.back()) continue;
+    // The first edge above s closes its band; s on the top edge falls in the last band.
+    const auto up = std::upper_bound(edges.begin(), edges.end(), s);
+    const std::size_t band = up == edges.end() ? n.size() - 1 : static_cast<std::size_t>(up - edges.begin()) - 1;
+    ++n[band];
+  }
+  return n;
+}
+
 std::vector<std::pair<double, double>> trace_path(const std::vector<CrackPiece>& pieces, int along, int across,
                                                   double lo, double hi, int bins,
                                                   bool (*keep)(const Vec3&, const void*), const void* ctx,

@@ -43,6 +43,15 @@ struct CrackReach {
 CrackReach crack_reach(const std::vector<CrackPiece>& where, const std::vector<int>& states, const Vec3& origin,
                        const Vec3& dir, double quantile, int min_state = 2);
 
+/// How many joints whose `states` entry is at least `min_state` lie in each band of s =
+/// (centroid - origin) . dir at the positions `where` (as crack_reach's): band i holds
+/// edges[i] <= s < edges[i + 1], the last also s = edges.back(); joints outside every band
+/// are in none. `edges` ascending, at least two; `where` and `states` must index the same
+/// joints (Error otherwise). With min_state 0, every joint: each band's own count.
+std::vector<long> count_by_band(const std::vector<CrackPiece>& where, const std::vector<int>& states,
+                                const Vec3& origin, const Vec3& dir, const std::vector<double>& edges,
+                                int min_state = 2);
+
 /// How the pieces of a slice are weighted in a traced path.
 enum class PathWeight {
   Area,       ///< by area: every piece of the damaged zone counts alike

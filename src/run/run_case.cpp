@@ -228,6 +228,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   g_setting_up = 1;
   ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_signal);
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
+  check_monitor_columns(c);
   Mesh mesh = load_case_mesh(c);
   // Elements and nodes in a spatial order before anything numbers them (joints, contact,
   // output): the step's kernels then read neighbours from neighbouring memory. Here, not in

@@ -3,6 +3,8 @@
 #include <array>
 #include <string_view>
 
+#include "core/error.hpp"
+
 namespace dspdem {
 
 const char* monitor_unit(MonitorConfig::Type t) {
@@ -48,7 +50,9 @@ const std::array<SeriesColumn, 3> kWallForceColumns = {{{"_fx", "N"}, {"_fy", "N
 const std::array<SeriesColumn, 6> kFreeWallColumns = {
     {{"_x", "m"}, {"_y", "m"}, {"_z", "m"}, {"_vx", "m/s"}, {"_vy", "m/s"}, {"_vz", "m/s"}}};
 
-std::string series_unit(const CaseConfig& c, const std::string& column) {
+namespace {
+// The unit of a column the run writes of its own or for a wall; "" for any other name.
+std::string own_or_wall_unit(const CaseConfig& c, const std::string& column) {
   auto in = [&](const auto& table) -> std::string {
     for (const auto& f : table)
       if (column == f.name) return std::string(f.unit);
@@ -56,8 +60,6 @@ std::string series_unit(const CaseConfig& c, const std::string& column) {
   };
   for (std::string u : {in(kSeriesColumns), in(kSeriesContactColumns), in(kSeriesLastColumns)})
     if (!u.empty()) return u;
-  for (const auto& m : c.monitors)
-    if (column == m.name) return monitor_unit(m.type);
   for (const auto& w : c.walls) {
     for (const auto& s : kWallForceColumns)
       if (column == w.wall.name + std::string(s.name)) return std::string(s.unit);
@@ -66,6 +68,23 @@ std::string series_unit(const CaseConfig& c, const std::string& column) {
         if (column == w.wall.name + std::string(s.name)) return std::string(s.unit);
   }
   return "";
+}
+}  // namespace
+
+std::string series_unit(const CaseConfig& c, const std::string& column) {
+  if (std::string u = own_or_wall_unit(c, column); !u.empty()) return u;
+  for (const auto& m : c.monitors)
+    if (column == m.name) return monitor_unit(m.type);
+  return "";
+}
+
+void check_monitor_columns(const CaseConfig& c) {
+  // A monitor named as one of those columns (broken_joints, plate_fy) would make series.csv
+  // hold the name twice, and whatever reads it by name would take the first.
+  for (const auto& m : c.monitors)
+    if (!own_or_wall_unit(c, m.name).empty())
+      fail("{}: [[monitors]] name '{}' is already a column of series.csv (the run's own or a wall's): choose another",
+           m.where, m.name);
 }
 
 std::string series_axis_title(const CaseConfig& c, const std::string& column) {

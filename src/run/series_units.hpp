@@ -35,6 +35,10 @@ const char* monitor_unit(MonitorConfig::Type t);
 /// (a fixed wall's motion included).
 std::string series_unit(const CaseConfig& c, const std::string& column);
 
+/// Fails, naming the monitor, when a monitor's name is one of the run's own columns or a
+/// wall's: series.csv's names must be unique.
+void check_monitor_columns(const CaseConfig& c);
+
 /// An axis title: the column with its unit in brackets where it has one ("tip_uy [m]").
 std::string series_axis_title(const CaseConfig& c, const std::string& column);
 

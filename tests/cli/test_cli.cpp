@@ -709,6 +709,20 @@ TEST_F(Cli, FreeCylinderWallStrikesTheBeamAndIsTracedInTheSeries) {
   EXPECT_NEAR(std::stod(cells(last)[col("roller_x")]), 0.5, 1e-3);
 }
 
+TEST_F(Cli, AMonitorNamedAsASeriesColumnIsRefusedBeforeTheRun) {
+  // series.csv's names must be unique: a broken_joints monitor called broken_joints (or a
+  // wall's force column) would be read back as the run's own column. Refused at the start,
+  // naming the monitor, with nothing written.
+  const std::string nb = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
+  const fs::path out = dir_ / "clash";
+  const Result r = run("-q run " + nb + " --set 'monitors.2={name=\"broken_joints\", type=\"broken_joints\"}' --out " +
+                       out.string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("name 'broken_joints' is already a column of series.csv"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("notched_bar.toml"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out / "series.csv"));
+}
+
 TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
   // --from-run analyses an existing run; a folder without summary.json is bad input.
   const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";

@@ -92,3 +92,23 @@ TEST(CrackSampling, ReachIsTheAreaQuantileOfTheCountedJointsAlongADirection) {
   EXPECT_THROW(crack_reach(where, states, o, Vec3::UnitY(), 0.0), std::exception);
   EXPECT_THROW(crack_reach(where, states, o, Vec3::UnitY(), 1.5), std::exception);
 }
+
+TEST(CrackSampling, JointsCountedByBandOfHeight) {
+  // Four joints at heights 0.25, 0.5, 0.75 and 1 (binary fractions, so the edges are met
+  // exactly), states 2, 2, 1, 2, in bands 0-0.375, 0.375-0.75 and 0.75-1: a joint on an inner
+  // edge (0.75) falls in the band above it, one on the top edge (1) in the last band; joints
+  // outside every band are in none.
+  const std::vector<CrackPiece> where = {
+      {Vec3(0.3, 0.25, 0), 4.0}, {Vec3(-0.2, 0.5, 0.1), 3.0}, {Vec3(0, 0.75, 0), 2.0}, {Vec3(0, 1.0, -0.2), 1.0}};
+  const std::vector<int> states = {2, 2, 1, 2};
+  const Vec3 o = Vec3::Zero(), up = Vec3::UnitY();
+  const std::vector<double> edges = {0.0, 0.375, 0.75, 1.0};
+  EXPECT_EQ(count_by_band(where, states, o, up, edges), (std::vector<long>{1, 1, 1}));
+  EXPECT_EQ(count_by_band(where, states, o, up, edges, 1), (std::vector<long>{1, 1, 2}));
+  EXPECT_EQ(count_by_band(where, states, o, up, edges, 0), (std::vector<long>{1, 1, 2}));
+  EXPECT_EQ(count_by_band(where, states, o, up, {0.375, 0.875}), (std::vector<long>{1}))
+      << "0.25 below the first edge and 1 above the last are outside (0.75 is not broken)";
+  EXPECT_THROW(count_by_band(where, {2, 2}, o, up, edges), std::exception);
+  EXPECT_THROW(count_by_band(where, states, o, up, {0.75, 0.25}), std::exception);
+  EXPECT_THROW(count_by_band(where, states, o, up, {0.75}), std::exception);
+}

@@ -63,13 +63,6 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   r.broken_joints = static_cast<long>(broken[k]);
   r.crack_area = area[k];
   r.joints = sum.joints;
-  for (const MonitorConfig& mc : c.monitors)
-    if (mc.type == MonitorConfig::Type::BrokenJoints && s.has(mc.name)) {
-      SphereImpactResult::Region g{mc.name, static_cast<long>(s[mc.name][k]), -1};
-      for (const auto& [name, n] : sum.monitor_joints)
-        if (name == mc.name) g.joints = n;
-      r.regions.push_back(g);
-    }
   const auto& bal = s["balance_error"];
   r.balance_max = *std::max_element(bal.begin(), bal.end());
   auto at_k = [&](const char* key) { return s.has(key) ? s[key][k] : 0.0; };
@@ -112,25 +105,33 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
   if (paired) {
     const std::vector<report::CrackPiece> where = report::broken_joints(jf.front().file, 0);
     const Vec3 bottom(0.0, -0.5 * r.diameter, 0.0), up = Vec3::UnitY();  // the generator's sphere is centred at 0
-    auto reach_at = [&](Index f, double& reach, double& top) {
-      const report::CrackReach cr =
-          report::crack_reach(where, report::joint_states(jf[static_cast<std::size_t>(f)].file), bottom, up,
-                              SphereImpactResult::reach_fraction);
+    std::vector<double> edges;
+    for (double e : SphereImpactResult::height_bands) edges.push_back(e * r.diameter);
+    auto reach_at = [&](Index f, double& reach, double& top, std::vector<long>& bands) {
+      const std::vector<int> states = report::joint_states(jf[static_cast<std::size_t>(f)].file);
+      const report::CrackReach cr = report::crack_reach(where, states, bottom, up, SphereImpactResult::reach_fraction);
       reach = cr.at_quantile / r.diameter, top = cr.furthest / r.diameter;
+      bands = report::count_by_band(where, states, bottom, up, edges);
     };
-    reach_at(r.frame, r.crack_reach, r.crack_top);
+    reach_at(r.frame, r.crack_reach, r.crack_top, r.broken_by_height);
+    r.joints_by_height = report::count_by_band(where, std::vector<int>(where.size(), 0), bottom, up, edges, 0);
+    std::vector<long> bands;
     for (auto& h : r.history)  // fragments.csv numbers the frames as run.pvd does
-      if (h.frame >= 0 && static_cast<std::size_t>(h.frame) < jf.size()) reach_at(h.frame, h.crack_reach, h.crack_top);
+      if (h.frame >= 0 && static_cast<std::size_t>(h.frame) < jf.size()) {
+        reach_at(h.frame, h.crack_reach, h.crack_top, bands);
+        h.broken_contact = bands.front(), h.broken_upper = bands.back();
+      }
   }
 
   if (write_files) {
     std::ofstream ph(fs::path(run_dir) / "pieces_time.csv");
     DSPDEM_CHECK(ph.good(), "cannot write '{}/pieces_time.csv'", run_dir);
-    ph << "frame,time_ms,after_contact_ms,fragments,largest,second,large_pieces,crack_reach,crack_top\n";
+    ph << "frame,time_ms,after_contact_ms,fragments,largest,second,large_pieces,crack_reach,crack_top,broken_contact,"
+          "broken_upper_half\n";
     for (const auto& h : r.history)
-      ph << fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{},{:.4f},{:.4f}\n", h.frame,
+      ph << fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{},{:.4f},{:.4f},{},{}\n", h.frame,
                         1e3 * (h.after_contact + r.t_contact), 1e3 * h.after_contact, h.fragments, h.largest, h.second,
-                        h.large_pieces, h.crack_reach, h.crack_top);
+                        h.large_pieces, h.crack_reach, h.crack_top, h.broken_contact, h.broken_upper);
     std::ofstream f(fs::path(run_dir) / "sphere_series.csv");
     DSPDEM_CHECK(f.good(), "cannot write '{}/sphere_series.csv'", run_dir);
     f << "time_ms,broken_joints,crack_area_cm2,plate_force_kN,vy_centre,kinetic,elastic,fracture,friction,damping\n";

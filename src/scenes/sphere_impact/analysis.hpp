@@ -3,6 +3,7 @@
 // the plate and where the impact energy went. Used by `dspdem report` for this scene, once
 // per speed of the sweep and per row of the study.
 #pragma once
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -42,14 +43,13 @@ struct SphereImpactResult {
   bool through_crack = false;             ///< cut_through at the compared frame
   double second_fraction = 0;             ///< second largest piece over the mass
   long broken_joints = 0, joints = 0;
-  /// The case's broken_joints monitors at the compared time: where the joints broke (e.g.
-  /// within 20 mm of the contact against the upper half). `joints`: those its box holds
-  /// (summary.json; -1 for a run older than that record).
-  struct Region {
-    std::string name;
-    long broken = 0, joints = -1;
-  };
-  std::vector<Region> regions;
+  /// Where the joints broke by the compared time: by height over the diameter above the
+  /// lowest point, each joint where it was at the start (as crack_reach), in the bands
+  /// height_bands: the contact (the lowest 0.1 D, 20 mm on the paper's sphere), three above it
+  /// and the upper half, where the cracks that split the sphere must reach. Broken joints and
+  /// all joints per band; empty without joints frames paired with the run's frames.
+  static constexpr std::array<double, 6> height_bands = {0.0, 0.1, 0.2, 0.3, 0.5, 1.0};
+  std::vector<long> broken_by_height, joints_by_height;
   double crack_area = 0;  ///< broken joints' area at the compared time [m^2]
   /// How far up the cracks reach at the compared time, over the diameter, from the sphere's
   /// lowest point along the impact's axis, with each joint where it was at the start:
@@ -83,6 +83,8 @@ struct SphereImpactResult {
     int large_pieces = 0;            ///< of at least large_piece_fraction
     long fragments = 0;
     double crack_reach = -1, crack_top = -1;  ///< as the result's, at this frame (-1: no joints frame)
+    /// Broken joints in the lowest and the highest band of height_bands (-1: no joints frame).
+    long broken_contact = -1, broken_upper = -1;
   };
   std::vector<PiecesAt> history;
   /// First frame of `history` with two large pieces or more, after the first contact [s]; -1:

@@ -454,28 +454,30 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
              "cracks reach / top [D]", "fragments", "of one element", "pieces >= 1 %", "pieces >= 10 %", "largest",
              "second", "through crack", "plate force peak [kN]", "rebound v_y [m/s]", "balance max", "wall [s]"},
             rows);
-  // Where the joints broke: the case's broken_joints monitors, if it has any (the crushing
-  // under the contact against the cracks that must reach the upper half to split it).
-  const auto with_regions =
-      std::find_if(sweep.begin(), sweep.end(), [](const SphereImpactResult& r) { return !r.regions.empty(); });
-  if (with_regions != sweep.end()) {
+  // Where the joints broke: the crushing under the contact against the cracks that must
+  // reach the upper half to split the sphere (REFERENCE.md, session 96: the two move apart).
+  if (std::any_of(sweep.begin(), sweep.end(),
+                  [](const SphereImpactResult& r) { return !r.broken_by_height.empty(); })) {
+    const auto& hb = SphereImpactResult::height_bands;
     std::vector<std::string> head = {"speed [m/s]", "broken joints"};
-    for (const auto& g : with_regions->regions)
-      head.push_back(g.joints >= 0 ? fmt::format("{} (of {} joints)", g.name, g.joints) : g.name);
+    for (std::size_t b = 0; b + 1 < hb.size(); ++b) head.push_back(fmt::format("{:g}-{:g} D", hb[b], hb[b + 1]));
     std::vector<std::vector<std::string>> reg;
     for (const auto& r : sweep) {
-      if (r.regions.size() != with_regions->regions.size()) continue;
       std::vector<std::string> row = {fmt::format("{:g}", r.speed), std::to_string(r.broken_joints)};
-      for (const auto& g : r.regions)
-        row.push_back(fmt::format(
-            "{}{} ({:.0f} % of the broken)", g.broken,
-            g.joints > 0 ? fmt::format(", {:.0f} % of its joints", 100.0 * g.broken / g.joints) : std::string(),
-            r.broken_joints > 0 ? 100.0 * g.broken / r.broken_joints : 0.0));
+      for (std::size_t b = 0; b + 1 < hb.size(); ++b)
+        row.push_back(
+            r.broken_by_height.empty()
+                ? "-"
+                : fmt::format("{} of {} ({:.0f} %)", r.broken_by_height[b], r.joints_by_height[b],
+                              r.joints_by_height[b] > 0 ? 100.0 * r.broken_by_height[b] / r.joints_by_height[b] : 0.0));
       reg.push_back(row);
     }
-    doc.para(
-        "Where the joints broke by the compared time: the case's `broken_joints` monitors, each over a box of the "
-        "joints' positions at the start (their columns in each run's series.csv give the course in time).");
+    doc.para(fmt::format(
+        "Where the joints broke by the compared time: broken joints against all joints in bands of height over the "
+        "diameter above the lowest point, each joint where it was at the start; the lowest band is the contact ({:.0f} "
+        "mm on this sphere), the last the upper half. The lowest and the last band over time: `broken_contact` and "
+        "`broken_upper_half` in each run's `pieces_time.csv`.",
+        1e3 * hb[1] * sweep.front().diameter));
     doc.table(head, reg);
   }
   // A ledger lost by more than 1 % means energy was made or lost by the numerics (a contact
