@@ -4,10 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "io/run_summary.hpp"
 
 using namespace dspdem;
@@ -62,9 +62,7 @@ TEST(RunSummary, PairsFoundOverlappingAreUnknownWhenNotWrittenAndNamedWhenBroken
   EXPECT_EQ(r.born_split.pairs, -1);
   EXPECT_TRUE(std::isnan(r.born_unseen.energy));
   EXPECT_EQ(r.born_wall.pairs, -1);
-  std::ifstream in(p);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
+  std::string text = read_file_if(p.string()).value();
   ASSERT_EQ(text.find("contacts_born_overlapping"), std::string::npos);
   const std::size_t end = text.rfind('}');
   text.insert(end, ", \"contacts_born_overlapping\": {\"split\": {\"pairs\": 1, \"energy\": 2.0, \"max_ratio\": 0.1}}");
@@ -99,9 +97,7 @@ TEST(RunSummary, MonitorJointsAreOptionalAndCheckedWhenThere) {
   s.case_name = "c", s.status = "completed";
   const fs::path p = fs::temp_directory_path() / "dspdem_summary_monitor_joints.json";
   write_run_summary(p.string(), s);
-  std::ifstream in(p);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
+  std::string text = read_file_if(p.string()).value();
   EXPECT_EQ(text.find("monitor_joints"), std::string::npos) << "written only when there are joint monitors";
   EXPECT_TRUE(read_run_summary(p.string()).monitor_joints.empty());
   const std::size_t at = text.find("\"fragments\"");
@@ -124,9 +120,7 @@ TEST(RunSummary, AFolderWithoutTheKickTermReadsItAsUnknown) {
   s.energy.kick = 0.5, s.energy.balance_error = 2e-5;
   const fs::path p = fs::temp_directory_path() / "dspdem_summary_kick.json";
   write_run_summary(p.string(), s);
-  std::ifstream in(p);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
+  std::string text = read_file_if(p.string()).value();
   const std::string key = "\"kick\": 0.5,";
   const std::size_t at = text.find(key);
   ASSERT_NE(at, std::string::npos) << text;

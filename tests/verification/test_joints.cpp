@@ -317,6 +317,16 @@ TEST(Joints, AddedComplianceWithTheDefaultPenalty) {
 }
 
 namespace {
+// The far end (x max) pulled along x at 0.01 m/s after a 20 us ramp, free across: slow, stress
+// waves of 0.1 MPa, far below f_t.
+BoundaryConfig slow_pull() {
+  BoundaryConfig pull;
+  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
+  pull.dof[1] = pull.dof[2] = false;
+  pull.ramp = 2e-5;
+  return pull;
+}
+
 // Hex bar of n cells along x, fixed at x = 0 and pulled at x = L until it breaks.
 // Returns fracture energy / (G_fI x broken area), and the broken area.
 std::pair<Real, Real> break_bar(int n, joint::Quadrature rule, bool mode_i = false) {
@@ -326,12 +336,7 @@ std::pair<Real, Real> break_bar(int n, joint::Quadrature rule, bool mode_i = fal
   c.joint_materials[0].nodal_quadrature = rule == joint::Quadrature::Nodal;
   c.joint_materials[0].mode_i = mode_i;
   c.boundaries.push_back(fixed("xmin"));
-  BoundaryConfig pull;
-  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax",
-  pull.value = Vec3(0.01, 0, 0);  // slow: stress waves of 0.1 MPa, far below f_t
-  pull.dof[1] = pull.dof[2] = false;
-  pull.ramp = 2e-5;
-  c.boundaries.push_back(pull);
+  c.boundaries.push_back(slow_pull());
   Model m = build_model(c, box_mesh(CellType::Hex8, n, 1, 1, Vec3(0.1, 0.02, 0.02)));
   Integrator it(m, 0.9 * critical_dt(m));
   while (it.energy().broken_joints == 0 && it.time() < 0.05) it.step();
@@ -472,16 +477,22 @@ TEST(Joints, FaceQuadratureWeightsAndShapeValues) {
 }
 
 namespace {
-// A fracturable body (joint cohesion 10 MPa) with a second material "strong" (99 MPa) as its
-// zone material, for the joint-zone tests.
-CaseConfig case_with_a_strong_zone_material() {
-  CaseConfig c = simple_case(30e9, 0.2, 2400);
-  Material strong = c.materials[0];
-  strong.name = "strong";
-  c.materials.push_back(strong);
+// A fracturable body (joints: f_t 3 MPa, cohesion 10 MPa) with a second material `name`, at
+// first the same, as its zone material, for the joint-zone tests to change.
+CaseConfig case_with_a_zone_material(const char* name, Kinematics kin = Kinematics::Corotational) {
+  CaseConfig c = simple_case(30e9, 0.2, 2400, kin);
+  Material zone = c.materials[0];
+  zone.name = name;
+  c.materials.push_back(zone);
   make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  c.bodies[0].zone_material = name;
+  return c;
+}
+
+// The zone material "strong": joint cohesion 99 MPa.
+CaseConfig case_with_a_strong_zone_material() {
+  CaseConfig c = case_with_a_zone_material("strong");
   c.joint_materials[1].c = 99e6;
-  c.bodies[0].zone_material = "strong";
   return c;
 }
 }  // namespace
@@ -569,20 +580,11 @@ TEST(Joints, JointMonitorsFindTheCrackWhereTheBarIsWeak) {
   // that plane must then read its 4 faces and its whole cross-section, 1.6e-3 m^2 (to the
   // rounding of 4 face areas), those over the rest of the bar nothing, and those without a
   // box the run's totals at every row.
-  CaseConfig c = simple_case(30e9, 0.2, 2400, Kinematics::SmallStrain);
-  Material weak = c.materials[0];
-  weak.name = "weak";
-  c.materials.push_back(weak);
-  make_fracturable(c, 3e6, 100, 10e6, 30, 1000);
+  CaseConfig c = case_with_a_zone_material("weak", Kinematics::SmallStrain);
   c.joint_materials[1].ft = 1e6;
-  c.bodies[0].zone_material = "weak";
   c.bodies[0].zone_box.emplace(Vec3(0.06, -1, -1), Vec3(0.10, 1, 1));
   c.boundaries.push_back(fixed("xmin"));
-  BoundaryConfig pull;
-  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
-  pull.dof[1] = pull.dof[2] = false;
-  pull.ramp = 2e-5;
-  c.boundaries.push_back(pull);
+  c.boundaries.push_back(slow_pull());
   auto monitor = [](const char* name, MonitorConfig::Type type, Real x0, Real x1) {
     MonitorConfig mc;
     mc.name = name, mc.type = type;
