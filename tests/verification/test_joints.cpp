@@ -968,11 +968,7 @@ Model pulled_bar(int n, bool mode_i, bool extrinsic, Real penalty) {
   c.joint_materials[0].mode_i = mode_i;
   c.bodies[0].extrinsic = extrinsic;
   c.boundaries.push_back(fixed("xmin"));
-  BoundaryConfig pull;
-  pull.type = BoundaryConfig::Type::Velocity, pull.group = "xmax", pull.value = Vec3(0.01, 0, 0);
-  pull.dof[1] = pull.dof[2] = false;
-  pull.ramp = 2e-5;
-  c.boundaries.push_back(pull);
+  c.boundaries.push_back(slow_pull());
   return build_model(c, box_mesh(CellType::Hex8, n, 1, 1, Vec3(0.1, 0.02, 0.02)));
 }
 

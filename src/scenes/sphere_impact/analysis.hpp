@@ -112,7 +112,8 @@ struct SphereImpactResult {
 /// never touches); with `write_files`, writes sphere_series.csv (time in ms, broken joints,
 /// crack area in cm^2, plate force in kN, centre-of-mass vy, energies), pieces_time.csv
 /// (`history`: frame, time and time after contact in ms, fragments, largest, second, large
-/// pieces, crack reach and top over the diameter) and fragment_masses.csv (the cumulative
+/// pieces, crack reach and top over the diameter, broken joints in the lowest and the highest
+/// band of height_bands) and fragment_masses.csv (the cumulative
 /// mass distribution at that frame) there.
 SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
                                       bool write_files);

@@ -474,8 +474,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
     doc.para(fmt::format(
         "Where the joints broke by the compared time: broken joints against all joints in bands of height over the "
-        "diameter above the lowest point, each joint where it was at the start; the lowest band is the contact ({:.0f} "
-        "mm on this sphere), the last the upper half. The lowest and the last band over time: `broken_contact` and "
+        "diameter above the lowest point, each joint where it was at the start (a joint outside the sphere's height, a "
+        "meshed plate's, is in none); the lowest band is the contact ({:.0f} mm on this sphere), the last the upper "
+        "half. The lowest and the last band over time: `broken_contact` and "
         "`broken_upper_half` in each run's `pieces_time.csv`.",
         1e3 * hb[1] * sweep.front().diameter));
     doc.table(head, reg);
