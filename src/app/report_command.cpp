@@ -6,6 +6,7 @@
 #include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "run/run_case.hpp"
+#include "run/series_units.hpp"
 #include "scenes/registry.hpp"
 
 namespace dspdem {
@@ -22,6 +23,9 @@ int report_command(const report::ReportArgs& a) {
       c = read_case(resolved.string());
     }
   }
+  // Each run of a sweep would refuse such a monitor at its own start; refused here, the
+  // report stops before it makes its folder or starts a run.
+  if (a.from_runs.empty()) check_monitor_columns(c);
   const scenes::Scene& scene = scenes::of_case(c);
   DSPDEM_CHECK(
       scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1 && a.draws == 1),

@@ -721,6 +721,18 @@ TEST_F(Cli, AMonitorNamedAsASeriesColumnIsRefusedBeforeTheRun) {
   EXPECT_NE(r.out.find("name 'broken_joints' is already a column of series.csv"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("notched_bar.toml"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out / "series.csv"));
+
+  // A sweep's report refuses it too, before it makes its folder: otherwise every one of its
+  // runs would start, fail the same way, and leave the report to say so run by run.
+  const std::string sphere = std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml";
+  const fs::path rep = dir_ / "clash_rep";
+  const Result s = run("-q report " + sphere +
+                       " --no-render --speeds 2.5,5 --set 'monitors.1={name=\"plate_fy\", type=\"broken_joints\"}' "
+                       "--out " +
+                       rep.string());
+  EXPECT_NE(s.code, 0);
+  EXPECT_NE(s.out.find("name 'plate_fy' is already a column of series.csv"), std::string::npos) << s.out;
+  EXPECT_FALSE(fs::exists(rep));
 }
 
 TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
@@ -888,6 +900,9 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   // Each run's largest balance error, last: the turned meshes' ledgers are checked as the
   // sweep's are (these short runs close well under 1 %).
   EXPECT_EQ(lines[0].substr(lines[0].rfind(',') + 1), "balance_max") << lines[0];
+  EXPECT_NE(lines[0].find(",crack_top,broken_contact,joints_contact,broken_upper_half,joints_upper_half,"),
+            std::string::npos)
+      << lines[0];
   for (std::size_t k = 1; k < lines.size(); ++k) {
     const double bal = std::stod(lines[k].substr(lines[k].rfind(',') + 1));
     EXPECT_TRUE(bal >= 0 && bal < 0.01) << lines[k];
@@ -900,7 +915,13 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   std::map<std::string, int> freed;
   for (std::size_t k = 1; k < lines.size(); ++k) {
     const std::vector<std::string> f = csv_fields(lines[k]);
-    ASSERT_GE(f.size(), 11u) << lines[k];
+    ASSERT_EQ(f.size(), 18u) << lines[k];
+    // The contact band's and the upper half's joints, broken and all: the upper half holds
+    // about half the sphere's joints and the 0.1 D band far fewer, and no band breaks more
+    // joints than it has. Each run has joints frames, so none reads -1.
+    const long bc = std::stol(f[13]), jc = std::stol(f[14]), bu = std::stol(f[15]), ju = std::stol(f[16]);
+    EXPECT_TRUE(bc >= 0 && bc <= jc && bu >= 0 && bu <= ju) << lines[k];
+    EXPECT_GT(ju, 3 * jc) << lines[k];
     every.try_emplace(f[1], true).first->second &= f[9] == "1";
     freed[f[0]] += std::stod(f[10]) >= 0;
   }

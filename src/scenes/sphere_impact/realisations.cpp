@@ -108,9 +108,12 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
   std::vector<std::string> failed;
   std::ofstream csv(fs::path(where.dir) / "orientations.csv");
   csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
-         "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top,balance_max\n";
-  // two_large_after_contact_ms -1: not by the compared time, nan: no history; crack_reach
-  // and crack_top -1: no joints frames paired with the run's frames.
+         "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top,broken_contact,joints_contact,"
+         "broken_upper_half,joints_upper_half,balance_max\n";
+  // two_large_after_contact_ms -1: not by the compared time, nan: no history; crack_reach,
+  // crack_top and the bands' counts -1: no joints frames paired with the run's frames. The
+  // bands are the lowest and the highest of SphereImpactResult::height_bands: what crushed at
+  // the contact and how much of the upper half the cracks had cut, mesh by mesh.
   std::vector<std::vector<std::string>> rows_o;
   std::vector<report::SweepPoint> through_at, few_at;  // per run: does it show the property
   for (std::size_t si = 0; si < speeds.size(); ++si) {
@@ -132,10 +135,13 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
       split += fmt::format("{}{}: {}", n ? ", " : "", o, two_large_ms(r, "?"));
       ++n;
-      csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{},{:.4f},{:.4f},{:.3e}\n", r.speed, o, r.elements,
-                         r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
+      const bool banded = !r.broken_by_height.empty();
+      csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{},{:.4f},{:.4f},{},{},{},{},{:.3e}\n", r.speed, o,
+                         r.elements, r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
                          r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
-                         two_large_csv(r), r.crack_reach, r.crack_top, r.balance_max);
+                         two_large_csv(r), r.crack_reach, r.crack_top, banded ? r.broken_by_height.front() : -1,
+                         banded ? r.joints_by_height.front() : -1, banded ? r.broken_by_height.back() : -1,
+                         banded ? r.joints_by_height.back() : -1, r.balance_max);
     }
     rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
                       report::count_of(through, n), pieces.empty() ? "-" : pieces, largest.empty() ? "-" : largest,
