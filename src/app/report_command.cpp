@@ -24,8 +24,9 @@ int report_command(const report::ReportArgs& a) {
     }
   }
   // Each run of a sweep would refuse such a monitor at its own start; refused here, the
-  // report stops before it makes its folder or starts a run.
-  if (a.from_runs.empty()) check_monitor_columns(c);
+  // report stops before it makes its folder or starts a run. Also with --from-run: such a
+  // run's series.csv holds the name twice, which no analysis can read by name.
+  check_monitor_columns(c);
   const scenes::Scene& scene = scenes::of_case(c);
   DSPDEM_CHECK(
       scene.speed_sweep || (a.speeds.empty() && a.study_speeds.empty() && a.realisations == 1 && a.draws == 1),
