@@ -135,13 +135,14 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
       split += fmt::format("{}{}: {}", n ? ", " : "", o, two_large_ms(r, "?"));
       ++n;
-      const bool banded = !r.broken_by_height.empty();
+      const auto lowest = [](const std::vector<long>& v) { return v.empty() ? -1L : v.front(); };
+      const auto highest = [](const std::vector<long>& v) { return v.empty() ? -1L : v.back(); };
       csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{},{:.4f},{:.4f},{},{},{},{},{:.3e}\n", r.speed, o,
                          r.elements, r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
                          r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
-                         two_large_csv(r), r.crack_reach, r.crack_top, banded ? r.broken_by_height.front() : -1,
-                         banded ? r.joints_by_height.front() : -1, banded ? r.broken_by_height.back() : -1,
-                         banded ? r.joints_by_height.back() : -1, r.balance_max);
+                         two_large_csv(r), r.crack_reach, r.crack_top, lowest(r.broken_by_height),
+                         lowest(r.joints_by_height), highest(r.broken_by_height), highest(r.joints_by_height),
+                         r.balance_max);
     }
     rows_o.push_back({fmt::format("{:g}", speeds[si]), expected_pattern(speeds[si]), std::to_string(n),
                       report::count_of(through, n), pieces.empty() ? "-" : pieces, largest.empty() ? "-" : largest,
