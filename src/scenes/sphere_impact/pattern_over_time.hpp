@@ -29,12 +29,22 @@ std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact
 /// moment.
 std::vector<double> reading_times(double last);
 
+/// One run read at one time: its mesh (orientation), speed and whether it shows the pattern.
+struct PatternRead {
+  int orientation = 0;
+  double speed = 0;
+  bool met = false;
+};
+
 /// One time's counts: per speed read, the meshes with the pattern and those read; and the
-/// meshes read at every such speed, with those showing the pattern at all of them.
+/// meshes read at every such speed, with those showing the pattern at all of them; and each
+/// run read, in the order of the speeds and of their runs, so two sweeps of the same meshes
+/// can be set side by side mesh by mesh.
 struct PatternCount {
   double after_contact = 0;
   std::vector<int> met, read;
   int every_met = 0, every_read = 0;
+  std::vector<PatternRead> runs;
 };
 
 /// At each of `times`, over `speeds` (by_speed[s] their runs, each with its orientation): a
@@ -45,7 +55,7 @@ std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, co
 
 /// Writes the section into `doc` when the runs go on past the paper's moment and at the
 /// paper's moment at least two meshes could be read at one speed the history can judge;
-/// pattern_over_time.csv into `dir`.
+/// pattern_over_time.csv (the counts) and pattern_over_time_runs.csv (each run read) into `dir`.
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
 
