@@ -56,9 +56,9 @@ std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, co
       int met = 0, read = 0;
       for (const RealisationRun& run : by_speed[si]) {
         const std::optional<bool> p = run.result ? pattern_at(*run.result, t) : std::nullopt;
+        c.runs.push_back({run.orientation, speeds[si], p.has_value(), p.value_or(false)});
         if (!p) continue;
         ++read, met += *p;
-        c.runs.push_back({run.orientation, speeds[si], *p});
         auto& [r, m] = mesh[run.orientation];
         ++r, m += *p;
       }
@@ -73,6 +73,10 @@ std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, co
 
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir) {
+  for (const char* name : {"pattern_over_time.csv", "pattern_over_time_runs.csv"}) {
+    std::error_code gone;  // absent is fine
+    fs::remove(fs::path(dir) / name, gone);
+  }
   // The earliest compared frame bounds the times every run can be read at.
   double last = INFINITY;
   int no_history = 0;  // runs of the speeds read that failed or have no history
@@ -111,13 +115,15 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
     }
     rows.push_back(std::move(row));
   }
-  // Each run read, for comparing two sweeps of the same meshes (another variant, another build)
-  // mesh by mesh at each time without reading every run's pieces_time.csv again.
+  // Each run, for comparing two sweeps of the same meshes (another variant, another build) mesh
+  // by mesh at each time without reading every run's pieces_time.csv again; the columns as
+  // orientations.csv's, paper_pattern empty where the run could not be read.
   std::ofstream runs_csv(fs::path(dir) / "pattern_over_time_runs.csv");
-  runs_csv << "after_contact_ms,orientation,speed,with_pattern\n";
+  runs_csv << "after_contact_ms,speed,orientation,paper_pattern\n";
   for (const PatternCount& c : counts)
     for (const PatternRead& r : c.runs)
-      runs_csv << fmt::format("{:.3f},{},{:g},{}\n", 1e3 * c.after_contact, r.orientation, r.speed, int(r.met));
+      runs_csv << fmt::format("{:.3f},{:g},{},{}\n", 1e3 * c.after_contact, r.speed, r.orientation,
+                              r.read ? std::to_string(int(r.met)) : "");
   std::string text = fmt::format(
       "The paper's pattern read at earlier times. The runs go on to {:.3f} ms after the contact or later, past the "
       "paper's {:g} ms: each run is read from its history at its last frame at or before each time, every {:g} ms "
@@ -135,7 +141,9 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
         "a speed between 5 and 20 m/s other than 7.5 is not one the paper describes).",
         fmt::join(not_read, ", "));
   if (no_history > 0) text += fmt::format(" Left out: {} run(s) that failed or have no history.", no_history);
-  doc.para(text + " Also in `pattern_over_time.csv`, and each run read in `pattern_over_time_runs.csv`.");
+  doc.para(text +
+           " Also in `pattern_over_time.csv`, and each run in `pattern_over_time_runs.csv` (empty where it "
+           "could not be read).");
   doc.table(head, rows);
 }
 

@@ -29,17 +29,20 @@ std::optional<bool> pattern_at(const SphereImpactResult& r, double after_contact
 /// moment.
 std::vector<double> reading_times(double last);
 
-/// One run read at one time: its mesh (orientation), speed and whether it shows the pattern.
+/// One run of a speed the history can judge, at one time: its mesh (orientation), speed, and
+/// whether it shows the pattern; `read` false when it could not say (pattern_at empty: the run
+/// failed, or has no history or no frame at that time), so such a run is told from one that is
+/// not in the sweep.
 struct PatternRead {
   int orientation = 0;
   double speed = 0;
-  bool met = false;
+  bool read = false, met = false;
 };
 
 /// One time's counts: per speed read, the meshes with the pattern and those read; and the
-/// meshes read at every such speed, with those showing the pattern at all of them; and each
-/// run read, in the order of the speeds and of their runs, so two sweeps of the same meshes
-/// can be set side by side mesh by mesh.
+/// meshes read at every such speed, with those showing the pattern at all of them; and every
+/// run of those speeds, read or not, in the order of the speeds and of their runs, so two
+/// sweeps of the same meshes can be set side by side mesh by mesh.
 struct PatternCount {
   double after_contact = 0;
   std::vector<int> met, read;
@@ -55,7 +58,9 @@ std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, co
 
 /// Writes the section into `doc` when the runs go on past the paper's moment and at the
 /// paper's moment at least two meshes could be read at one speed the history can judge;
-/// pattern_over_time.csv (the counts) and pattern_over_time_runs.csv (each run read) into `dir`.
+/// pattern_over_time.csv (the counts) and pattern_over_time_runs.csv (each run of those speeds,
+/// its verdict empty where it could not be read) into `dir`. Either file an earlier report left
+/// in `dir` is removed first, so a folder never holds one that the runs now do not give.
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
 
