@@ -130,6 +130,8 @@ int run_main(int argc, char** argv) {
   rend->add_option("-j,--jobs", ra.jobs,
                    "Render processes, then views whose animations are encoded at once (default: -t's count, else "
                    "OMP_NUM_THREADS, else one per core)");
+  rend->add_option("--out", ra.out_dir,
+                   "Write OUT/images/ instead of the run's images/ (the run's folder is then only read)");
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
   rend->add_flag("--edges", ra.edges, "Draw the element edges (stress and fragments views)");
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
@@ -251,6 +253,7 @@ int run_main(int argc, char** argv) {
     }
     if (*rend) {
       if (!ma.out.empty()) {
+        DSPDEM_CHECK(ra.out_dir.empty(), "render: --out and --montage: the montage is written to --montage's file");
         ma.run_dirs = render_dirs;
         ma.camera = ra.camera, ma.field = ra.field, ma.range = ra.range;
         if (!ra.size.empty())

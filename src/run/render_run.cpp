@@ -88,6 +88,8 @@ void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, 
     std::vector<std::string> args = {"-q",
                                      "render",
                                      a.run_dir,
+                                     "--out",
+                                     a.out_dir,
                                      "--worker",
                                      fmt::format("{}/{}", k, jobs),
                                      "--frames",
@@ -133,6 +135,7 @@ std::string common_range(const std::vector<std::string>& run_dirs, const std::st
 int render_command(const RenderArgs& in) {
   Timer wall;
   RenderArgs a = in;
+  if (a.out_dir.empty()) a.out_dir = a.run_dir;
   const fs::path resolved = fs::path(a.run_dir) / "case.resolved.toml";
   CaseConfig c;
   if (fs::exists(resolved)) c = read_case(resolved.string());
@@ -195,7 +198,7 @@ int render_command(const RenderArgs& in) {
     spawn_workers(a, o, jobs, pids);
     n = static_cast<int>(pids.size()) + 1;
   }
-  for (const auto& v : a.views) fs::create_directories(view_dir(a.run_dir, v));
+  for (const auto& v : a.views) fs::create_directories(view_dir(a.out_dir, v));
 
   std::vector<render::FrameRef> joint_frames;
   if (std::find(a.views.begin(), a.views.end(), "cracks") != a.views.end()) {
@@ -219,7 +222,7 @@ int render_command(const RenderArgs& in) {
       if (view == "cracks") jg = render::read_frame(joint_frames[i].file);
       const auto walls = wall_surfaces(c.walls, g, o.bounds);
       auto img = fr.render(g, frames[i].time, frames[i].file, jg, walls);
-      render::write_png(img, (fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
+      render::write_png(img, (fs::path(view_dir(a.out_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
       ++drawn;
     }
   }
@@ -240,9 +243,9 @@ int render_command(const RenderArgs& in) {
   if (rc.animation && !a.no_animation && sel.size() > 1) {
     std::vector<render::AnimationJob> todo;
     for (const auto& view : a.views) {
-      render::AnimationJob j{{}, (fs::path(a.run_dir) / "images" / view).string()};
+      render::AnimationJob j{{}, view_dir(a.out_dir, view)};
       for (std::size_t i : sel)
-        j.pngs.push_back((fs::path(view_dir(a.run_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
+        j.pngs.push_back((fs::path(view_dir(a.out_dir, view)) / fmt::format("frame_{:04d}.png", i)).string());
       todo.push_back(std::move(j));
     }
     for (const auto& files : render::write_animations(todo, rc.fps, jobs))
@@ -251,7 +254,7 @@ int render_command(const RenderArgs& in) {
   // Plots: energies and monitors against time, then the case's extra plots.
   const fs::path csv = fs::path(a.run_dir) / "series.csv";
   if (fs::exists(csv)) {
-    const fs::path pdir = fs::path(a.run_dir) / "images" / "plots";
+    const fs::path pdir = fs::path(a.out_dir) / "images" / "plots";
     fs::create_directories(pdir);
     std::vector<std::string> names;
     std::vector<std::vector<double>> cols;
@@ -292,7 +295,7 @@ int render_command(const RenderArgs& in) {
     }
     log::info("  plots in {}", pdir.string());
   }
-  log::info("  images in {}/images/ ({:.2f} s in all)", a.run_dir, wall.seconds());
+  log::info("  images in {}/images/ ({:.2f} s in all)", a.out_dir, wall.seconds());
   return 0;
 }
 

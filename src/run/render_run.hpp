@@ -9,6 +9,9 @@ namespace dspdem {
 
 struct RenderArgs {
   std::string run_dir;
+  /// Where images/ goes; empty: the run's folder. A report reading an earlier report's runs
+  /// draws them into its own folder, so that it leaves the earlier one as it was.
+  std::string out_dir;
   std::vector<std::string> views;  ///< empty: from the run's case ([render] views)
   std::string field, camera, cut, frames = "all", range, size;
   double magnify = 0;  ///< 0: from the case

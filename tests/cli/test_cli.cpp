@@ -511,6 +511,21 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
                         "--no-animation");
   EXPECT_EQ(rr.code, 0) << rr.out;
   EXPECT_TRUE(fs::exists(out / "images/cracks/frame_0010.png"));
+  // With --out the images go there and the run's folder is only read, also by the second
+  // process's share of the frames (-j 2 over frames 0, 5 and 10).
+  const fs::path drawn = dir_ / "drawn";
+  const Result ro = run("-q render " + out.string() + " --out " + drawn.string() +
+                        " --view cracks --frames every:5 --size 160x120 --no-animation -j 2");
+  EXPECT_EQ(ro.code, 0) << ro.out;
+  for (const char* f : {"frame_0000.png", "frame_0005.png", "frame_0010.png"}) {
+    EXPECT_TRUE(fs::exists(drawn / "images/cracks" / f)) << f;
+    EXPECT_EQ(fs::exists(out / "images/cracks" / f), std::string(f) == "frame_0010.png") << f;
+  }
+  EXPECT_TRUE(fs::exists(drawn / "images/plots/energy.png"));
+  const Result both = run("-q render " + out.string() + " " + out.string() + " --montage " + (dir_ / "m.png").string() +
+                          " --out " + drawn.string());
+  EXPECT_NE(both.code, 0);
+  EXPECT_NE(both.out.find("render: --out and --montage"), std::string::npos) << both.out;
 }
 
 // `dspdem render --montage`: the runs side by side, a column per run and a row per --rows
@@ -980,6 +995,19 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   const Result again = from_run("again", 3);
   ASSERT_EQ(again.code, 0) << again.out;
   EXPECT_EQ(slurp(dir_ / "again" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
+  // The same folder for a report of the case's mesh alone: the files of the three meshes'
+  // report are gone, not left beside a report.md that no longer names them.
+  {
+    const Result three = from_run("again_one", 3);
+    ASSERT_EQ(three.code, 0) << three.out;
+    for (const char* f : {"orientations.csv", "large_pieces_time.csv", "images/breakage_probability.png"})
+      ASSERT_TRUE(fs::exists(dir_ / "again_one" / f)) << f;
+    const Result one_mesh = from_run("again_one", 1);
+    ASSERT_EQ(one_mesh.code, 0) << one_mesh.out;
+    for (const char* f : {"orientations.csv", "large_pieces_time.csv", "images/breakage_probability.png"})
+      EXPECT_FALSE(fs::exists(dir_ / "again_one" / f)) << f;
+    EXPECT_TRUE(fs::exists(dir_ / "again_one" / "fragment_masses.csv"));
+  }
   const Result more = from_run("again", 4);
   EXPECT_EQ(more.code, 2) << more.out;
   EXPECT_NE(more.out.find("v2.5_o3"), std::string::npos) << more.out;
@@ -993,6 +1021,13 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
       fs::copy(dir_ / "rep" / "orientations" / (std::string(v) + o),
                dir_ / part / "orientations" / (std::string(v) + o), fs::copy_options::recursive);
   }
+  // What a report derives from a run is the report's: the copies are left without it, and a
+  // report merging them writes it into its own folder, leaving theirs as they were.
+  const std::vector<std::string> derived = {"pieces_time.csv", "sphere_series.csv", "fragment_masses.csv"};
+  for (const char* part : {"part_a", "part_b"})
+    for (const auto& e : fs::recursive_directory_iterator(dir_ / part))
+      if (std::find(derived.begin(), derived.end(), e.path().filename().string()) != derived.end())
+        fs::remove(e.path());
   const auto merged = [&](const std::string& out, const std::vector<fs::path>& parts, const std::string& sets) {
     std::string from;
     for (const auto& p : parts) from += " --from-run " + p.string();
@@ -1004,6 +1039,15 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   };
   const Result both = merged("merged", {dir_ / "part_a", dir_ / "part_b"}, "");
   ASSERT_EQ(both.code, 0) << both.out;
+  for (const char* part : {"part_a", "part_b"})
+    for (const auto& e : fs::recursive_directory_iterator(dir_ / part))
+      EXPECT_TRUE(std::find(derived.begin(), derived.end(), e.path().filename().string()) == derived.end())
+          << "written into an earlier report's folder: " << e.path();
+  for (const char* run : {"speeds/v2.5", "speeds/v7.5", "orientations/v2.5_o1", "orientations/v7.5_o2"})
+    for (const auto& f : derived) {
+      EXPECT_TRUE(fs::exists(dir_ / "merged" / run / f)) << run << "/" << f;
+      EXPECT_EQ(slurp(dir_ / "merged" / run / f), slurp(dir_ / "rep" / run / f)) << run << "/" << f;
+    }
   EXPECT_EQ(slurp(dir_ / "merged" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
   const std::string mmd = slurp(dir_ / "merged" / "report.md");
   EXPECT_NE(mmd.find("none run here: `../part_a` (3 runs), `../part_b` (3 runs), made by one build of dspdem ("),
@@ -1014,8 +1058,8 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   for (const char* at : {"in its own folder under `../part_a/speeds/`, `../part_b/speeds/` with its",
                          "is the sweep's own runs in `../part_a/speeds/`, `../part_b/speeds/`). Folders: "
                          "`../part_a/orientations/`, `../part_b/orientations/`;",
-                         "`fragment_masses.csv` in its run's folder, `v<speed>/` under `../part_a/speeds/`, "
-                         "`../part_b/speeds/`;"})
+                         "is written here at the run's place (`speeds/`, `orientations/`, `draws/`); the earlier "
+                         "reports' folders are only read."})
     EXPECT_NE(mmd.find(at), std::string::npos) << at << "\n" << mmd;
   EXPECT_NE(md.find("in its own folder under `speeds/` with its"), std::string::npos) << md;
   EXPECT_NE(md.find("Folders: `orientations/`;"), std::string::npos) << md;

@@ -17,12 +17,12 @@ namespace fs = std::filesystem;
 }  // namespace
 
 SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
-                                      bool write_files) {
+                                      const std::string& files_dir) {
   DSPDEM_CHECK(c.mesh_generator == "sphere_plate", "{}: the sphere impact scene needs the sphere_plate generator",
                c.path);
   DSPDEM_CHECK(!c.initial.empty(), "{}: the sphere impact scene needs the sphere's [[initial]] velocity", c.path);
   SphereImpactResult r;
-  r.run_dir = run_dir;
+  r.run_dir = run_dir, r.files_dir = files_dir;
   r.speed = c.initial.front().velocity.norm();
   r.diameter = mesh_param(c, "diameter");
   const report::RunData run = report::RunData::open(run_dir);
@@ -123,17 +123,18 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
       }
   }
 
-  if (write_files) {
-    std::ofstream ph(fs::path(run_dir) / "pieces_time.csv");
-    DSPDEM_CHECK(ph.good(), "cannot write '{}/pieces_time.csv'", run_dir);
+  if (!files_dir.empty()) {
+    fs::create_directories(files_dir);
+    std::ofstream ph(fs::path(files_dir) / "pieces_time.csv");
+    DSPDEM_CHECK(ph.good(), "cannot write '{}/pieces_time.csv'", files_dir);
     ph << "frame,time_ms,after_contact_ms,fragments,largest,second,large_pieces,crack_reach,crack_top,broken_contact,"
           "broken_upper_half\n";
     for (const auto& h : r.history)
       ph << fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{},{:.4f},{:.4f},{},{}\n", h.frame,
                         1e3 * (h.after_contact + r.t_contact), 1e3 * h.after_contact, h.fragments, h.largest, h.second,
                         h.large_pieces, h.crack_reach, h.crack_top, h.broken_contact, h.broken_upper);
-    std::ofstream f(fs::path(run_dir) / "sphere_series.csv");
-    DSPDEM_CHECK(f.good(), "cannot write '{}/sphere_series.csv'", run_dir);
+    std::ofstream f(fs::path(files_dir) / "sphere_series.csv");
+    DSPDEM_CHECK(f.good(), "cannot write '{}/sphere_series.csv'", files_dir);
     f << "time_ms,broken_joints,crack_area_cm2,plate_force_kN,vy_centre,kinetic,elastic,fracture,friction,damping\n";
     auto at = [&](const char* k, std::size_t i) { return s.has(k) ? s[k][i] : 0.0; };
     for (std::size_t i = 0; i < n; ++i)
@@ -142,7 +143,7 @@ SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& ru
                        at("kinetic", i), at("internal", i) + at("joint_elastic", i) + at("contact_elastic", i),
                        at("fracture_I", i) + at("fracture_II", i), at("friction", i),
                        at("damping", i) + at("contact_damping", i));
-    report::write_mass_distribution_csv((fs::path(run_dir) / "fragment_masses.csv").string(), r.fragments);
+    report::write_mass_distribution_csv((fs::path(files_dir) / "fragment_masses.csv").string(), r.fragments);
   }
   r.wall_s = sum.wall_s, r.steps = sum.steps, r.dt = sum.dt, r.elements = sum.elements;
   return r;

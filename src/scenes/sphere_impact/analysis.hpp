@@ -19,6 +19,9 @@ inline constexpr double kSameTime = 1e-12;
 
 struct SphereImpactResult {
   std::string run_dir;
+  /// Where the files derived from the run were written (empty: none): the run's folder for a
+  /// report's own run, the report's folder at the run's place for one an earlier report ran.
+  std::string files_dir;
   double speed = 0;  ///< impact speed [m/s] (the [[initial]] velocity's magnitude)
   double diameter = 0, mass = 0;
   double t_contact = -1;  ///< first series row with a force on the plate [s]
@@ -109,13 +112,13 @@ struct SphereImpactResult {
 
 /// Analyses the run in `run_dir` of case `c` at `after_contact` seconds after the sphere
 /// first touched the plate (the frame nearest that time; Error if the run ends before it or
-/// never touches); with `write_files`, writes sphere_series.csv (time in ms, broken joints,
+/// never touches); with a `files_dir`, writes sphere_series.csv (time in ms, broken joints,
 /// crack area in cm^2, plate force in kN, centre-of-mass vy, energies), pieces_time.csv
 /// (`history`: frame, time and time after contact in ms, fragments, largest, second, large
 /// pieces, crack reach and top over the diameter, broken joints in the lowest and the highest
 /// band of height_bands) and fragment_masses.csv (the cumulative
-/// mass distribution at that frame) there.
+/// mass distribution at that frame) there; `run_dir` itself is only read.
 SphereImpactResult analyse_sphere_run(const CaseConfig& c, const std::string& run_dir, double after_contact,
-                                      bool write_files);
+                                      const std::string& files_dir);
 
 }  // namespace dspdem

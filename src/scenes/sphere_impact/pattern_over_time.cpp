@@ -73,10 +73,6 @@ std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, co
 
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir) {
-  for (const char* name : {"pattern_over_time.csv", "pattern_over_time_runs.csv"}) {
-    std::error_code gone;  // absent is fine
-    fs::remove(fs::path(dir) / name, gone);
-  }
   // The earliest compared frame bounds the times every run can be read at.
   double last = INFINITY;
   int no_history = 0;  // runs of the speeds read that failed or have no history

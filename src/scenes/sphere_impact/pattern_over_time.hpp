@@ -59,8 +59,8 @@ std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, co
 /// Writes the section into `doc` when the runs go on past the paper's moment and at the
 /// paper's moment at least two meshes could be read at one speed the history can judge;
 /// pattern_over_time.csv (the counts) and pattern_over_time_runs.csv (each run of those speeds,
-/// its verdict empty where it could not be read) into `dir`. Either file an earlier report left
-/// in `dir` is removed first, so a folder never holds one that the runs now do not give.
+/// its verdict empty where it could not be read) into `dir` (where the report clears an earlier
+/// report's first, report.cpp).
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
 

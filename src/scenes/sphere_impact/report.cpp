@@ -162,8 +162,7 @@ std::string monotonic(const std::vector<SphereImpactResult>& rs, double (*key)(c
 // When the sphere came apart, not only whether it had by the compared time: near the
 // splitting speed one mesh's large pieces come free just before the compared time and
 // another's just after it (src/scenes/sphere_impact/REFERENCE.md).
-std::string split_times(const std::vector<SphereImpactResult>& sweep, double frame_interval,
-                        const std::string& speeds_folders) {
+std::string split_times(const std::vector<SphereImpactResult>& sweep, double frame_interval) {
   std::vector<std::string> split, whole, unknown;
   for (const auto& r : sweep)
     if (r.history.empty())
@@ -179,8 +178,8 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
   };
   std::string s = fmt::format(
       "The largest piece frame by frame up to the compared time (frames every {:.3g} ms, so a time below is that of "
-      "the first frame to show it; per speed: `pieces_time.csv` in its run's folder, `v<speed>/` under {}). ",
-      1e3 * frame_interval, speeds_folders);
+      "the first frame to show it; per speed in `speeds/v<speed>/pieces_time.csv`). ",
+      1e3 * frame_interval);
   // A run older than fragments.csv has no history: that is not "no split".
   const std::string none =
       unknown.empty() ? "" : fmt::format(" No history at {} m/s (a run without fragments.csv).", list(unknown));
@@ -194,6 +193,20 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
       list(split));
   if (!whole.empty()) s += fmt::format("; at {} m/s there is none by the compared time", list(whole));
   return s + "." + none;
+}
+
+// The report's files that only some reports write (with --realisations, --draws, runs past
+// the paper's moment, a render): one an earlier report left in this folder would otherwise
+// stay beside a report.md that no longer names it, and read as this report's. Cleared once
+// the runs are analysed, so that a report that stops before that leaves the earlier one whole.
+void clear_sometimes_written(const std::string& dir) {
+  for (const char* f :
+       {"orientations.csv", "draws.csv", "large_pieces_time.csv", "split_precursors.csv", "pattern_over_time.csv",
+        "pattern_over_time_runs.csv", "images/breakage_probability.png", "images/large_pieces_time.png",
+        "images/crack_reach.png", "images/montage_fragments.png", "images/montage_cracks.png"}) {
+    std::error_code absent;  // nothing to clear is fine
+    fs::remove(fs::path(dir) / f, absent);
+  }
 }
 
 }  // namespace
@@ -291,6 +304,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
   }
   std::vector<std::string> errors(plan.size());
+  // Each run's place in this report's folder: its files derived here and its images go there
+  // also when the run itself is an earlier report's, whose folder is only read.
+  std::vector<std::string> own_dir(plan.size());
+  for (std::size_t i = 0; i < plan.size(); ++i) own_dir[i] = plan[i].dir;
   // --from-run: where each run of the sweep was found, by plan index (the study's: none).
   std::vector<report::EarlierReportRun> earlier(a.from_runs.empty() ? 0 : plan.size());
   if (a.from_runs.empty()) {
@@ -332,7 +349,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   for (std::size_t i = 0; i < plan.size(); ++i) {
     if (!errors[i].empty()) continue;
     try {
-      res[i] = analyse_sphere_run(reread_with(c, plan[i].sets), plan[i].dir, c.t_end, true);
+      res[i] = analyse_sphere_run(reread_with(c, plan[i].sets), plan[i].dir, c.t_end, own_dir[i]);
     } catch (const std::exception& e) {
       errors[i] = e.what();
     }
@@ -346,6 +363,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       sweep_failed.push_back(fmt::format("{:g} m/s: {}", speeds[i], errors[i]));
   }
   DSPDEM_CHECK(!sweep.empty(), "sphere impact: every run of the sweep failed: {}", sweep_failed.front());
+  clear_sometimes_written(dir);
 
   // Plots over all speeds: cumulative mass distribution, broken joints and plate force.
   const fs::path img = fs::path(dir) / "images";
@@ -362,7 +380,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       all << fmt::format("{:g},{:.8g},{:.8g}\n", r.speed, m, f);
     }
     dist.push_back(d);
-    const report::Series s((fs::path(r.run_dir) / "sphere_series.csv").string());
+    const report::Series s((fs::path(r.files_dir) / "sphere_series.csv").string());
     cracks.push_back({d.name, s["time_ms"], s["crack_area_cm2"]});
     force.push_back({d.name, s["time_ms"], s["plate_force_kN"]});
     render::Curve l{d.name, {}, {}};
@@ -415,7 +433,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     const std::string range = stress ? common_range(dirs, c.render.field, c.render) : std::string();
     for (const auto& r : sweep) {
       RenderArgs ra;
-      ra.run_dir = r.run_dir;
+      ra.run_dir = r.run_dir, ra.out_dir = r.files_dir;
       ra.range = range;
       render_command(ra);
     }
@@ -439,9 +457,12 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       "1 % of the mass (smaller pieces are material crushed off at the contact), *large pieces* hold at least 10 %, "
       "and single-element fragments are the crushed material the mesh cannot resolve further.");
   if (!earlier.empty())
-    doc.para(fmt::format("Runs analysed again from earlier reports (`--from-run`){}: {}.",
-                         a.study ? ", the study's run here" : ", none run here",
-                         report::earlier_report_sources(earlier, dir)));
+    doc.para(fmt::format(
+        "Runs analysed again from earlier reports (`--from-run`){}: {}. What this report derives from each run "
+        "(`pieces_time.csv`, `sphere_series.csv`, `fragment_masses.csv`{}) is written here at the run's place "
+        "(`speeds/`, `orientations/`, `draws/`); the earlier reports' folders are only read.",
+        a.study ? ", the study's run here" : ", none run here", report::earlier_report_sources(earlier, dir),
+        a.no_render ? "" : ", the sweep's images"));
   if (!sweep_failed.empty()) {
     std::string f;
     for (const auto& e : sweep_failed) f += "\n- " + e;
@@ -477,7 +498,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         "diameter above the lowest point, each joint where it was at the start (a joint outside the sphere's height, a "
         "meshed plate's, is in none); the lowest band is the contact ({:.0f} mm on this sphere), the last the upper "
         "half. The lowest and the last band over time: `broken_contact` and "
-        "`broken_upper_half` in each run's `pieces_time.csv`.",
+        "`broken_upper_half` in `speeds/v<speed>/pieces_time.csv`.",
         1e3 * hb[1] * sweep.front().diameter));
     doc.table(head, reg);
   }
@@ -587,23 +608,20 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     doc.figure("cracks montage", "images/montage_cracks.png");
   }
   doc.section("Fragment size distribution");
-  doc.para(
-      fmt::format("Per speed: `fragment_masses.csv` in its run's folder, `v<speed>/` under {}; all speeds in "
-                  "`fragment_masses.csv`.",
-                  speeds_folders));
+  doc.para("Per speed in `speeds/v<speed>/fragment_masses.csv`; all speeds in `fragment_masses.csv`.");
   doc.figure("cumulative fragment mass distribution", "images/fragment_masses.png");
   doc.section("Cracks, pieces and contact force over time");
   doc.figures({{"crack area", "images/crack_area.png"}, {"plate force", "images/plate_force.png"}});
-  doc.para(split_times(sweep, c.frame_interval, speeds_folders));
+  doc.para(split_times(sweep, c.frame_interval));
   doc.figure("largest piece against time", "images/largest_piece.png");
   if (!reach_curves.empty()) {
     doc.para(fmt::format(
         "How far up the cracks reach: the height above the sphere's lowest point below which {:.0f} % of the broken "
         "joints' area lies, over the diameter, each joint where it was at the start (so a piece flying off does not "
         "move its crack). It rises as broken joints spread up through the sphere, whether or not they have cut a "
-        "piece free yet. The table's second figure is the highest broken joint (its centroid). Per speed: "
-        "`pieces_time.csv` in its run's folder, `v<speed>/` under {}.",
-        100 * SphereImpactResult::reach_fraction, speeds_folders));
+        "piece free yet. The table's second figure is the highest broken joint (its centroid). Per speed in "
+        "`speeds/v<speed>/pieces_time.csv`.",
+        100 * SphereImpactResult::reach_fraction));
     doc.figure("crack reach against time", "images/crack_reach.png");
   }
   doc.section("Where the impact energy went");
@@ -685,7 +703,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     const SphereImpactResult* near = &sweep.front();
     for (const auto& r : sweep)
       if (std::abs(r.speed - 7.5) < std::abs(near->speed - 7.5)) near = &r;
-    const std::string rel = fs::relative(near->run_dir, dir).string();
+    const std::string rel = fs::relative(near->files_dir, dir).string();
     doc.section(fmt::format("The run at {:g} m/s", near->speed));
     doc.animation(fmt::format("fragments at {:g} m/s", near->speed), rel + "/images/fragments",
                   rel + "/images/fragments/frame_0000.png");
