@@ -303,7 +303,10 @@ CsvEnds csv_ends(const fs::path& path) {
   CsvEnds c;
   std::ifstream in(path);
   std::getline(in, c.header);
-  for (std::string line; std::getline(in, line);) c.first = c.rows++ == 0 ? line : c.first, c.last = line;
+  for (std::string line; std::getline(in, line);) {
+    if (c.rows++ == 0) c.first = line;
+    c.last = line;
+  }
   return c;
 }
 }  // namespace

@@ -114,6 +114,8 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
   // crack_top and the bands' counts -1: no joints frames paired with the run's frames. The
   // bands are the lowest and the highest of SphereImpactResult::height_bands: what crushed at
   // the contact and how much of the upper half the cracks had cut, mesh by mesh.
+  const auto lowest = [](const std::vector<long>& v) { return v.empty() ? -1L : v.front(); };
+  const auto highest = [](const std::vector<long>& v) { return v.empty() ? -1L : v.back(); };
   std::vector<std::vector<std::string>> rows_o;
   std::vector<report::SweepPoint> through_at, few_at;  // per run: does it show the property
   for (std::size_t si = 0; si < speeds.size(); ++si) {
@@ -135,8 +137,6 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
       pieces += fmt::format("{}{}: {}", n ? ", " : "", o, r.pieces_10pct);
       split += fmt::format("{}{}: {}", n ? ", " : "", o, two_large_ms(r, "?"));
       ++n;
-      const auto lowest = [](const std::vector<long>& v) { return v.empty() ? -1L : v.front(); };
-      const auto highest = [](const std::vector<long>& v) { return v.empty() ? -1L : v.back(); };
       csv << fmt::format("{:g},{},{},{},{},{},{:.6f},{:.6f},{},{},{},{:.4f},{:.4f},{},{},{},{},{:.3e}\n", r.speed, o,
                          r.elements, r.fragments.count(), r.fragments.single_element(), r.pieces_10pct,
                          r.fragments.largest_fraction(), r.second_fraction, int(r.through_crack), int(pattern_met(r)),
