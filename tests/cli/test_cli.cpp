@@ -1011,6 +1011,7 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   const Result more = from_run("again", 4);
   EXPECT_EQ(more.code, 2) << more.out;
   EXPECT_NE(more.out.find("v2.5_o3"), std::string::npos) << more.out;
+  EXPECT_TRUE(fs::exists(dir_ / "again" / "orientations.csv"));  // a report refused leaves the earlier one
   // Several earlier reports merge into one: the runs at 2.5 m/s in one folder, those at 7.5
   // in another read as the one report they were, each folder named with its count.
   for (const auto& [part, v] : {std::pair{"part_a", "v2.5"}, std::pair{"part_b", "v7.5"}}) {
@@ -1024,10 +1025,12 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
   // What a report derives from a run is the report's: the copies are left without it, and a
   // report merging them writes it into its own folder, leaving theirs as they were.
   const std::vector<std::string> derived = {"pieces_time.csv", "sphere_series.csv", "fragment_masses.csv"};
+  std::vector<fs::path> to_remove;
   for (const char* part : {"part_a", "part_b"})
     for (const auto& e : fs::recursive_directory_iterator(dir_ / part))
       if (std::find(derived.begin(), derived.end(), e.path().filename().string()) != derived.end())
-        fs::remove(e.path());
+        to_remove.push_back(e.path());
+  for (const auto& p : to_remove) fs::remove(p);
   const auto merged = [&](const std::string& out, const std::vector<fs::path>& parts, const std::string& sets) {
     std::string from;
     for (const auto& p : parts) from += " --from-run " + p.string();
@@ -1048,6 +1051,26 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
       EXPECT_TRUE(fs::exists(dir_ / "merged" / run / f)) << run << "/" << f;
       EXPECT_EQ(slurp(dir_ / "merged" / run / f), slurp(dir_ / "rep" / run / f)) << run << "/" << f;
     }
+  // Nor beside another run: a folder with runs of its own is refused as the merged report's,
+  // its runs' files left as they were.
+  const std::string rep_pieces = slurp(dir_ / "rep" / "speeds" / "v2.5" / "pieces_time.csv");
+  const Result into_runs = merged("rep", {dir_ / "part_a", dir_ / "part_b"}, "");
+  EXPECT_EQ(into_runs.code, 2) << into_runs.out;
+  EXPECT_NE(into_runs.out.find("holds a run of this report's folder"), std::string::npos) << into_runs.out;
+  EXPECT_EQ(slurp(dir_ / "rep" / "speeds" / "v2.5" / "pieces_time.csv"), rep_pieces);
+  // Drawn too: the sweep's frames into the merged report's folder, none into the parts'.
+  const Result drawn = run("-q report " + std::string(DSPDEM_SOURCE_DIR) + "/cases/sphere_impact.toml --out " +
+                           (dir_ / "merged_drawn").string() +
+                           " --speeds 2.5,7.5 --set mesh.sphere_plate.size=0.04 --set time.end=1e-4 "
+                           "--set output.frame_interval=2.5e-5 --from-run " +
+                           (dir_ / "part_a").string() + " --from-run " + (dir_ / "part_b").string());
+  ASSERT_EQ(drawn.code, 0) << drawn.out;
+  for (const char* v : {"v2.5", "v7.5"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "merged_drawn" / "speeds" / v / "images" / "fragments" / "frame_0000.png")) << v;
+    EXPECT_FALSE(fs::exists(dir_ / "part_a" / "speeds" / v / "images")) << v;
+    EXPECT_FALSE(fs::exists(dir_ / "part_b" / "speeds" / v / "images")) << v;
+  }
+  EXPECT_NE(slurp(dir_ / "merged_drawn" / "report.md").find("](./speeds/v7.5/images/fragments.ogv)"), std::string::npos);
   EXPECT_EQ(slurp(dir_ / "merged" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
   const std::string mmd = slurp(dir_ / "merged" / "report.md");
   EXPECT_NE(mmd.find("none run here: `../part_a` (3 runs), `../part_b` (3 runs), made by one build of dspdem ("),

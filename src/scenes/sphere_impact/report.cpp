@@ -12,9 +12,11 @@
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "io/run_summary.hpp"
+#include "io/staging.hpp"
 #include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/earlier_reports.hpp"
+#include "report/files_aside.hpp"
 #include "report/resume.hpp"
 #include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
@@ -195,19 +197,29 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
   return s + "." + none;
 }
 
+// A run's folder: finished, or left failed or stopped (io/staging.hpp).
+bool holds_a_run(const fs::path& d) {
+  for (const char* f : {"summary.json", "run.pvd", failed_folder, interrupted_folder})
+    if (fs::exists(d / f)) return true;
+  return false;
+}
+
 // The report's files that only some reports write (with --realisations, --draws, runs past
 // the paper's moment, a render): one an earlier report left in this folder would otherwise
-// stay beside a report.md that no longer names it, and read as this report's. Cleared once
-// the runs are analysed, so that a report that stops before that leaves the earlier one whole.
-void clear_sometimes_written(const std::string& dir) {
-  for (const char* f :
-       {"orientations.csv", "draws.csv", "large_pieces_time.csv", "split_precursors.csv", "pattern_over_time.csv",
-        "pattern_over_time_runs.csv", "images/breakage_probability.png", "images/large_pieces_time.png",
-        "images/crack_reach.png", "images/montage_fragments.png", "images/montage_cracks.png"}) {
-    std::error_code absent;  // nothing to clear is fine
-    fs::remove(fs::path(dir) / f, absent);
-  }
-}
+// stay beside a report.md that no longer names it, and read as this report's. Set aside once
+// the runs are analysed (report/files_aside.hpp): dropped when this report is written, put
+// back if it stops first.
+const std::vector<std::string> kSometimesWritten = {"orientations.csv",
+                                                    "draws.csv",
+                                                    "large_pieces_time.csv",
+                                                    "split_precursors.csv",
+                                                    "pattern_over_time.csv",
+                                                    "pattern_over_time_runs.csv",
+                                                    "images/breakage_probability.png",
+                                                    "images/large_pieces_time.png",
+                                                    "images/crack_reach.png",
+                                                    "images/montage_fragments.png",
+                                                    "images/montage_cracks.png"};
 
 }  // namespace
 
@@ -319,6 +331,13 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       earlier[i] = report::find_earlier_report_run(sweep_roots, rel, reread_with(c, plan[i].sets).resolved_toml);
       const report::EarlierReportRun& e = earlier[i];
       if (!e.dir.empty()) {
+        // What is derived from the run goes to its place here, which must be the run itself or
+        // hold no run: beside another run it would read as that run's.
+        std::error_code differ;
+        DSPDEM_CHECK(fs::equivalent(own_dir[i], e.dir, differ) || !holds_a_run(own_dir[i]),
+                     "--from-run: {} holds a run of this report's folder, where the report would write what it "
+                     "derives from the run in {}; give --out a folder without runs, or the earlier report's own",
+                     own_dir[i], e.dir);
         plan[i].dir = e.dir;
         continue;
       }
@@ -363,7 +382,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       sweep_failed.push_back(fmt::format("{:g} m/s: {}", speeds[i], errors[i]));
   }
   DSPDEM_CHECK(!sweep.empty(), "sphere impact: every run of the sweep failed: {}", sweep_failed.front());
-  clear_sometimes_written(dir);
+  report::FilesAside earlier_files(dir, kSometimesWritten);
 
   // Plots over all speeds: cumulative mass distribution, broken joints and plate force.
   const fs::path img = fs::path(dir) / "images";
@@ -711,6 +730,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   doc.thumbnail("fragment mass distribution", "images/fragment_masses.png");
   h.wall_s = total.seconds();
   doc.write();
+  earlier_files.drop();
   log::info("report: {}/report.md ({:.1f} s)", dir, total.seconds());
   return 0;
 }
