@@ -3,24 +3,40 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "io/staging.hpp"
 #include "report/resume.hpp"
 
 namespace dspdem::report {
 
 namespace fs = std::filesystem;
 
+std::string ReportDirs::run_from_dir() const { return fs::relative(run_dir, dir).string() + "/"; }
+
 ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   ReportDirs d;
   d.dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+  d.files_dir = (fs::path(d.dir) / "run").string();
   // One folder only: report_command refuses several for a scene without a velocity sweep.
-  d.run_dir = a.from_runs.empty() ? (fs::path(d.dir) / "run").string() : a.from_runs.front();
-  fs::create_directories(d.dir);
+  d.run_dir = a.from_runs.empty() ? d.files_dir : a.from_runs.front();
   if (a.from_runs.empty()) {
+    fs::create_directories(d.dir);
     run_or_resume(c, d.run_dir, a.runs);
-  } else {
-    DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
-                 "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);
+    return d;
   }
+  DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
+               "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);
+  // Derived files beside another run would read as that run's.
+  std::error_code differ;
+  if (fs::equivalent(d.files_dir, d.run_dir, differ)) {
+    d.files_dir = d.run_dir;
+  } else {
+    for (const char* f : {"summary.json", "run.pvd", failed_folder, interrupted_folder})
+      DSPDEM_CHECK(!fs::exists(fs::path(d.files_dir) / f),
+                   "--from-run {}: {} holds a run of its own, where the report would write what it derives from "
+                   "the run given; give --out a folder without one",
+                   d.run_dir, d.files_dir);
+  }
+  fs::create_directories(d.files_dir);
   return d;
 }
 

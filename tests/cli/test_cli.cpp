@@ -1070,7 +1070,8 @@ TEST_F(Cli, ReportRealisationsRunEachSpeedAgainOnTurnedMeshes) {
     EXPECT_FALSE(fs::exists(dir_ / "part_a" / "speeds" / v / "images")) << v;
     EXPECT_FALSE(fs::exists(dir_ / "part_b" / "speeds" / v / "images")) << v;
   }
-  EXPECT_NE(slurp(dir_ / "merged_drawn" / "report.md").find("](./speeds/v7.5/images/fragments.ogv)"), std::string::npos);
+  EXPECT_NE(slurp(dir_ / "merged_drawn" / "report.md").find("](./speeds/v7.5/images/fragments.ogv)"),
+            std::string::npos);
   EXPECT_EQ(slurp(dir_ / "merged" / "orientations.csv"), slurp(dir_ / "rep" / "orientations.csv"));
   const std::string mmd = slurp(dir_ / "merged" / "report.md");
   EXPECT_NE(mmd.find("none run here: `../part_a` (3 runs), `../part_b` (3 runs), made by one build of dspdem ("),
@@ -1446,6 +1447,28 @@ TEST_F(Cli, ReportWithoutStressCheckRunsTheSceneOnly) {
   EXPECT_NE(md.find("## Stresses along the loaded diameter"), std::string::npos);
   EXPECT_EQ(md.find("Stress check"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "stress_check"));
+  // --from-run reads the run and writes what it derives into the new report's run/, leaving
+  // the run given (here another report's) as it was; a folder whose run/ is another run is
+  // refused rather than written beside it.
+  const std::string sets =
+      " --no-stress-check --set mesh.brazilian_disc.size=0.02 --set time.end=2e-4 --set output.frame_interval=5e-5";
+  for (const char* f : {"load.csv", "profile.csv", "profile_analytic.csv", "images"})
+    fs::remove_all(dir_ / "rep" / "run" / f);
+  const Result again = report("brazilian_disc", "--from-run " + (dir_ / "rep" / "run").string() + sets, "again");
+  ASSERT_EQ(again.code, 0) << again.out;
+  for (const char* f : {"load.csv", "profile.csv", "profile_analytic.csv", "images/plots/load_closure.png"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "again" / "run" / f)) << f;
+    EXPECT_FALSE(fs::exists(dir_ / "rep" / "run" / f)) << f;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "again" / "run" / "summary.json"));
+  const std::string again_md = slurp(dir_ / "again" / "report.md");
+  EXPECT_NE(again_md.find("run in `../rep/run/`"), std::string::npos) << again_md;
+  EXPECT_NE(again_md.find("](run/images/plots/load_closure.png)"), std::string::npos) << again_md;
+  fs::copy(dir_ / "rep" / "run", dir_ / "copy", fs::copy_options::recursive);
+  const Result beside = report("brazilian_disc", "--from-run " + (dir_ / "copy").string() + sets, "rep");
+  EXPECT_EQ(beside.code, 2) << beside.out;
+  EXPECT_NE(beside.out.find("holds a run of its own"), std::string::npos) << beside.out;
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / "run" / "load.csv"));
 }
 
 TEST_F(Cli, ThreadCountDoesNotChangeTheResult) {

@@ -33,7 +33,7 @@ TEST(DiscUnaligned, SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength) {
   RunOptions o;
   o.out_dir = dir.string();
   ASSERT_EQ(run_case(c, o), 0);
-  const DiscResult r = analyse_disc_run(c, dir.string(), false);
+  const DiscResult r = analyse_disc_run(c, dir.string(), "");
   RecordProperty("split_error_pct", std::to_string(100 * r.split_err));
   RecordProperty("crack_path_mean_x_mm", std::to_string(1e3 * r.crack_path_mean_x));
   EXPECT_LT(std::abs(r.split_err), 0.15) << "2P/(pi D L) = " << r.split << " Pa against f_t = " << r.ft;

@@ -38,7 +38,7 @@ TEST(Galvez, CrackRunsFromTheNotchTowardsTheLoadAndStaysWhereItWas) {
   ASSERT_TRUE(fs::exists(out / "report.md"));
   const CaseConfig c = read_case((out / "run/case.resolved.toml").string());
   ASSERT_TRUE(c.stop_fraction == 0.5 && c.stop_delay == 5e-4) << "the run is not the one this test is for";
-  const GalvezResult g = analyse_galvez_run(c, (out / "run").string(), false);
+  const GalvezResult g = analyse_galvez_run(c, (out / "run").string(), "");
   ASSERT_GE(g.first_crack_frame, 0) << "no joint broke";
   EXPECT_LT(std::abs(g.start_x), 0.015);
   EXPECT_LT(std::abs(g.start_y - g.notch), 0.015);
@@ -100,7 +100,7 @@ TEST(Galvez, FreeAtItsSecondTopLineTheBeamOnlyLeansItsCrackTowardsTheLoad) {
                                     out.string() + free + " --set time.stop_fraction=0.5 --set time.stop_delay=5e-4");
   ASSERT_EQ(r.code, 0) << r.out;
   const CaseConfig c = read_case((out / "run/case.resolved.toml").string());
-  const GalvezResult g = analyse_galvez_run(c, (out / "run").string(), false);
+  const GalvezResult g = analyse_galvez_run(c, (out / "run").string(), "");
   EXPECT_FALSE(g.outer_held);
   ASSERT_GE(g.first_crack_frame, 0) << "no joint broke";
   EXPECT_LT(std::abs(g.start_x), 0.015);

@@ -36,7 +36,7 @@ const std::string kCiMesh =
 MurrayResult analyse(const fs::path& out) {
   EXPECT_TRUE(fs::exists(out / "report.md"));
   const CaseConfig c = read_case((out / "run/case.resolved.toml").string());
-  return analyse_murray_run(c, (out / "run").string(), false);
+  return analyse_murray_run(c, (out / "run").string(), "");
 }
 
 MurrayResult report(const fs::path& out, const std::string& sets) {

@@ -38,7 +38,7 @@ TEST(Packing, ParticlesComeToRestInTheBoxWithTheLedgerClosed) {
   ASSERT_TRUE(fs::exists(out / "report.md"));
   const CaseConfig c = read_case((out / "run" / "case.resolved.toml").string());
   ASSERT_EQ(c.t_end, 3.0) << "the run is not the one this test is for";
-  const PackingResult r = analyse_packing_run(c, (out / "run").string(), false);
+  const PackingResult r = analyse_packing_run(c, (out / "run").string(), "");
   RecordProperty("t_rest", std::to_string(r.t_rest));
   RecordProperty("balance", std::to_string(r.balance_max));
   EXPECT_EQ(r.particles, 200);
@@ -74,7 +74,7 @@ TEST(Packing, MeshedParticlesComeToRestOnTheFloor) {
                          " --set mesh.packing.count=24 --set mesh.packing.refine=1 --set time.end=3.0");
   ASSERT_EQ(run.code, 0) << run.out;
   const CaseConfig c = read_case((out / "run" / "case.resolved.toml").string());
-  const PackingResult r = analyse_packing_run(c, (out / "run").string(), false);
+  const PackingResult r = analyse_packing_run(c, (out / "run").string(), "");
   EXPECT_EQ(r.particles, 24);  // 192 cells, 8 per particle
   EXPECT_GE(r.t_rest, 0.0) << "kinetic / released at the end " << r.kinetic_end / r.released;
   EXPECT_EQ(r.escaped, 0);

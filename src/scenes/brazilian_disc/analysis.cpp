@@ -66,7 +66,8 @@ void damage_at_peak(const std::string& run_dir, DiscResult& r, Index frame) {
 }
 }  // namespace
 
-DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files, Real profile_load) {
+DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir,
+                            Real profile_load) {
   DiscResult r;
   r.run_dir = run_dir;
   r.D = c.mesh_num.at("diameter"), r.L = c.mesh_num.at("thickness");
@@ -100,8 +101,8 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
     const auto& col = s[k];
     for (double v : col) r.largest_energy = std::max(r.largest_energy, std::abs(v));
   }
-  if (write_files) {
-    std::ofstream f(fs::path(run_dir) / "load.csv");
+  if (!files_dir.empty()) {
+    std::ofstream f(fs::path(files_dir) / "load.csv");
     f << "time_ms,closure_mm,load_kN\n";
     for (std::size_t i = 0; i < t.size(); ++i)
       f << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * t[i], 1e3 * closing_speed * t[i], 1e-3 * P[i]);
@@ -184,8 +185,8 @@ DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, boo
   if (ccnt > 0 && caxx != 0 && cayy != 0) r.centre_xx = cxx / caxx - 1, r.centre_yy = cyy / cayy - 1;
   if (faxx > 0) r.face_xx = fxx / faxx - 1;
   if (maxx > 0) r.mid_xx = mxx / maxx - 1;
-  if (write_files) {
-    std::ofstream fn(fs::path(run_dir) / "profile.csv"), fr(fs::path(run_dir) / "profile_analytic.csv");
+  if (!files_dir.empty()) {
+    std::ofstream fn(fs::path(files_dir) / "profile.csv"), fr(fs::path(files_dir) / "profile_analytic.csv");
     fn << "y_mm,sigma_xx_MPa,sigma_yy_MPa\n", fr << "y_mm,sigma_xx_MPa,sigma_yy_MPa\n";
     for (std::size_t i = 0; i < ys.size(); ++i) {
       fn << fmt::format("{:.6g},{:.6g},{:.6g}\n", 1e3 * ys[i], 1e-6 * num_xx[i], 1e-6 * num_yy[i]);

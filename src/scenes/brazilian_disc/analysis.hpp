@@ -43,11 +43,12 @@ struct DiscResult {
   long steps = 0, elements = 0, joints = 0;
 };
 
-/// Analyses the run in `run_dir` of case `c`; with `write_files`, also writes load.csv,
+/// Analyses the run in `run_dir` of case `c`; with a `files_dir`, also writes load.csv,
 /// profile.csv and profile_analytic.csv there. The stress profile is taken at the frame whose
 /// load is closest to `profile_load` [N] when it is > 0 (another run's profile load), else
 /// at kProfileFraction of this run's peak.
-DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, bool write_files, Real profile_load = 0);
+DiscResult analyse_disc_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir,
+                            Real profile_load = 0);
 
 /// "+1.2 %"
 std::string pct(Real x);

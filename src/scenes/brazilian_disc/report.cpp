@@ -26,20 +26,22 @@ namespace fs = std::filesystem;
 int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
   const report::ReportDirs dirs = report::prepare_report_run(c, a);
-  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
-  const DiscResult r = analyse_disc_run(c, run_dir, true);
-  const fs::path img = fs::path(run_dir) / "images";
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
+  const DiscResult r = analyse_disc_run(c, run_dir, files);
+  const fs::path img = fs::path(files) / "images";
   if (!a.no_render) {
     RenderArgs ra;
-    ra.run_dir = run_dir;
+    ra.run_dir = run_dir, ra.out_dir = files;
     ra.views = {"stress", "fragments"};
     render_command(ra);
   }
   fs::create_directories(img / "plots");
+  // `csv` in the report's files, or (series.csv) the run's own.
   auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& ref,
                   const std::string& title, const std::string& png) {
     render::PlotSpec s{x, std::move(y), ref, title};
-    render::plot_csv((fs::path(run_dir) / csv).string(), s, (img / "plots" / png).string());
+    render::plot_csv((fs::path(csv == "series.csv" ? run_dir : files) / csv).string(), s,
+                     (img / "plots" / png).string());
   };
   // The case's own loading words: the shipped case loads through the ISRM's curved jaws, the
   // paper and the study's flat_plates row through flat plates.
@@ -47,7 +49,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   plot("load.csv", "time_ms", {"load_kN"}, "", by + " load [kN] against time [ms]", "load_time.png");
   plot("load.csv", "closure_mm", {"load_kN"}, "", fmt::format("{0} load [kN] against {0} closure [mm]", by),
        "load_closure.png");
-  plot("profile.csv", "y_mm", {"sigma_xx_MPa", "sigma_yy_MPa"}, (fs::path(run_dir) / "profile_analytic.csv").string(),
+  plot("profile.csv", "y_mm", {"sigma_xx_MPa", "sigma_yy_MPa"}, (fs::path(files) / "profile_analytic.csv").string(),
        fmt::format("stresses along the loaded diameter at {:.1f} kN [MPa]; dashed: analytic", 1e-3 * r.P_profile),
        "profile.png");
   plot("series.csv", "time", {"balance_error"}, "", "energy balance error (fraction of the largest term)",
@@ -100,12 +102,12 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
       a.study ? run_study(c, r, checked ? &check : nullptr, dir, img.string(), a.runs) : std::string();
 
   // report.md
-  report::Document doc(dir, run_dir);
+  report::Document doc(dir, files);
   doc.title("Brazilian disc: report");
   doc.para(fmt::format(
       "Case `{}` ({}), run in `{}`. Paper: section 2.2 (dspdem's README, "
       "M5); reference data, analytic solution and sources: src/scenes/brazilian_disc/REFERENCE.md in dspdem.",
-      c.path, c.name, doc.run_link("")));
+      c.path, c.name, dirs.run_from_dir()));
   doc.para(
       fmt::format("Disc D = {:.1f} mm, L = {:.1f} mm, {} elements, {} joints; {}s closing at {:.3g} m/s "
                   "in all; input f_t = {:.2f} MPa. Run: {} steps of {}, {:.1f} s wall time.",

@@ -59,7 +59,7 @@ DiscResult run_stress_check(const CaseConfig& c, const std::string& dir, const r
       "(at most to {:.3f} ms)",
       1e3 * c.mesh_num.at("size"), 1e3 * c.mesh_num.at("load_size"), 1e-3 * P_target, 1e3 * c.t_end);
   report::run_or_resume(c, dir, runs);
-  return analyse_disc_run(c, dir, true, P_target);
+  return analyse_disc_run(c, dir, dir, P_target);
 }
 
 }  // namespace dspdem

@@ -232,7 +232,7 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
       rows[i].second =
           run_stress_check(stress_check_case(base, reference.t_profile, reference.P_profile), run_dir, runs);
     else
-      rows[i].second = analyse_disc_run(report::run_variant_case(base, v, run_dir, runs), run_dir, false);
+      rows[i].second = analyse_disc_run(report::run_variant_case(base, v, run_dir, runs), run_dir, "");
   });
   std::vector<std::string> failed;
   for (const auto& o : outcome) failed.push_back(o.error);

@@ -37,7 +37,7 @@ bool outer_line_driven(const CaseConfig& c) {
   return false;
 }
 
-GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
+GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir) {
   DSPDEM_CHECK(c.mesh_generator == "galvez_beam", "{}: the Galvez beam scene needs the galvez_beam generator", c.path);
   GalvezResult r;
   r.run_dir = run_dir;
@@ -65,8 +65,8 @@ GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir,
   r.balance_max = *std::max_element(bal.begin(), bal.end());
   for (const char* k : {"kinetic", "internal", "external_work", "joint_elastic", "fracture_I", "fracture_II"})
     for (double v : s[k]) r.largest_energy = std::max(r.largest_energy, std::abs(v));
-  if (write_files) {
-    std::ofstream f(fs::path(run_dir) / "load.csv");
+  if (!files_dir.empty()) {
+    std::ofstream f(fs::path(files_dir) / "load.csv");
     f << "time_ms,cmod_mm,deflection_mm,load_kN\n";
     for (std::size_t i = 0; i < t.size(); ++i)
       f << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g}\n", 1e3 * t[i], 1e3 * cmod[i], -1e3 * defl[i], 1e-3 * P[i]);
@@ -103,13 +103,13 @@ GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir,
     r.path_back = report::trace_path(pieces, 1, 0, r.notch, r.D, bins, in_slab, &back, w);
     if (!r.path_mid.empty()) r.top_y = r.path_mid.back().first, r.top_x = r.path_mid.back().second;
   }
-  if (write_files) {
-    std::ofstream f(fs::path(run_dir) / "crack_path.csv");
+  if (!files_dir.empty()) {
+    std::ofstream f(fs::path(files_dir) / "crack_path.csv");
     f << "plane,y_mm,x_mm\n";
     for (const auto& [name, path] :
          {std::pair{"mid", &r.path_mid}, std::pair{"front", &r.path_front}, std::pair{"back", &r.path_back}})
       for (const auto& [y, x] : *path) f << fmt::format("{},{:.6g},{:.6g}\n", name, 1e3 * y, 1e3 * x);
-    std::ofstream m(fs::path(run_dir) / "crack_mid.csv");  // numeric, for the plot
+    std::ofstream m(fs::path(files_dir) / "crack_mid.csv");  // numeric, for the plot
     m << "x_mm,y_mm\n";
     for (const auto& [y, x] : r.path_mid) m << fmt::format("{:.6g},{:.6g}\n", 1e3 * x, 1e3 * y);
   }

@@ -42,8 +42,8 @@ bool outer_line_held(const CaseConfig& c);
 /// Whether a condition moves or loads that line in y (a nonzero velocity or force).
 bool outer_line_driven(const CaseConfig& c);
 
-/// Analyses the run in `run_dir` of case `c`; with `write_files`, writes load.csv and
+/// Analyses the run in `run_dir` of case `c`; with a `files_dir`, writes load.csv and
 /// crack_path.csv there.
-GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir, bool write_files);
+GalvezResult analyse_galvez_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir);
 
 }  // namespace dspdem

@@ -92,19 +92,19 @@ std::string loading_text(const GalvezResult& r) {
 int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
   const report::ReportDirs dirs = report::prepare_report_run(c, a);
-  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
-  const GalvezResult r = analyse_galvez_run(c, run_dir, true);
-  const fs::path img = fs::path(run_dir) / "images";
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
+  const GalvezResult r = analyse_galvez_run(c, run_dir, files);
+  const fs::path img = fs::path(files) / "images";
   if (!a.no_render) {
     RenderArgs ra;
-    ra.run_dir = run_dir;
+    ra.run_dir = run_dir, ra.out_dir = files;
     render_command(ra);  // the case's views: stress x100, fragments, cracks
   }
   fs::create_directories(img / "plots");
   auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& title,
                   const std::string& png) {
     render::PlotSpec s{x, std::move(y), "", title};
-    render::plot_csv((fs::path(run_dir) / csv).string(), s, (img / "plots" / png).string());
+    render::plot_csv((fs::path(files) / csv).string(), s, (img / "plots" / png).string());
   };
   plot("load.csv", "cmod_mm", {"load_kN"}, "actuator load [kN] against CMOD [mm]", "load_cmod.png");
   plot("load.csv", "deflection_mm", {"load_kN"}, "actuator load [kN] against load-point deflection [mm]",
@@ -120,7 +120,7 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<GalvezResult> rows(variants.size());
     rows[0] = r;
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
-      rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, false);
+      rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, "");
     });
     for (std::size_t i = 0; i < variants.size(); ++i) {
       const auto& v = variants[i];
@@ -141,7 +141,7 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
   }
 
-  report::Document doc(dir, run_dir);
+  report::Document doc(dir, files);
   doc.title("Galvez notched beam: report");
   doc.para(fmt::format(
       "Case `{}` ({}), run in `{}`. Paper: section 2.3 (dspdem's README, M5); "
@@ -149,7 +149,7 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       "load-CMOD envelope and crack trajectory (Galvez et al. 1998) were not found in a readable source, so this "
       "report compares with no experimental number; the crack path is compared with the paper's qualitative "
       "description (from the notch towards the loading side).",
-      c.path, c.name, doc.run_link("")));
+      c.path, c.name, dirs.run_from_dir()));
   doc.para(fmt::format(
       "Beam depth D = {:.0f} mm, thickness {:.0f} mm, notch {:.0f} mm; {} elements, {} joints; loading line at x = "
       "{:+.0f} mm; {}. Run: {} steps of {}, {:.1f} s wall time.",

@@ -42,7 +42,7 @@ std::vector<PlaneCrack> crack_planes(const std::vector<report::CrackPiece>& piec
 }
 }  // namespace
 
-MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
+MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir) {
   DSPDEM_CHECK(c.mesh_generator == "murray_beam", "{}: the impact beam scene needs the murray_beam generator", c.path);
   MurrayResult r;
   r.run_dir = run_dir;
@@ -94,8 +94,8 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
     r.support_impulse = J;
   }
   r.kinetic_start = s["kinetic"][0], r.kinetic_end = s["kinetic"][n - 1];
-  if (write_files) {
-    std::ofstream f(fs::path(run_dir) / "murray_series.csv");
+  if (!files_dir.empty()) {
+    std::ofstream f(fs::path(files_dir) / "murray_series.csv");
     f << "time_ms,midspan_deflection_mm,max_deflection_mm,impactor_left_vy,impactor_right_vy,impactor_left_kN,"
          "impactor_right_kN,support_left_kN,support_right_kN\n";
     for (std::size_t i = 0; i < n; ++i)
@@ -116,8 +116,8 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
     for (const auto& p : history.back().largest)
       if (p.mass >= main_mass) r.pieces.push_back({p.mass, p.mass / r.total_mass, p.x, p.y});
   r.main_pieces = static_cast<int>(r.pieces.size());
-  if (write_files) {
-    std::ofstream f(fs::path(run_dir) / "fragments_time.csv");
+  if (!files_dir.empty()) {
+    std::ofstream f(fs::path(files_dir) / "fragments_time.csv");
     f << "time_ms,fragments,main_pieces\n";
     for (const auto& fh : history)
       f << fmt::format("{:.6g},{},{}\n", 1e3 * fh.time, fh.count, fh.count_at_least(main_mass));
@@ -152,8 +152,8 @@ MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir,
   std::stable_sort(r.cracks.begin(), r.cracks.end(), [](const BeamCrack& a, const BeamCrack& b) {
     return a.t_first < b.t_first || (a.t_first == b.t_first && a.x < b.x);
   });
-  if (write_files) {
-    std::ofstream f(fs::path(run_dir) / "cracks.csv");
+  if (!files_dir.empty()) {
+    std::ofstream f(fs::path(files_dir) / "cracks.csv");
     f << "x_mm,first_ms,y_first_mm,y_lo_mm,y_hi_mm,through_ms,final_fraction\n";
     for (const auto& k : r.cracks)
       f << fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4f}\n", 1e3 * k.x, 1e3 * k.t_first,

@@ -54,8 +54,8 @@ struct MurrayResult {
   long steps = 0, elements = 0, joints = 0;
 };
 
-/// Analyses the run in `run_dir` of case `c`; with `write_files`, writes murray_series.csv
+/// Analyses the run in `run_dir` of case `c`; with a `files_dir`, writes murray_series.csv
 /// (times in ms, deflections in mm, forces in kN), fragments_time.csv and cracks.csv there.
-MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir, bool write_files);
+MurrayResult analyse_murray_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir);
 
 }  // namespace dspdem

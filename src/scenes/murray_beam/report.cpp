@@ -82,19 +82,19 @@ std::vector<std::string> study_row(const report::Variant& v, const MurrayResult&
 int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
   const report::ReportDirs dirs = report::prepare_report_run(c, a);
-  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
-  const MurrayResult r = analyse_murray_run(c, run_dir, true);
-  const fs::path img = fs::path(run_dir) / "images";
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
+  const MurrayResult r = analyse_murray_run(c, run_dir, files);
+  const fs::path img = fs::path(files) / "images";
   if (!a.no_render) {
     RenderArgs ra;
-    ra.run_dir = run_dir;
+    ra.run_dir = run_dir, ra.out_dir = files;
     render_command(ra);  // the case's views: fragments, cracks, stress
   }
   fs::create_directories(img / "plots");
   auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& title,
                   const std::string& png) {
     render::PlotSpec s{x, std::move(y), "", title};
-    render::plot_csv((fs::path(run_dir) / csv).string(), s, (img / "plots" / png).string());
+    render::plot_csv((fs::path(files) / csv).string(), s, (img / "plots" / png).string());
   };
   plot("murray_series.csv", "time_ms", {"midspan_deflection_mm", "max_deflection_mm"},
        "deflection [mm] against time [ms]: mid-span (bottom) and largest over the bottom face", "deflection.png");
@@ -111,7 +111,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     std::vector<MurrayResult> rows(variants.size());
     rows[0] = r;
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
-      rows[i] = analyse_murray_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, false);
+      rows[i] = analyse_murray_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, "");
     });
     for (std::size_t i = 0; i < variants.size(); ++i) {
       if (!out[i].error.empty()) {
@@ -123,7 +123,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
   }
 
-  report::Document doc(dir, run_dir);
+  report::Document doc(dir, files);
   doc.title("Impact beam (Murray et al. 2007): report");
   doc.para(fmt::format(
       "Case `{}` ({}), run in `{}`. Paper: section 2.4 (dspdem's README, M5); reference data and sources: "
@@ -131,7 +131,7 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
       "under the impactors, then near the quarter points, and that the beam ends in 5 pieces as in the test; it "
       "gives no number for the deflection. The test's own records (FHWA-HRT-05-063, Oldani's report) were not "
       "found in a readable source.",
-      c.path, c.name, doc.run_link("")));
+      c.path, c.name, dirs.run_from_dir()));
   doc.para(fmt::format(
       "Beam {:.1f} x {:.1f} x {:.1f} mm ({:.1f} kg), span {:.1f} mm, impactors {:.1f} mm apart; {} hexahedra, {} "
       "joints. Run: {} steps of {}, {:.1f} s wall time.",

@@ -30,7 +30,7 @@ long particle_material(const CaseConfig& c) {
 }
 }  // namespace
 
-PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_dir, bool write_files) {
+PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir) {
   DSPDEM_CHECK(c.mesh_generator == "packing", "{}: the packing scene needs the packing generator", c.path);
   PackingResult r;
   r.run_dir = run_dir;
@@ -108,10 +108,10 @@ PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_di
   r.particle_steps_per_s =
       r.wall_s > 0 ? static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.wall_s : 0;
 
-  if (write_files) {
+  if (!files_dir.empty()) {
     const double weight = sum.total_mass * c.gravity.norm();
-    std::ofstream f(fs::path(run_dir) / "packing_series.csv");
-    DSPDEM_CHECK(f.good(), "cannot write '{}/packing_series.csv'", run_dir);
+    std::ofstream f(fs::path(files_dir) / "packing_series.csv");
+    DSPDEM_CHECK(f.good(), "cannot write '{}/packing_series.csv'", files_dir);
     f << "time,kinetic_over_released,log10_kinetic_over_released,contacts_per_particle,floor_force_over_weight\n";
     for (std::size_t i = 0; i < n; ++i) {
       const double ratio = w[i] > 0 ? ke[i] / w[i] : 1.0;
@@ -119,8 +119,8 @@ PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_di
                        nc[i] / static_cast<double>(r.particles),
                        s.has("floor_fy") && weight > 0 ? -s["floor_fy"][i] / weight : 0.0);
     }
-    std::ofstream h(fs::path(run_dir) / "heap_surface.csv");
-    DSPDEM_CHECK(h.good(), "cannot write '{}/heap_surface.csv'", run_dir);
+    std::ofstream h(fs::path(files_dir) / "heap_surface.csv");
+    DSPDEM_CHECK(h.good(), "cannot write '{}/heap_surface.csv'", files_dir);
     h << "x,z,surface_height\n";
     for (long iz = 0; iz < gz; ++iz)
       for (long ix = 0; ix < gx; ++ix)

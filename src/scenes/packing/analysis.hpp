@@ -30,9 +30,9 @@ struct PackingResult {
 };
 
 /// Analyses the run in `run_dir` of case `c` (the packing generator's box and particles).
-/// With `write_files`, writes packing_series.csv (time, kinetic / released, contacts per
+/// With a `files_dir`, writes packing_series.csv (time, kinetic / released, contacts per
 /// particle, floor force over the heap's weight) and heap_surface.csv (the surface grid)
 /// there. Throws Error naming the run and what is missing.
-PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_dir, bool write_files);
+PackingResult analyse_packing_run(const CaseConfig& c, const std::string& run_dir, const std::string& files_dir);
 
 }  // namespace dspdem

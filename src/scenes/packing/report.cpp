@@ -33,12 +33,12 @@ std::string particle_kind(const CaseConfig& c) {
 int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
   const report::ReportDirs dirs = report::prepare_report_run(c, a);
-  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir;
-  const PackingResult r = analyse_packing_run(c, run_dir, true);
-  const fs::path img = fs::path(run_dir) / "images";
+  const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
+  const PackingResult r = analyse_packing_run(c, run_dir, files);
+  const fs::path img = fs::path(files) / "images";
   fs::create_directories(img / "plots");
   auto plot = [&](const std::string& y, const std::string& title, const std::string& png) {
-    render::plot_csv((fs::path(run_dir) / "packing_series.csv").string(), render::PlotSpec{"time", {y}, "", title},
+    render::plot_csv((fs::path(files) / "packing_series.csv").string(), render::PlotSpec{"time", {y}, "", title},
                      (img / "plots" / png).string());
   };
   plot("log10_kinetic_over_released", "log10(kinetic energy / potential energy released) against time [s]",
@@ -47,7 +47,7 @@ int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
   plot("floor_force_over_weight", "floor force over the particles' weight against time [s]", "floor_force.png");
   if (!a.no_render) {
     RenderArgs ra;  // the case's views over all frames, with the animation
-    ra.run_dir = run_dir;
+    ra.run_dir = run_dir, ra.out_dir = files;
     render_command(ra);
     for (const char* cam : {"front", "side", "iso"}) {
       MontageArgs m;
@@ -59,14 +59,14 @@ int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
   }
 
   const bool rest = r.t_rest >= 0;
-  report::Document doc(dir, run_dir);
+  report::Document doc(dir, files);
   doc.title("Packing (paper section 2.1): report");
   doc.para(fmt::format(
       "Case `{}` ({}), run in `{}`: {} {} particles fall under gravity into a rigid open box "
       "{:.1f} x {:.1f} m (footprint) x {:.1f} m (height). Reference data and sources: src/scenes/packing/REFERENCE.md "
       "in dspdem. The paper uses this case for speed only: 5346 tetrahedra, {:.0f} s with its method against {:.0f} s "
       "with FDEM, on its own machine; it reports no heap geometry.",
-      c.path, c.name, doc.run_link(""), r.particles, particle_kind(c), r.box_x, r.box_z, r.box_height, kPaperSeconds,
+      c.path, c.name, dirs.run_from_dir(), r.particles, particle_kind(c), r.box_x, r.box_z, r.box_height, kPaperSeconds,
       kPaperFdemSeconds));
   doc.section("The heap at the end");
   const double ratio = r.released > 0 ? r.kinetic_end / r.released : 1.0;
