@@ -10,22 +10,23 @@ namespace dspdem::report {
 
 class FilesAside {
  public:
-  /// Moves each of `files` (paths relative to `dir`) that exists into DIR/.files_aside/. A
-  /// .files_aside/ left by a report that was killed outright is put back first: its files are
-  /// those of the report.md still in the folder.
+  /// Moves each of `files` (paths relative to `dir`) that exists into DIR/.files_aside/; if
+  /// one cannot be moved, puts back those that were and throws Error. A .files_aside/ left by
+  /// a report that was killed outright is put back first (its files are the earlier report's).
   FilesAside(const std::string& dir, std::vector<std::string> files);
   FilesAside(const FilesAside&) = delete;
   FilesAside& operator=(const FilesAside&) = delete;
   /// The report is written: the files set aside are dropped.
   void drop();
   /// Not dropped: each of `files` as the earlier report left it (put back over what this one
-  /// wrote meanwhile, or removed when the earlier one had none).
+  /// wrote meanwhile, or removed when the earlier one had none). A file that cannot be put
+  /// back stays in DIR/.files_aside/, for the next report into DIR to put back.
   ~FilesAside();
 
  private:
-  void put_back() const;
+  void restore(bool remove_new) const;
   std::string dir_, aside_;
-  std::vector<std::string> files_;
+  std::vector<std::string> files_, moved_;
   bool dropped_ = false;
 };
 

@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "io/staging.hpp"
 #include "report/resume.hpp"
+#include "report/run_place.hpp"
 
 namespace dspdem::report {
 
@@ -25,18 +25,9 @@ ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   }
   DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
                "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);
-  // Derived files beside another run would read as that run's.
+  report::prepare_derived_place(d.files_dir, d.run_dir);
   std::error_code differ;
-  if (fs::equivalent(d.files_dir, d.run_dir, differ)) {
-    d.files_dir = d.run_dir;
-  } else {
-    for (const char* f : {"summary.json", "run.pvd", failed_folder, interrupted_folder})
-      DSPDEM_CHECK(!fs::exists(fs::path(d.files_dir) / f),
-                   "--from-run {}: {} holds a run of its own, where the report would write what it derives from "
-                   "the run given; give --out a folder without one",
-                   d.run_dir, d.files_dir);
-  }
-  fs::create_directories(d.files_dir);
+  if (fs::equivalent(d.files_dir, d.run_dir, differ)) d.files_dir = d.run_dir;
   return d;
 }
 

@@ -20,8 +20,8 @@ struct ReportDirs {
 
 /// Makes DIR, runs the case into DIR/run (with --resume, keeps or continues the same run an
 /// earlier report left there) unless --from-run names a finished run (which must hold a
-/// summary.json: Error otherwise; and DIR/run, where the report then writes, must be that run
-/// or hold none: Error otherwise), and returns the folders.
+/// summary.json: Error otherwise; DIR/run, where the report then writes, is made ready by
+/// prepare_derived_place), and returns the folders.
 ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a);
 
 }  // namespace dspdem::report

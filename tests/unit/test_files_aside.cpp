@@ -1,6 +1,7 @@
 // A report written again into its folder sets the earlier report's optional files aside:
 // dropped once the new report is written, put back (and the new ones removed) when it stops
-// first, also after a report killed outright left them aside.
+// first, also after a report killed outright left them aside; none lost when one cannot be
+// set aside.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/error.hpp"
 #include "report/files_aside.hpp"
 
 using dspdem::report::FilesAside;
@@ -75,6 +77,18 @@ TEST_F(FilesAsideTest, FilesAReportKilledOutrightLeftAsideArePutBackFirst) {
   { FilesAside aside(dir_.string(), listed_); }  // stops too, without a report
   EXPECT_EQ(get("a.csv"), "earlier a");
   EXPECT_EQ(get("images/b.png"), "earlier b");
-  EXPECT_EQ(get("c.csv"), "(none)");
+  // Not set aside by the killed report, so not told from one it had not reached: left.
+  EXPECT_EQ(get("c.csv"), "half written");
+  EXPECT_FALSE(fs::exists(dir_ / ".files_aside"));
+}
+
+TEST_F(FilesAsideTest, FilesThatCannotBeSetAsideAreRefusedWithTheOthersPutBack) {
+  // The folder `sub` after its own file: the file goes aside into .files_aside/sub/, and the
+  // folder then cannot go onto that one. Nothing of the earlier report is lost.
+  fs::create_directories(dir_ / "sub");
+  put("sub/f.csv", "earlier f");
+  EXPECT_THROW(FilesAside(dir_.string(), {"a.csv", "sub/f.csv", "sub"}), dspdem::Error);
+  EXPECT_EQ(get("a.csv"), "earlier a");
+  EXPECT_EQ(get("sub/f.csv"), "earlier f");
   EXPECT_FALSE(fs::exists(dir_ / ".files_aside"));
 }

@@ -12,13 +12,13 @@
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "io/run_summary.hpp"
-#include "io/staging.hpp"
 #include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/earlier_reports.hpp"
 #include "report/files_aside.hpp"
 #include "report/resume.hpp"
 #include "report/run_data.hpp"
+#include "report/run_place.hpp"
 #include "run/checkpoint.hpp"
 #include "run/montage.hpp"
 #include "run/process_pool.hpp"
@@ -197,13 +197,6 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
   return s + "." + none;
 }
 
-// A run's folder: finished, or left failed or stopped (io/staging.hpp).
-bool holds_a_run(const fs::path& d) {
-  for (const char* f : {"summary.json", "run.pvd", failed_folder, interrupted_folder})
-    if (fs::exists(d / f)) return true;
-  return false;
-}
-
 // The report's files that only some reports write (with --realisations, --draws, runs past
 // the paper's moment, a render): one an earlier report left in this folder would otherwise
 // stay beside a report.md that no longer names it, and read as this report's. Set aside once
@@ -334,7 +327,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         // What is derived from the run goes to its place here, which must be the run itself or
         // hold no run: beside another run it would read as that run's.
         std::error_code differ;
-        DSPDEM_CHECK(fs::equivalent(own_dir[i], e.dir, differ) || !holds_a_run(own_dir[i]),
+        DSPDEM_CHECK(fs::equivalent(own_dir[i], e.dir, differ) || !report::holds_a_run(own_dir[i]),
                      "--from-run: {} holds a run of this report's folder, where the report would write what it "
                      "derives from the run in {}; give --out a folder without runs, or the earlier report's own",
                      own_dir[i], e.dir);
@@ -357,6 +350,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
           : i >= first_realisation ? ", with as many --realisations"
                                    : "");
     }
+    // Every run found and none refused: only now is anything of this folder changed.
+    for (std::size_t i = 0; i < plan.size(); ++i)
+      if (!earlier[i].dir.empty()) report::prepare_derived_place(own_dir[i], earlier[i].dir);
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
       const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs,

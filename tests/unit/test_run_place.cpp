@@ -1,0 +1,63 @@
+// Where a report writes what it derives from a run it did not make: never beside another run,
+// and a place filled from another run emptied first, but only one a report filled.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "report/run_place.hpp"
+
+using namespace dspdem;
+namespace fs = std::filesystem;
+
+namespace {
+
+class RunPlace : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dspdem_run_place_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    for (const char* r : {"a", "b"}) {
+      fs::create_directories(dir_ / r);
+      std::ofstream(dir_ / r / "summary.json") << "{}";
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(RunPlace, ARunsOwnFolderAndAnEmptyPlaceAreReadyAndAnotherRunIsRefused) {
+  EXPECT_TRUE(report::holds_a_run((dir_ / "a").string()));
+  report::prepare_derived_place((dir_ / "a").string(), (dir_ / "a" / ".").string());  // the run itself
+  EXPECT_FALSE(fs::exists(dir_ / "a" / "derived_from"));
+  report::prepare_derived_place((dir_ / "rep" / "run").string(), (dir_ / "a").string());
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "derived_from"));
+  EXPECT_THROW(report::prepare_derived_place((dir_ / "b").string(), (dir_ / "a").string()), Error);
+  // A run killed outright leaves only its staging folder: still a run.
+  fs::create_directories(dir_ / "c" / ".staging-12345");
+  EXPECT_TRUE(report::holds_a_run((dir_ / "c").string()));
+  EXPECT_THROW(report::prepare_derived_place((dir_ / "c").string(), (dir_ / "a").string()), Error);
+  EXPECT_TRUE(fs::exists(dir_ / "c" / ".staging-12345"));
+}
+
+TEST_F(RunPlace, APlaceFilledFromAnotherRunIsEmptiedAndOneNoReportFilledIsRefused) {
+  const std::string place = (dir_ / "rep" / "run").string();
+  report::prepare_derived_place(place, (dir_ / "a").string());
+  std::ofstream(fs::path(place) / "load.csv") << "from a";
+  report::prepare_derived_place(place, (dir_ / "a").string());  // the same run: kept
+  EXPECT_TRUE(fs::exists(fs::path(place) / "load.csv"));
+  report::prepare_derived_place(place, (dir_ / "b").string());  // another: emptied
+  EXPECT_FALSE(fs::exists(fs::path(place) / "load.csv"));
+  EXPECT_TRUE(fs::exists(fs::path(place) / "derived_from"));
+  // A folder with files but no record of a report is never emptied.
+  fs::create_directories(dir_ / "mine");
+  std::ofstream(dir_ / "mine" / "notes.txt") << "keep";
+  EXPECT_THROW(report::prepare_derived_place((dir_ / "mine").string(), (dir_ / "a").string()), Error);
+  EXPECT_TRUE(fs::exists(dir_ / "mine" / "notes.txt"));
+}
