@@ -14,10 +14,15 @@ FilesAside::FilesAside(const std::string& dir, std::vector<std::string> files)
   // A killed report's: what it set aside is the earlier report's, put back over what it wrote.
   // A listed file it did not set aside is left where it is: which of those it wrote cannot be
   // told from one it had not reached yet.
+  fs::remove_all(aside_ + ".dropped");  // a drop that stopped partway: nothing to keep
   if (fs::exists(aside_)) {
     moved_ = files_;
     restore(false);
     moved_.clear();
+    DSPDEM_CHECK(!fs::exists(aside_),
+                 "'{}' holds files an earlier report set aside that cannot all be put back; put them back into '{}' "
+                 "by hand (or remove them) and run the report again",
+                 aside_, dir_);
   }
   try {
     for (const auto& f : files_) {
@@ -36,8 +41,13 @@ FilesAside::FilesAside(const std::string& dir, std::vector<std::string> files)
 
 void FilesAside::drop() {
   dropped_ = true;
+  // Renamed first, in one step: a drop that stops partway must not leave files that the next
+  // report would put back over this one's.
   std::error_code e;
-  fs::remove_all(aside_, e);
+  const std::string gone = aside_ + ".dropped";
+  fs::remove_all(gone, e);
+  fs::rename(aside_, gone, e);
+  fs::remove_all(gone, e);
 }
 
 void FilesAside::restore(bool remove_new) const {

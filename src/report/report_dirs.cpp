@@ -20,12 +20,13 @@ ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   d.run_dir = a.from_runs.empty() ? d.files_dir : a.from_runs.front();
   if (a.from_runs.empty()) {
     fs::create_directories(d.dir);
+    clear_derived_place(d.run_dir);
     run_or_resume(c, d.run_dir, a.runs);
     return d;
   }
   DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
                "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);
-  report::prepare_derived_place(d.files_dir, d.run_dir);
+  prepare_derived_place(d.files_dir, d.run_dir);
   std::error_code differ;
   if (fs::equivalent(d.files_dir, d.run_dir, differ)) d.files_dir = d.run_dir;
   return d;

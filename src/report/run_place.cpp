@@ -1,5 +1,6 @@
 #include "report/run_place.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,7 +14,21 @@ namespace fs = std::filesystem;
 
 namespace {
 constexpr const char* kDerivedFrom = "derived_from";
+
+std::string recorded_run(const fs::path& place) {
+  std::ostringstream was;
+  was << std::ifstream(place / kDerivedFrom).rdbuf();
+  return was.str();
 }
+
+// Everything in the place but its record, then the record: a removal that stops partway
+// leaves a place still known as a report's.
+void empty_place(const fs::path& place) {
+  for (const auto& entry : fs::directory_iterator(place))
+    if (entry.path().filename() != kDerivedFrom) fs::remove_all(entry.path());
+  fs::remove(place / kDerivedFrom);
+}
+}  // namespace
 
 bool holds_a_run(const std::string& dir) {
   for (const char* f : {"summary.json", "run.pvd", failed_folder, interrupted_folder})
@@ -24,26 +39,38 @@ bool holds_a_run(const std::string& dir) {
   return false;
 }
 
-void prepare_derived_place(const std::string& place, const std::string& run_dir) {
+void check_derived_place(const std::string& place, const std::string& run_dir) {
   std::error_code differ;
   if (fs::equivalent(place, run_dir, differ)) return;
   DSPDEM_CHECK(!holds_a_run(place),
-               "{} holds a run of its own, where the report would write what it derives from the run in {}; give "
-               "--out a folder without one",
+               "{} holds a run of its own (a summary.json, run.pvd, failed_run/, interrupted_run/ or a run's staging "
+               "folder), where the report would write what it derives from the run in {}; give --out a folder "
+               "without one",
                place, run_dir);
-  const std::string from = fs::weakly_canonical(run_dir).string();
-  const fs::path mark = fs::path(place) / kDerivedFrom;
-  if (fs::exists(place) && !fs::is_empty(place)) {
-    // Only a folder a report filled is ever emptied.
-    DSPDEM_CHECK(fs::exists(mark),
+  const fs::path p = fs::weakly_canonical(place), r = fs::weakly_canonical(run_dir);
+  const auto [in_p, in_r] = std::mismatch(p.begin(), p.end(), r.begin(), r.end());
+  DSPDEM_CHECK(in_p != p.end(), "the run in {} lies inside {}, where the report writes what it derives from it",
+               run_dir, place);
+  if (fs::exists(place) && !fs::is_empty(place))
+    DSPDEM_CHECK(fs::exists(fs::path(place) / kDerivedFrom),
                  "{} holds files that no report derived from a run (no {} there); give --out another folder", place,
                  kDerivedFrom);
-    std::ostringstream was;
-    was << std::ifstream(mark).rdbuf();
-    if (was.str() != from) fs::remove_all(place);  // another run's: its images would show as this one's
-  }
+}
+
+void prepare_derived_place(const std::string& place, const std::string& run_dir) {
+  check_derived_place(place, run_dir);
+  std::error_code differ;
+  if (fs::equivalent(place, run_dir, differ)) return;
+  const std::string from = fs::weakly_canonical(run_dir).string();
+  if (fs::exists(fs::path(place) / kDerivedFrom) && recorded_run(place) != from) empty_place(place);
   fs::create_directories(place);
-  std::ofstream(mark) << from;
+  std::ofstream mark(fs::path(place) / kDerivedFrom);
+  mark << from;
+  DSPDEM_CHECK(mark.flush().good(), "cannot write '{}/{}'", place, kDerivedFrom);
+}
+
+void clear_derived_place(const std::string& place) {
+  if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place)) empty_place(place);
 }
 
 }  // namespace dspdem::report

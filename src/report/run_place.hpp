@@ -1,6 +1,7 @@
 // Where a report writes what it derives from a run it did not make (`report --from-run`): the
 // run's place in the report's own folder, never the run's folder, which may be another
-// report's and is only read.
+// report's and is only read. The place records the run it was filled from (derived_from), so
+// that a place filled from another run is emptied rather than mixed, and only such a place.
 #pragma once
 #include <string>
 
@@ -10,11 +11,18 @@ namespace dspdem::report {
 /// interrupted_run/), or running or killed (a staging folder, io/staging.hpp).
 bool holds_a_run(const std::string& dir);
 
-/// Makes `place` ready for what a report derives from the run in `run_dir`. Nothing to do when
-/// they are one folder. Error when `place` holds another run: derived files beside it would
-/// read as its; also when it holds files but no place/derived_from, which records the run a
-/// report filled it from: only such a folder is ever emptied, when it was filled from another
-/// run (its images would show as this run's).
+/// Whether `place` may take what a report derives from the run in `run_dir`, changing nothing:
+/// Error when it holds another run (derived files beside it would read as its), when the run
+/// lies inside it, or when it holds files but no derived_from (no report filled it).
+void check_derived_place(const std::string& place, const std::string& run_dir);
+
+/// check_derived_place, then makes `place` ready: nothing to do when it is the run itself; a
+/// place filled from another run is emptied first (its images would show as this run's); the
+/// run is recorded in place/derived_from.
 void prepare_derived_place(const std::string& place, const std::string& run_dir);
+
+/// A place a report filled from a run (derived_from, no run) that a run is now to be made in:
+/// emptied, so that nothing derived from the other run stays beside the new one.
+void clear_derived_place(const std::string& place);
 
 }  // namespace dspdem::report

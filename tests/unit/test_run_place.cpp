@@ -61,3 +61,24 @@ TEST_F(RunPlace, APlaceFilledFromAnotherRunIsEmptiedAndOneNoReportFilledIsRefuse
   EXPECT_THROW(report::prepare_derived_place((dir_ / "mine").string(), (dir_ / "a").string()), Error);
   EXPECT_TRUE(fs::exists(dir_ / "mine" / "notes.txt"));
 }
+
+TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmptiesOnlyAReportsPlace) {
+  const std::string place = (dir_ / "rep" / "run").string();
+  report::prepare_derived_place(place, (dir_ / "a").string());
+  std::ofstream(fs::path(place) / "load.csv") << "from a";
+  report::check_derived_place(place, (dir_ / "b").string());  // fine for b, and nothing changed
+  EXPECT_TRUE(fs::exists(fs::path(place) / "load.csv"));
+  // A run inside the place would go with it when the place is emptied.
+  fs::create_directories(fs::path(place) / "inner");
+  std::ofstream(fs::path(place) / "inner" / "summary.json") << "{}";
+  EXPECT_THROW(report::prepare_derived_place(place, (fs::path(place) / "inner").string()), Error);
+  EXPECT_TRUE(fs::exists(fs::path(place) / "inner" / "summary.json"));
+  fs::remove_all(fs::path(place) / "inner");
+  // A run to be made in a place a report filled: emptied; in a run's folder or one no report
+  // filled: nothing happens.
+  report::clear_derived_place(place);
+  EXPECT_TRUE(fs::exists(place) && fs::is_empty(place));
+  std::ofstream(dir_ / "a" / "load.csv") << "the run's own";
+  report::clear_derived_place((dir_ / "a").string());
+  EXPECT_TRUE(fs::exists(dir_ / "a" / "load.csv"));
+}

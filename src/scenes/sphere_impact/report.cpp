@@ -316,6 +316,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   // --from-run: where each run of the sweep was found, by plan index (the study's: none).
   std::vector<report::EarlierReportRun> earlier(a.from_runs.empty() ? 0 : plan.size());
   if (a.from_runs.empty()) {
+    for (const Planned& p : plan) report::clear_derived_place(p.dir);  // runs to be made there
     errors = run_planned(c, plan, jobs, a.runs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
@@ -324,13 +325,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       earlier[i] = report::find_earlier_report_run(sweep_roots, rel, reread_with(c, plan[i].sets).resolved_toml);
       const report::EarlierReportRun& e = earlier[i];
       if (!e.dir.empty()) {
-        // What is derived from the run goes to its place here, which must be the run itself or
-        // hold no run: beside another run it would read as that run's.
-        std::error_code differ;
-        DSPDEM_CHECK(fs::equivalent(own_dir[i], e.dir, differ) || !report::holds_a_run(own_dir[i]),
-                     "--from-run: {} holds a run of this report's folder, where the report would write what it "
-                     "derives from the run in {}; give --out a folder without runs, or the earlier report's own",
-                     own_dir[i], e.dir);
+        // What is derived from the run goes to its place here: checked now, changed only
+        // once every run is found.
+        report::check_derived_place(own_dir[i], e.dir);
         plan[i].dir = e.dir;
         continue;
       }
@@ -352,7 +349,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     }
     // Every run found and none refused: only now is anything of this folder changed.
     for (std::size_t i = 0; i < plan.size(); ++i)
-      if (!earlier[i].dir.empty()) report::prepare_derived_place(own_dir[i], earlier[i].dir);
+      if (!earlier[i].dir.empty())
+        report::prepare_derived_place(own_dir[i], earlier[i].dir);
+      else if (!errors[i].empty())
+        report::clear_derived_place(own_dir[i]);  // a failed row: nothing of another run beside it
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
       const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs,
