@@ -60,6 +60,7 @@ void FilesAside::restore(bool remove_new) const {
     const bool was = std::find(moved_.begin(), moved_.end(), f) != moved_.end();
     if (was && fs::exists(kept, e)) {
       fs::remove(at, e);
+      fs::create_directories(at.parent_path(), e);  // images/ may have gone meanwhile
       fs::rename(kept, at, e);
       all_back = all_back && !e;
     } else if (!was && remove_new) {

@@ -82,6 +82,15 @@ TEST_F(FilesAsideTest, FilesAReportKilledOutrightLeftAsideArePutBackFirst) {
   EXPECT_FALSE(fs::exists(dir_ / ".files_aside"));
 }
 
+TEST_F(FilesAsideTest, FilesAsideAreStillPutBackWhenTheirFolderWasRemovedMeanwhile) {
+  fs::create_directories(dir_ / ".files_aside" / "images");
+  fs::rename(dir_ / "images/b.png", dir_ / ".files_aside/images/b.png");
+  fs::remove_all(dir_ / "images");
+  { FilesAside aside(dir_.string(), listed_); }
+  EXPECT_EQ(get("images/b.png"), "earlier b");
+  EXPECT_FALSE(fs::exists(dir_ / ".files_aside"));
+}
+
 TEST_F(FilesAsideTest, FilesThatCannotBeSetAsideAreRefusedWithTheOthersPutBack) {
   // The folder `sub` after its own file: the file goes aside into .files_aside/sub/, and the
   // folder then cannot go onto that one. Nothing of the earlier report is lost.
