@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -28,6 +29,20 @@ void empty_place(const fs::path& place) {
     if (entry.path().filename() != kDerivedFrom) fs::remove_all(entry.path());
   fs::remove(place / kDerivedFrom);
 }
+// A run anywhere below the place's top level (a run made inside a place a report filled):
+// emptying the place would take it too.
+std::optional<fs::path> run_below(const fs::path& place) {
+  std::error_code e;
+  for (auto it = fs::recursive_directory_iterator(place, e); !e && it != fs::recursive_directory_iterator();
+       it.increment(e)) {
+    const std::string name = it->path().filename().string();
+    if (it->is_directory(e) &&
+        (is_staging_folder(it->path().string()) || name == failed_folder || name == interrupted_folder))
+      return it->path().parent_path();
+    if (name == "summary.json" || name == "run.pvd") return it->path().parent_path();
+  }
+  return std::nullopt;
+}
 }  // namespace
 
 bool holds_a_run(const std::string& dir) {
@@ -47,6 +62,11 @@ void check_derived_place(const std::string& place, const std::string& run_dir) {
                "folder), where the report would write what it derives from the run in {}; give --out a folder "
                "without one",
                place, run_dir);
+  if (const auto below = run_below(place))
+    fail(
+        "{} holds a run below it, in {}, which emptying it for the run in {} would take too; give --out a folder "
+        "without one",
+        place, below->string(), run_dir);
   const fs::path p = fs::weakly_canonical(place), r = fs::weakly_canonical(run_dir);
   const auto [in_p, in_r] = std::mismatch(p.begin(), p.end(), r.begin(), r.end());
   DSPDEM_CHECK(in_p != p.end(), "the run in {} lies inside {}, where the report writes what it derives from it",
@@ -70,7 +90,7 @@ void prepare_derived_place(const std::string& place, const std::string& run_dir)
 }
 
 void clear_derived_place(const std::string& place) {
-  if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place)) empty_place(place);
+  if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place) && !run_below(place)) empty_place(place);
 }
 
 }  // namespace dspdem::report

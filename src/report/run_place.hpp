@@ -12,8 +12,8 @@ namespace dspdem::report {
 bool holds_a_run(const std::string& dir);
 
 /// Whether `place` may take what a report derives from the run in `run_dir`, changing nothing:
-/// Error when it holds another run (derived files beside it would read as its), when the run
-/// lies inside it, or when it holds files but no derived_from (no report filled it).
+/// Error when it holds another run (derived files beside it would read as its), a run anywhere
+/// below it, the run given inside it, or files but no derived_from (no report filled it).
 void check_derived_place(const std::string& place, const std::string& run_dir);
 
 /// check_derived_place, then makes `place` ready: nothing to do when it is the run itself; a
@@ -21,8 +21,9 @@ void check_derived_place(const std::string& place, const std::string& run_dir);
 /// run is recorded in place/derived_from.
 void prepare_derived_place(const std::string& place, const std::string& run_dir);
 
-/// A place a report filled from a run (derived_from, no run) that a run is now to be made in:
-/// emptied, so that nothing derived from the other run stays beside the new one.
+/// A place a report filled from a run (derived_from, no run in it or below it) that a run is
+/// now to be made in: emptied, so that nothing derived from the other run stays beside the
+/// new one.
 void clear_derived_place(const std::string& place);
 
 }  // namespace dspdem::report

@@ -73,7 +73,14 @@ TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmpties
   std::ofstream(fs::path(place) / "inner" / "summary.json") << "{}";
   EXPECT_THROW(report::prepare_derived_place(place, (fs::path(place) / "inner").string()), Error);
   EXPECT_TRUE(fs::exists(fs::path(place) / "inner" / "summary.json"));
+  // So would any other run below its top level: refused for another run, and not cleared.
+  EXPECT_THROW(report::prepare_derived_place(place, (dir_ / "b").string()), Error);
+  report::clear_derived_place(place);
+  EXPECT_TRUE(fs::exists(fs::path(place) / "inner" / "summary.json"));
   fs::remove_all(fs::path(place) / "inner");
+  fs::create_directories(fs::path(place) / "deep" / ".staging-4321");  // a killed run's, deeper
+  EXPECT_THROW(report::check_derived_place(place, (dir_ / "b").string()), Error);
+  fs::remove_all(fs::path(place) / "deep");
   // A run to be made in a place a report filled: emptied; in a run's folder or one no report
   // filled: nothing happens.
   report::clear_derived_place(place);
