@@ -29,28 +29,30 @@ void empty_place(const fs::path& place) {
     if (entry.path().filename() != kDerivedFrom) fs::remove_all(entry.path());
   fs::remove(place / kDerivedFrom);
 }
+// An entry that marks its folder as a run's: finished, failed, stopped, or running or killed.
+bool marks_a_run(const fs::directory_entry& entry) {
+  const std::string name = entry.path().filename().string();
+  std::error_code e;
+  if (entry.is_directory(e))
+    return name == failed_folder || name == interrupted_folder || is_staging_folder(entry.path().string());
+  return name == "summary.json" || name == "run.pvd";
+}
+
 // A run anywhere below the place's top level (a run made inside a place a report filled):
 // emptying the place would take it too.
 std::optional<fs::path> run_below(const fs::path& place) {
   std::error_code e;
   for (auto it = fs::recursive_directory_iterator(place, e); !e && it != fs::recursive_directory_iterator();
-       it.increment(e)) {
-    const std::string name = it->path().filename().string();
-    if (it->is_directory(e) &&
-        (is_staging_folder(it->path().string()) || name == failed_folder || name == interrupted_folder))
-      return it->path().parent_path();
-    if (name == "summary.json" || name == "run.pvd") return it->path().parent_path();
-  }
+       it.increment(e))
+    if (marks_a_run(*it)) return it->path().parent_path();
   return std::nullopt;
 }
 }  // namespace
 
 bool holds_a_run(const std::string& dir) {
-  for (const char* f : {"summary.json", "run.pvd", failed_folder, interrupted_folder})
-    if (fs::exists(fs::path(dir) / f)) return true;
   std::error_code e;
   for (const auto& entry : fs::directory_iterator(dir, e))
-    if (entry.is_directory(e) && is_staging_folder(entry.path().string())) return true;
+    if (marks_a_run(entry)) return true;
   return false;
 }
 
