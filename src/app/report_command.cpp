@@ -3,8 +3,10 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "core/folder_lock.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
+#include "report/report_dirs.hpp"
 #include "run/run_case.hpp"
 #include "run/series_units.hpp"
 #include "scenes/registry.hpp"
@@ -42,6 +44,9 @@ int report_command(const report::ReportArgs& a) {
   set_setup_stop_hint(
       " (in the report's run then starting); the same report with --resume keeps the runs that finished and "
       "runs the rest");
+  // Held until the report is written or stops: a second report into the folder meanwhile is
+  // refused here, before it changes anything in it.
+  const FolderLock lock(report::report_folder(c, a), ".report.lock", "another report");
   try {
     return scene.report(c, a);
   } catch (const Interrupted& e) {

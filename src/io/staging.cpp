@@ -189,16 +189,28 @@ std::string Staging::keep_as(const std::string& name) {
   return dst.string();
 }
 
-void write_file_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    DSPDEM_CHECK(f.good(), "cannot write '{}'", tmp);
-    f << text;
-    f.flush();
-    DSPDEM_CHECK(f.good(), "error while writing '{}'", tmp);
+namespace {
+void write_temporary(const std::string& tmp, const std::string& text) {
+  std::ofstream f(tmp, std::ios::binary);
+  DSPDEM_CHECK(f.good(), "cannot write '{}'", tmp);
+  f << text;
+  f.flush();
+  DSPDEM_CHECK(f.good(), "error while writing '{}'", tmp);
+}
+}  // namespace
+
+void write_file_atomic(const std::string& path, const std::string& text) { write_files_atomic({{path, text}}); }
+
+void write_files_atomic(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::size_t written = 0;
+  try {
+    for (; written < files.size(); ++written) write_temporary(files[written].first + ".tmp", files[written].second);
+  } catch (...) {
+    std::error_code ignore;  // the one that failed too: it may be there, half written
+    for (std::size_t i = 0; i <= written && i < files.size(); ++i) fs::remove(files[i].first + ".tmp", ignore);
+    throw;
   }
-  fs::rename(tmp, path);
+  for (const auto& [path, text] : files) fs::rename(path + ".tmp", path);
 }
 
 }  // namespace dspdem

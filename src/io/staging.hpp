@@ -11,6 +11,7 @@
 // where there is no lock file (a file system without flock).
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dspdem {
@@ -69,5 +70,9 @@ bool left_by_killed_run(const std::string& dir);
 
 /// Writes `text` to `path` through a temporary file and a rename.
 void write_file_atomic(const std::string& path, const std::string& text);
+
+/// Writes several files (path, text) together: every one to its temporary file first, then
+/// the renames, so that a write that fails (a full disk) replaces none of them.
+void write_files_atomic(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace dspdem

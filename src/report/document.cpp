@@ -83,10 +83,15 @@ Document& Document::raw(const std::string& markdown) {
 std::string Document::run_link(const std::string& path_in_run) const { return rel_ + "/" + path_in_run; }
 
 std::string Document::write() const {
+  // All or none: a report that fails while writing leaves the earlier report's three files
+  // together (and its optional files, report/files_aside.hpp, beside them), never a new
+  // report.md beside an old report.html.
   const std::string p = (fs::path(dir_) / "report.md").string();
-  write_file_atomic(p, md_);
-  write_file_atomic((fs::path(dir_) / "report.html").string(), html_page(title_, markdown_to_html(md_)));
-  if (!headline_.scene.empty() && !headline_.title.empty()) write_headline(headline_, dir_);
+  std::vector<std::pair<std::string, std::string>> files = {
+      {p, md_}, {(fs::path(dir_) / "report.html").string(), html_page(title_, markdown_to_html(md_))}};
+  if (!headline_.scene.empty() && !headline_.title.empty())
+    files.emplace_back((fs::path(dir_) / "headline.json").string(), headline_json(headline_));
+  write_files_atomic(files);
   return p;
 }
 

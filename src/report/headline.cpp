@@ -7,7 +7,6 @@
 
 #include "core/error.hpp"
 #include "core/file.hpp"
-#include "io/staging.hpp"
 
 namespace dspdem::report {
 
@@ -15,7 +14,7 @@ HeadlineRow balance_row(double balance_max, const std::string& test, const std::
   return {quantity, "-", fmt::format("{:.1e} of the largest term", balance_max), agrees(balance_max < 0.01), test};
 }
 
-void write_headline(const Headline& h, const std::string& dir) {
+std::string headline_json(const Headline& h) {
   nlohmann::ordered_json j;
   j["scene"] = h.scene;
   j["title"] = h.title;
@@ -28,7 +27,7 @@ void write_headline(const Headline& h, const std::string& dir) {
   for (const auto& [caption, path] : h.images) j["images"].push_back({{"caption", caption}, {"path", path}});
   j["animation"] = h.animation;
   j["wall_s"] = h.wall_s;
-  write_file_atomic((std::filesystem::path(dir) / "headline.json").string(), j.dump(2) + "\n");
+  return j.dump(2) + "\n";
 }
 
 Headline read_headline(const std::string& path) {

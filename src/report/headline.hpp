@@ -33,8 +33,8 @@ inline std::string agrees(bool met) { return met ? "yes" : "no"; }
 HeadlineRow balance_row(double balance_max, const std::string& test,
                         const std::string& quantity = "energy balance, largest error");
 
-/// Writes DIR/headline.json (atomically).
-void write_headline(const Headline& h, const std::string& dir);
+/// The text of a headline.json (written with the report, Document::write).
+std::string headline_json(const Headline& h);
 /// Reads a headline.json; throws Error naming the file and key that is wrong.
 Headline read_headline(const std::string& path);
 

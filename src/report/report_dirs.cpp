@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "io/run_place.hpp"
 #include "report/resume.hpp"
-#include "report/run_place.hpp"
 
 namespace dspdem::report {
 
@@ -12,15 +12,18 @@ namespace fs = std::filesystem;
 
 std::string ReportDirs::run_from_dir() const { return fs::relative(run_dir, dir).string() + "/"; }
 
+std::string report_folder(const CaseConfig& c, const ReportArgs& a) {
+  return a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+}
+
 ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   ReportDirs d;
-  d.dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+  d.dir = report_folder(c, a);
   d.files_dir = (fs::path(d.dir) / "run").string();
   // One folder only: report_command refuses several for a scene without a velocity sweep.
   d.run_dir = a.from_runs.empty() ? d.files_dir : a.from_runs.front();
   if (a.from_runs.empty()) {
-    fs::create_directories(d.dir);
-    clear_derived_place(d.run_dir);
+    fs::create_directories(d.dir);  // DIR/run, filled from another run by an earlier report, is emptied by the run
     run_or_resume(c, d.run_dir, a.runs);
     return d;
   }

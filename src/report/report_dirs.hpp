@@ -18,6 +18,9 @@ struct ReportDirs {
   std::string run_from_dir() const;
 };
 
+/// The report's folder: --out, else results/<case>_report.
+std::string report_folder(const CaseConfig& c, const ReportArgs& a);
+
 /// Makes DIR, runs the case into DIR/run (with --resume, keeps or continues the same run an
 /// earlier report left there) unless --from-run names a finished run (which must hold a
 /// summary.json: Error otherwise; DIR/run, where the report then writes, is made ready by

@@ -17,6 +17,7 @@
 #include "core/subprocess.hpp"
 #include "core/timer.hpp"
 #include "io/case_config.hpp"
+#include "io/run_place.hpp"
 #include "render/animation.hpp"
 #include "render/colormap.hpp"
 #include "render/offscreen.hpp"
@@ -193,6 +194,10 @@ int render_command(const RenderArgs& in) {
   // report given -t 1 on a shared machine renders on one core too.
   int jobs = a.jobs > 0 ? a.jobs : std::max(1, omp_get_max_threads());
   jobs = std::min<int>(jobs, static_cast<int>(sel.size()));
+  // Into another folder (--out): one that another run's images were drawn into is emptied
+  // first, so that frames not drawn again do not sit beside these as theirs; one holding a run
+  // or files not derived from a run is refused (io/run_place.hpp).
+  if (!worker) prepare_derived_place(a.out_dir, a.run_dir);
   std::vector<pid_t> pids;
   if (!worker && jobs > 1) {
     spawn_workers(a, o, jobs, pids);

@@ -21,6 +21,7 @@
 #include "core/timer.hpp"
 #include "fem/stable_dt.hpp"
 #include "io/model_builder.hpp"
+#include "io/run_place.hpp"
 #include "io/run_summary.hpp"
 #include "io/staging.hpp"
 #include "io/vtu_writer.hpp"
@@ -366,6 +367,10 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // From here a signal stops the run at the end of a step, with a checkpoint: the staging
   // folder is made whole (and cleared by a later run if this one is killed) or not at all.
   g_setting_up = 0;
+  // A folder a report or a render filled from another run (io/run_place.hpp): its images and
+  // tables would sit beside this run's results as if they were its own. Emptied once the set-up
+  // has succeeded, so a run refused in its set-up leaves it as it was.
+  if (my_rank == 0) clear_derived_place(opt.out_dir);
   // Process 0 makes the staging folder and commits it; the others write their pieces into it.
   Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
   par::barrier();  // the folder made before anyone writes into it

@@ -24,6 +24,7 @@
 #include <thread>
 
 #include "core/file.hpp"
+#include "core/folder_lock.hpp"
 #include "io/run_summary.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "report/run_data.hpp"
@@ -522,6 +523,31 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
     EXPECT_EQ(fs::exists(out / "images/cracks" / f), std::string(f) == "frame_0010.png") << f;
   }
   EXPECT_TRUE(fs::exists(drawn / "images/plots/energy.png"));
+  // Another run drawn into the same folder: what was drawn from the first goes, so that frames
+  // not drawn again do not sit beside the second's as its own (a copy is another run).
+  fs::copy(out, dir_ / "nb2", fs::copy_options::recursive);
+  fs::remove_all(dir_ / "nb2" / "images");
+  const Result r2 = run("-q render " + (dir_ / "nb2").string() + " --out " + drawn.string() +
+                        " --view cracks --frames last --size 160x120 --no-animation");
+  EXPECT_EQ(r2.code, 0) << r2.out;
+  EXPECT_TRUE(fs::exists(drawn / "images/cracks/frame_0010.png"));
+  EXPECT_FALSE(fs::exists(drawn / "images/cracks/frame_0000.png"));
+  EXPECT_NE(slurp(drawn / "derived_from").find("nb2"), std::string::npos);
+  // A folder of files no render or report derived from a run is refused and left as it is.
+  fs::create_directories(dir_ / "mine");
+  std::ofstream(dir_ / "mine" / "notes.txt") << "mine";
+  const Result r3 = run("-q render " + out.string() + " --out " + (dir_ / "mine").string() + " --frames last");
+  EXPECT_NE(r3.code, 0);
+  EXPECT_NE(r3.out.find("no report or render derived from a run"), std::string::npos) << r3.out;
+  EXPECT_EQ(slurp(dir_ / "mine" / "notes.txt"), "mine");
+  EXPECT_FALSE(fs::exists(dir_ / "mine" / "images"));
+  // A run made into the drawn folder empties it first: nothing drawn from nb2 stays beside it.
+  const Result r4 =
+      run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/bar_tension.toml --out " + drawn.string());
+  EXPECT_EQ(r4.code, 0) << r4.out;
+  EXPECT_TRUE(fs::exists(drawn / "summary.json"));
+  EXPECT_FALSE(fs::exists(drawn / "derived_from"));
+  EXPECT_FALSE(fs::exists(drawn / "images"));
   const Result both = run("-q render " + out.string() + " " + out.string() + " --montage " + (dir_ / "m.png").string() +
                           " --out " + drawn.string());
   EXPECT_NE(both.code, 0);
@@ -748,6 +774,31 @@ TEST_F(Cli, AMonitorNamedAsASeriesColumnIsRefusedBeforeTheRun) {
   EXPECT_NE(s.code, 0);
   EXPECT_NE(s.out.find("name 'plate_fy' is already a column of series.csv"), std::string::npos) << s.out;
   EXPECT_FALSE(fs::exists(rep));
+}
+
+TEST_F(Cli, ASecondReportIntoAFolderIsRefusedWhileTheFirstWrites) {
+  // Two reports into one folder would set each other's files aside and write over each other's
+  // runs and report: the second is refused at its start, and changes nothing there.
+  const std::string disc = std::string(DSPDEM_SOURCE_DIR) + "/cases/brazilian_disc.toml";
+  const fs::path rep = dir_ / "rep";
+  fs::create_directories(rep);
+  std::ofstream(rep / "report.md") << "earlier";
+  {
+    const dspdem::FolderLock held(rep.string(), ".report.lock", "the test");
+    const Result r = run("report " + disc + " --no-render --out " + rep.string());
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("another report is writing into this folder now"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(rep.string()), std::string::npos) << r.out;
+    EXPECT_EQ(slurp(rep / "report.md"), "earlier");
+    EXPECT_FALSE(fs::exists(rep / "run"));
+  }
+  // A report refused once it holds the lock lets go of it, and leaves no folder it made.
+  const fs::path fresh = dir_ / "fresh";
+  const Result f = run("report " + disc + " --from-run " + (dir_ / "nothing").string() + " --out " + fresh.string());
+  EXPECT_EQ(f.code, 2) << f.out;
+  EXPECT_NE(f.out.find("summary.json"), std::string::npos) << f.out;
+  EXPECT_FALSE(fs::exists(fresh));
+  EXPECT_FALSE(fs::exists(rep / ".report.lock"));
 }
 
 TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {

@@ -1,5 +1,5 @@
-// Where a report writes what it derives from a run it did not make: never beside another run,
-// and a place filled from another run emptied first, but only one a report filled.
+// Where what is derived from a run goes when it is not the run's own folder: never beside another
+// run, and a place filled from another run emptied first, but only one a report or render filled.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "report/run_place.hpp"
+#include "io/run_place.hpp"
 
 using namespace dspdem;
 namespace fs = std::filesystem;
@@ -33,59 +33,59 @@ class RunPlace : public ::testing::Test {
 }  // namespace
 
 TEST_F(RunPlace, ARunsOwnFolderAndAnEmptyPlaceAreReadyAndAnotherRunIsRefused) {
-  EXPECT_TRUE(report::holds_a_run((dir_ / "a").string()));
-  report::prepare_derived_place((dir_ / "a").string(), (dir_ / "a" / ".").string());  // the run itself
+  EXPECT_TRUE(holds_a_run((dir_ / "a").string()));
+  prepare_derived_place((dir_ / "a").string(), (dir_ / "a" / ".").string());  // the run itself
   EXPECT_FALSE(fs::exists(dir_ / "a" / "derived_from"));
-  report::prepare_derived_place((dir_ / "rep" / "run").string(), (dir_ / "a").string());
+  prepare_derived_place((dir_ / "rep" / "run").string(), (dir_ / "a").string());
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "run" / "derived_from"));
-  EXPECT_THROW(report::prepare_derived_place((dir_ / "b").string(), (dir_ / "a").string()), Error);
+  EXPECT_THROW(prepare_derived_place((dir_ / "b").string(), (dir_ / "a").string()), Error);
   // A run killed outright leaves only its staging folder: still a run.
   fs::create_directories(dir_ / "c" / ".staging-12345");
-  EXPECT_TRUE(report::holds_a_run((dir_ / "c").string()));
-  EXPECT_THROW(report::prepare_derived_place((dir_ / "c").string(), (dir_ / "a").string()), Error);
+  EXPECT_TRUE(holds_a_run((dir_ / "c").string()));
+  EXPECT_THROW(prepare_derived_place((dir_ / "c").string(), (dir_ / "a").string()), Error);
   EXPECT_TRUE(fs::exists(dir_ / "c" / ".staging-12345"));
 }
 
 TEST_F(RunPlace, APlaceFilledFromAnotherRunIsEmptiedAndOneNoReportFilledIsRefused) {
   const std::string place = (dir_ / "rep" / "run").string();
-  report::prepare_derived_place(place, (dir_ / "a").string());
+  prepare_derived_place(place, (dir_ / "a").string());
   std::ofstream(fs::path(place) / "load.csv") << "from a";
-  report::prepare_derived_place(place, (dir_ / "a").string());  // the same run: kept
+  prepare_derived_place(place, (dir_ / "a").string());  // the same run: kept
   EXPECT_TRUE(fs::exists(fs::path(place) / "load.csv"));
-  report::prepare_derived_place(place, (dir_ / "b").string());  // another: emptied
+  prepare_derived_place(place, (dir_ / "b").string());  // another: emptied
   EXPECT_FALSE(fs::exists(fs::path(place) / "load.csv"));
   EXPECT_TRUE(fs::exists(fs::path(place) / "derived_from"));
   // A folder with files but no record of a report is never emptied.
   fs::create_directories(dir_ / "mine");
   std::ofstream(dir_ / "mine" / "notes.txt") << "keep";
-  EXPECT_THROW(report::prepare_derived_place((dir_ / "mine").string(), (dir_ / "a").string()), Error);
+  EXPECT_THROW(prepare_derived_place((dir_ / "mine").string(), (dir_ / "a").string()), Error);
   EXPECT_TRUE(fs::exists(dir_ / "mine" / "notes.txt"));
 }
 
 TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmptiesOnlyAReportsPlace) {
   const std::string place = (dir_ / "rep" / "run").string();
-  report::prepare_derived_place(place, (dir_ / "a").string());
+  prepare_derived_place(place, (dir_ / "a").string());
   std::ofstream(fs::path(place) / "load.csv") << "from a";
-  report::check_derived_place(place, (dir_ / "b").string());  // fine for b, and nothing changed
+  check_derived_place(place, (dir_ / "b").string());  // fine for b, and nothing changed
   EXPECT_TRUE(fs::exists(fs::path(place) / "load.csv"));
   // A run inside the place would go with it when the place is emptied.
   fs::create_directories(fs::path(place) / "inner");
   std::ofstream(fs::path(place) / "inner" / "summary.json") << "{}";
-  EXPECT_THROW(report::prepare_derived_place(place, (fs::path(place) / "inner").string()), Error);
+  EXPECT_THROW(prepare_derived_place(place, (fs::path(place) / "inner").string()), Error);
   EXPECT_TRUE(fs::exists(fs::path(place) / "inner" / "summary.json"));
   // So would any other run below its top level: refused for another run, and not cleared.
-  EXPECT_THROW(report::prepare_derived_place(place, (dir_ / "b").string()), Error);
-  report::clear_derived_place(place);
+  EXPECT_THROW(prepare_derived_place(place, (dir_ / "b").string()), Error);
+  clear_derived_place(place);
   EXPECT_TRUE(fs::exists(fs::path(place) / "inner" / "summary.json"));
   fs::remove_all(fs::path(place) / "inner");
   fs::create_directories(fs::path(place) / "deep" / ".staging-4321");  // a killed run's, deeper
-  EXPECT_THROW(report::check_derived_place(place, (dir_ / "b").string()), Error);
+  EXPECT_THROW(check_derived_place(place, (dir_ / "b").string()), Error);
   fs::remove_all(fs::path(place) / "deep");
   // A run to be made in a place a report filled: emptied; in a run's folder or one no report
   // filled: nothing happens.
-  report::clear_derived_place(place);
+  clear_derived_place(place);
   EXPECT_TRUE(fs::exists(place) && fs::is_empty(place));
   std::ofstream(dir_ / "a" / "load.csv") << "the run's own";
-  report::clear_derived_place((dir_ / "a").string());
+  clear_derived_place((dir_ / "a").string());
   EXPECT_TRUE(fs::exists(dir_ / "a" / "load.csv"));
 }

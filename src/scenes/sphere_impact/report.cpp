@@ -11,14 +11,15 @@
 #include "core/file.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
+#include "io/run_place.hpp"
 #include "io/run_summary.hpp"
 #include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/earlier_reports.hpp"
 #include "report/files_aside.hpp"
+#include "report/report_dirs.hpp"
 #include "report/resume.hpp"
 #include "report/run_data.hpp"
-#include "report/run_place.hpp"
 #include "run/checkpoint.hpp"
 #include "run/montage.hpp"
 #include "run/process_pool.hpp"
@@ -218,7 +219,7 @@ const std::vector<std::string> kSometimesWritten = {"orientations.csv",
 
 int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   Timer total;
-  const std::string dir = a.out_dir.empty() ? (fs::path("results") / (c.name + "_report")).string() : a.out_dir;
+  const std::string dir = report::report_folder(c, a);
   fs::create_directories(dir);
   std::vector<double> speeds = a.speeds.empty() ? kDefaultSpeeds : a.speeds;
   std::sort(speeds.begin(), speeds.end());
@@ -316,7 +317,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   // --from-run: where each run of the sweep was found, by plan index (the study's: none).
   std::vector<report::EarlierReportRun> earlier(a.from_runs.empty() ? 0 : plan.size());
   if (a.from_runs.empty()) {
-    for (const Planned& p : plan) report::clear_derived_place(p.dir);  // runs to be made there
+    // Runs to be made there: a run empties such a place itself, but only once its set-up has
+    // succeeded; a row failing before must not show another run's files either.
+    for (const Planned& p : plan) clear_derived_place(p.dir);
     errors = run_planned(c, plan, jobs, a.runs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
@@ -327,7 +330,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       if (!e.dir.empty()) {
         // What is derived from the run goes to its place here: checked now, changed only
         // once every run is found.
-        report::check_derived_place(own_dir[i], e.dir);
+        check_derived_place(own_dir[i], e.dir);
         plan[i].dir = e.dir;
         continue;
       }
@@ -350,9 +353,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     // Every run found and none refused: only now is anything of this folder changed.
     for (std::size_t i = 0; i < plan.size(); ++i)
       if (!earlier[i].dir.empty())
-        report::prepare_derived_place(own_dir[i], earlier[i].dir);
+        prepare_derived_place(own_dir[i], earlier[i].dir);
       else if (!errors[i].empty())
-        report::clear_derived_place(own_dir[i]);  // a failed row: nothing of another run beside it
+        clear_derived_place(own_dir[i]);  // a failed row: nothing of another run beside it
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
       const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs,

@@ -1,11 +1,12 @@
-// Where a report writes what it derives from a run it did not make (`report --from-run`): the
-// run's place in the report's own folder, never the run's folder, which may be another
-// report's and is only read. The place records the run it was filled from (derived_from), so
-// that a place filled from another run is emptied rather than mixed, and only such a place.
+// Where what is derived from a run goes when it is not the run's own folder: a report's place
+// for a run it did not make (`report --from-run`), or `render RUN --out OUT`. The run's folder,
+// which may be another report's, is only read. The place records the run it was filled from
+// (derived_from), so that a place filled from another run is emptied rather than mixed, and only
+// such a place; a run made into such a place empties it too (clear_derived_place).
 #pragma once
 #include <string>
 
-namespace dspdem::report {
+namespace dspdem {
 
 /// Whether `dir` holds a run: finished (summary.json, run.pvd), failed or stopped (failed_run/,
 /// interrupted_run/), or running or killed (a staging folder, io/staging.hpp).
@@ -26,4 +27,4 @@ void prepare_derived_place(const std::string& place, const std::string& run_dir)
 /// new one.
 void clear_derived_place(const std::string& place);
 
-}  // namespace dspdem::report
+}  // namespace dspdem

@@ -1,4 +1,4 @@
-#include "report/run_place.hpp"
+#include "io/run_place.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "io/staging.hpp"
 
-namespace dspdem::report {
+namespace dspdem {
 
 namespace fs = std::filesystem;
 
@@ -61,8 +61,8 @@ void check_derived_place(const std::string& place, const std::string& run_dir) {
   if (fs::equivalent(place, run_dir, differ)) return;
   DSPDEM_CHECK(!holds_a_run(place),
                "{} holds a run of its own (a summary.json, run.pvd, failed_run/, interrupted_run/ or a run's staging "
-               "folder), where the report would write what it derives from the run in {}; give --out a folder "
-               "without one",
+               "folder), where what is derived from the run in {} would be written; give --out a folder without "
+               "one",
                place, run_dir);
   if (const auto below = run_below(place))
     fail(
@@ -71,12 +71,13 @@ void check_derived_place(const std::string& place, const std::string& run_dir) {
         place, below->string(), run_dir);
   const fs::path p = fs::weakly_canonical(place), r = fs::weakly_canonical(run_dir);
   const auto [in_p, in_r] = std::mismatch(p.begin(), p.end(), r.begin(), r.end());
-  DSPDEM_CHECK(in_p != p.end(), "the run in {} lies inside {}, where the report writes what it derives from it",
-               run_dir, place);
+  DSPDEM_CHECK(in_p != p.end(), "the run in {} lies inside {}, where what is derived from it would be written", run_dir,
+               place);
   if (fs::exists(place) && !fs::is_empty(place))
     DSPDEM_CHECK(fs::exists(fs::path(place) / kDerivedFrom),
-                 "{} holds files that no report derived from a run (no {} there); give --out another folder", place,
-                 kDerivedFrom);
+                 "{} holds files that no report or render derived from a run (no {} there); give --out another "
+                 "folder",
+                 place, kDerivedFrom);
 }
 
 void prepare_derived_place(const std::string& place, const std::string& run_dir) {
@@ -95,4 +96,4 @@ void clear_derived_place(const std::string& place) {
   if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place) && !run_below(place)) empty_place(place);
 }
 
-}  // namespace dspdem::report
+}  // namespace dspdem

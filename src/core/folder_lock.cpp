@@ -1,0 +1,62 @@
+#include "core/folder_lock.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+
+namespace dspdem {
+
+namespace fs = std::filesystem;
+
+FolderLock::FolderLock(const std::string& dir, const std::string& file, const std::string& what)
+    : dir_(dir), path_((fs::path(dir) / file).string()) {
+  std::error_code e;
+  made_dir_ = fs::create_directories(dir, e);
+  DSPDEM_CHECK(!e, "cannot make the folder '{}': {}", dir, e.message());
+  // The file is removed by its holder before it lets go, so a process may lock a file that is
+  // no longer the one at the path (opened just before the removal): it then tries again on the
+  // new one. Close on exec: the runs a report starts must not hold its lock on after it ends.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const int fd = ::open(path_.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    DSPDEM_CHECK(fd >= 0, "cannot open the lock file '{}': {}", path_, std::strerror(errno));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int err = errno;
+      ::close(fd);
+      if (err == EWOULDBLOCK)
+        fail("{}: {} is writing into this folder now (it holds {}); wait for it to end, or give another folder", dir,
+             what, path_);
+      log::warn("{}: no lock taken ({}): two writers into this folder at once would not be stopped", dir,
+                std::strerror(err));
+      return;
+    }
+    struct stat held {
+    }, at_path{};
+    if (::fstat(fd, &held) == 0 && ::stat(path_.c_str(), &at_path) == 0 && held.st_ino == at_path.st_ino &&
+        held.st_dev == at_path.st_dev) {
+      fd_ = fd;
+      return;
+    }
+    ::close(fd);
+  }
+  fail("{}: the lock file {} kept changing under this process; another process is taking it", dir, path_);
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ < 0) return;
+  ::unlink(path_.c_str());
+  ::close(fd_);
+  if (made_dir_) {
+    std::error_code e;
+    fs::remove(dir_, e);  // only when empty: fails harmlessly otherwise
+  }
+}
+
+}  // namespace dspdem
