@@ -65,7 +65,7 @@ void draw_tables(report::Document& doc, const std::vector<double>& speeds,
                  const std::vector<std::vector<DrawRun>>& by_speed, int draws, const std::string& dir,
                  const std::string& folders) {
   DSPDEM_CHECK(by_speed.size() == speeds.size(), "internal: {} speeds, draws for {}", speeds.size(), by_speed.size());
-  std::ofstream csv(fs::path(dir) / "draws.csv");
+  std::ofstream csv(fs::path(dir) / kDrawsCsv);
   csv << "speed,speed_run,orientation,draw,through_crack,few_large_pieces,paper_pattern,pieces_10pct,largest,"
          "balance_max,two_large_after_contact_ms\n";
   std::vector<std::string> failed;

@@ -27,7 +27,10 @@ struct DrawRun {
 /// The speed as the draw ran it.
 inline double draw_speed(double v, int draw) { return v + draw * kDrawNudge; }
 
-/// Writes the section into `doc` and draws.csv into `dir`: per speed, each mesh's share of its
+/// The file the section writes, relative to the report's folder (only with --draws).
+inline constexpr const char* kDrawsCsv = "draws.csv";
+
+/// Writes the section into `doc` and kDrawsCsv into `dir`: per speed, each mesh's share of its
 /// draws with a crack through, a few large pieces and the paper's pattern, its largest piece,
 /// and whether the meshes differ by more than chance (report/homogeneity.hpp). by_speed[s]:
 /// every draw at speeds[s]; `folders` where the draws' runs are, as the text names them.

@@ -96,7 +96,7 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
   for (double v : read_speeds) head.push_back(fmt::format("{:g} m/s: {}", v, expected_pattern(v)));
   if (every) head.push_back(fmt::format("at {} m/s alike", fmt::join(read_speeds, ", ")));
   std::vector<std::vector<std::string>> rows;
-  std::ofstream csv(fs::path(dir) / "pattern_over_time.csv");
+  std::ofstream csv(fs::path(dir) / kPatternOverTimeCsv);
   // scope: "speed", or "every" for the meshes read at all the speeds read (speed left empty).
   csv << "after_contact_ms,scope,speed,meshes_read,with_pattern\n";
   for (const PatternCount& c : counts) {
@@ -114,7 +114,7 @@ void pattern_over_time_section(report::Document& doc, const std::vector<double>&
   // Each run, for comparing two sweeps of the same meshes (another variant, another build) mesh
   // by mesh at each time without reading every run's pieces_time.csv again; the columns as
   // orientations.csv's, paper_pattern empty where the run could not be read.
-  std::ofstream runs_csv(fs::path(dir) / "pattern_over_time_runs.csv");
+  std::ofstream runs_csv(fs::path(dir) / kPatternOverTimeRunsCsv);
   runs_csv << "after_contact_ms,speed,orientation,paper_pattern\n";
   for (const PatternCount& c : counts)
     for (const PatternRead& r : c.runs)

@@ -56,11 +56,16 @@ struct PatternCount {
 std::vector<PatternCount> pattern_over_time(const std::vector<double>& times, const std::vector<double>& speeds,
                                             const std::vector<std::vector<RealisationRun>>& by_speed);
 
+/// The files the section writes, relative to the report's folder (only for runs past the
+/// paper's moment).
+inline constexpr const char* kPatternOverTimeCsv = "pattern_over_time.csv";
+inline constexpr const char* kPatternOverTimeRunsCsv = "pattern_over_time_runs.csv";
+
 /// Writes the section into `doc` when the runs go on past the paper's moment and at the
 /// paper's moment at least two meshes could be read at one speed the history can judge;
-/// pattern_over_time.csv (the counts) and pattern_over_time_runs.csv (each run of those speeds,
-/// its verdict empty where it could not be read) into `dir` (where the report clears an earlier
-/// report's first, report.cpp).
+/// kPatternOverTimeCsv (the counts) and kPatternOverTimeRunsCsv (each run of those speeds, its
+/// verdict empty where it could not be read) into `dir` (where the report sets an earlier
+/// report's aside first, report.cpp).
 void pattern_over_time_section(report::Document& doc, const std::vector<double>& speeds,
                                const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
 

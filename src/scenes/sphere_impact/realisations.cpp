@@ -106,7 +106,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
   // Each speed over its realisations, by orientation: the case's own run (k0) first, then
   // the turned meshes; a failed run is listed, not counted, and labels stay with their runs.
   std::vector<std::string> failed;
-  std::ofstream csv(fs::path(where.dir) / "orientations.csv");
+  std::ofstream csv(fs::path(where.dir) / kOrientationsCsv);
   csv << "speed,orientation,elements,fragments,single_element,pieces_10pct,largest,second,through_crack,"
          "paper_pattern,two_large_after_contact_ms,crack_reach,crack_top,broken_contact,joints_contact,"
          "broken_upper_half,joints_upper_half,balance_max\n";
@@ -217,8 +217,7 @@ EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& 
     if (!p.empty())
       doc.para(p + " The paper shows one mesh; a pattern is dspdem's typical outcome when most meshes show it.");
     onset_table(doc, through_at, few_at);
-    breakage_tables(doc, speeds, by_speed, (fs::path(where.dir) / "images" / "breakage_probability.png").string(),
-                    "images/breakage_probability.png");
+    breakage_tables(doc, speeds, by_speed, (fs::path(where.dir) / kBreakagePng).string(), kBreakagePng);
   }
   return every;
 }

@@ -49,8 +49,13 @@ struct MeshCount {
 MeshCount count_every_speed(const std::vector<double>& speeds, const std::vector<std::vector<RealisationRun>>& by_speed,
                             bool described_only);
 
-/// Writes the section into `doc` and orientations.csv into where.dir; by_speed[s]: the runs at
-/// speeds[s], the case's own mesh first.
+/// The files the section writes, relative to the report's folder (only with --realisations:
+/// the report sets an earlier report's aside, report.cpp).
+inline constexpr const char* kOrientationsCsv = "orientations.csv";
+inline constexpr const char* kBreakagePng = "images/breakage_probability.png";
+
+/// Writes the section into `doc` and kOrientationsCsv (and with several speeds kBreakagePng)
+/// into where.dir; by_speed[s]: the runs at speeds[s], the case's own mesh first.
 EverySpeed realisation_tables(report::Document& doc, const std::vector<double>& speeds,
                               const std::vector<std::vector<RealisationRun>>& by_speed, const RealisationSetup& where);
 

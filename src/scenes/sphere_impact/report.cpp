@@ -27,8 +27,11 @@
 #include "scenes/sphere_impact/analysis.hpp"
 #include "scenes/sphere_impact/draws.hpp"
 #include "scenes/sphere_impact/pattern.hpp"
+#include "scenes/sphere_impact/pattern_over_time.hpp"
 #include "scenes/sphere_impact/realisations.hpp"
 #include "scenes/sphere_impact/scene.hpp"
+#include "scenes/sphere_impact/split_precursors.hpp"
+#include "scenes/sphere_impact/split_timing.hpp"
 
 namespace dspdem {
 
@@ -203,17 +206,22 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
 // stay beside a report.md that no longer names it, and read as this report's. Set aside once
 // the runs are analysed (report/files_aside.hpp): dropped when this report is written, put
 // back if it stops first.
-const std::vector<std::string> kSometimesWritten = {"orientations.csv",
-                                                    "draws.csv",
-                                                    "large_pieces_time.csv",
-                                                    "split_precursors.csv",
-                                                    "pattern_over_time.csv",
-                                                    "pattern_over_time_runs.csv",
-                                                    "images/breakage_probability.png",
-                                                    "images/large_pieces_time.png",
-                                                    "images/crack_reach.png",
-                                                    "images/montage_fragments.png",
-                                                    "images/montage_cracks.png"};
+// Each section names its own files beside the code that writes them; this report's own are
+// the crack reach (runs with a history) and the montages (a render).
+constexpr const char* kCrackReachPng = "images/crack_reach.png";
+constexpr const char* kMontageFragmentsPng = "images/montage_fragments.png";
+constexpr const char* kMontageCracksPng = "images/montage_cracks.png";
+const std::vector<std::string> kSometimesWritten = {sphere::kOrientationsCsv,
+                                                    sphere::kBreakagePng,
+                                                    sphere::kDrawsCsv,
+                                                    sphere::kLargePiecesTimeCsv,
+                                                    sphere::kLargePiecesTimePng,
+                                                    sphere::kSplitPrecursorsCsv,
+                                                    sphere::kPatternOverTimeCsv,
+                                                    sphere::kPatternOverTimeRunsCsv,
+                                                    kCrackReachPng,
+                                                    kMontageFragmentsPng,
+                                                    kMontageCracksPng};
 
 }  // namespace
 
@@ -423,7 +431,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     render::plot_curves(
         reach_curves, "time after the first contact [ms]",
         fmt::format("height below which {:.0f} % of the crack area lies [D]", 100 * SphereImpactResult::reach_fraction),
-        "how far up the cracks reach, up to the compared time", (img / "crack_reach.png").string());
+        "how far up the cracks reach, up to the compared time", (fs::path(dir) / kCrackReachPng).string());
   std::vector<std::string> labels, runs;
   for (const auto& r : sweep) labels.push_back(fmt::format("{:g} m/s", r.speed)), runs.push_back(r.run_dir);
   const double t_cmp = c.t_end;
@@ -438,10 +446,10 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     m.rows = {"fragments:z", "fragments"};
     m.camera = "front";
     m.width = 480, m.height = 400;
-    m.out = (img / "montage_fragments.png").string();
+    m.out = (fs::path(dir) / kMontageFragmentsPng).string();
     write_montage(m);
     m.rows = {"cracks"};
-    m.out = (img / "montage_cracks.png").string();
+    m.out = (fs::path(dir) / kMontageCracksPng).string();
     write_montage(m);
     // Each speed's own frames and animations, all with one stress range so that the speeds
     // compare colour for colour.
@@ -621,9 +629,9 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   if (!a.no_render) {
     doc.subsection("All speeds at the compared time");
     doc.para("Fragments (a colour per piece), cut on the mid-plane z = 0 (top row) and from outside (bottom row):");
-    doc.figure("fragments montage", "images/montage_fragments.png");
+    doc.figure("fragments montage", kMontageFragmentsPng);
     doc.para("Broken joints (red) over the translucent sphere:");
-    doc.figure("cracks montage", "images/montage_cracks.png");
+    doc.figure("cracks montage", kMontageCracksPng);
   }
   doc.section("Fragment size distribution");
   doc.para("Per speed in `speeds/v<speed>/fragment_masses.csv`; all speeds in `fragment_masses.csv`.");
@@ -640,7 +648,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
         "piece free yet. The table's second figure is the highest broken joint (its centroid). Per speed in "
         "`speeds/v<speed>/pieces_time.csv`.",
         100 * SphereImpactResult::reach_fraction));
-    doc.figure("crack reach against time", "images/crack_reach.png");
+    doc.figure("crack reach against time", kCrackReachPng);
   }
   doc.section("Where the impact energy went");
   std::vector<std::vector<std::string>> en;
@@ -715,8 +723,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
                     a.draws > 1 ? " and draws" : "")));
   }
   if (!a.no_render) {
-    doc.thumbnail("fragments, every speed", "images/montage_fragments.png");
-    doc.thumbnail("cracks, every speed", "images/montage_cracks.png");
+    doc.thumbnail("fragments, every speed", kMontageFragmentsPng);
+    doc.thumbnail("cracks, every speed", kMontageCracksPng);
     // The animation of the speed nearest the paper's 7.5 m/s.
     const SphereImpactResult* near = &sweep.front();
     for (const auto& r : sweep)

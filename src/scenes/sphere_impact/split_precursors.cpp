@@ -81,7 +81,7 @@ void split_precursors_section(report::Document& doc, const std::vector<double>& 
     any = any || all.back().readable();
   }
   if (!any) return;
-  std::ofstream csv(fs::path(dir) / "split_precursors.csv");
+  std::ofstream csv(fs::path(dir) / kSplitPrecursorsCsv);
   csv << fmt::format("speed,orientation,two_large_ms,compared_ms,crack_reach_{0:g}ms,fragments_{0:g}ms\n",
                      1e3 * kEarlyRead);
   std::vector<std::vector<std::string>> rows;

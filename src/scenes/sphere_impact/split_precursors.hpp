@@ -49,7 +49,10 @@ struct SplitPrecursors {
 /// From one speed's runs; the correlations only when readable().
 SplitPrecursors split_precursors(double speed, const std::vector<RealisationRun>& runs);
 
-/// When some speed is readable, writes the section into `doc` and split_precursors.csv into
+/// The file the section writes, relative to the report's folder (only with --realisations).
+inline constexpr const char* kSplitPrecursorsCsv = "split_precursors.csv";
+
+/// When some speed is readable, writes the section into `doc` and kSplitPrecursorsCsv into
 /// `dir`: every mesh read at every speed, its time in ms (blank: none by its compared frame),
 /// its compared time, reach and fragments; otherwise nothing. by_speed[s]: the runs at speeds[s].
 void split_precursors_section(report::Document& doc, const std::vector<double>& speeds,

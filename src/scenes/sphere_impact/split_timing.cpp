@@ -102,7 +102,7 @@ void split_timing_section(report::Document& doc, const std::vector<double>& spee
 
   std::vector<std::vector<std::string>> rows;
   std::vector<render::Curve> curves;
-  std::ofstream csv(fs::path(dir) / "large_pieces_time.csv");
+  std::ofstream csv(fs::path(dir) / kLargePiecesTimeCsv);
   csv << "speed,after_contact_ms,meshes,with_two_large\n";
   for (const SplitTiming& s : per_speed) {
     const int n = s.meshes(), k = s.by_end(), k_before = s.by_end(kLateWindow);
@@ -156,8 +156,8 @@ void split_timing_section(report::Document& doc, const std::vector<double>& spee
             rows);
   if (curves.empty()) return;
   render::plot_curves(curves, "time after the first contact [ms]", "share of meshes with two pieces >= 10 %",
-                      "when the large pieces come free", (fs::path(dir) / "images" / "large_pieces_time.png").string());
-  doc.figure("when the large pieces come free", "images/large_pieces_time.png");
+                      "when the large pieces come free", (fs::path(dir) / kLargePiecesTimePng).string());
+  doc.figure("when the large pieces come free", kLargePiecesTimePng);
 }
 
 }  // namespace dspdem::sphere

@@ -48,8 +48,12 @@ std::string freed_range(const std::vector<double>& first);
 /// How long before the compared time the report counts again.
 inline constexpr double kLateWindow = 1e-4;
 
-/// Writes the section into `doc`, large_pieces_time.csv into `dir` and, when any mesh shows
-/// two large pieces, images/large_pieces_time.png; by_speed[s]: the runs at speeds[s].
+/// The files the section writes, relative to the report's folder (only with --realisations).
+inline constexpr const char* kLargePiecesTimeCsv = "large_pieces_time.csv";
+inline constexpr const char* kLargePiecesTimePng = "images/large_pieces_time.png";
+
+/// Writes the section into `doc`, kLargePiecesTimeCsv into `dir` and, when any mesh shows
+/// two large pieces, kLargePiecesTimePng; by_speed[s]: the runs at speeds[s].
 void split_timing_section(report::Document& doc, const std::vector<double>& speeds,
                           const std::vector<std::vector<RealisationRun>>& by_speed, const std::string& dir);
 
