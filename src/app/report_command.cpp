@@ -6,6 +6,7 @@
 #include "core/folder_lock.hpp"
 #include "core/log.hpp"
 #include "io/case_config.hpp"
+#include "io/run_place.hpp"
 #include "report/report_dirs.hpp"
 #include "run/run_case.hpp"
 #include "run/series_units.hpp"
@@ -46,7 +47,13 @@ int report_command(const report::ReportArgs& a) {
       "runs the rest");
   // Held until the report is written or stops: a second report into the folder meanwhile is
   // refused here, before it changes anything in it.
-  const FolderLock lock(report::report_folder(c, a), ".report.lock", "another report");
+  const std::string dir = report::report_folder(c, a);
+  const FolderLock lock(dir, report_lock_file, "another report");
+  // A folder a render or another report's run place took from a run: a later render or run
+  // into it would empty it, this report with it.
+  if (const auto from = derived_from(dir))
+    fail("{} holds what a render or a report drew from the run in {} (its derived_from); give --out another folder",
+         dir, *from);
   try {
     return scene.report(c, a);
   } catch (const Interrupted& e) {

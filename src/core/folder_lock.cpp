@@ -18,14 +18,17 @@ namespace fs = std::filesystem;
 
 FolderLock::FolderLock(const std::string& dir, const std::string& file, const std::string& what)
     : dir_(dir), path_((fs::path(dir) / file).string()) {
-  std::error_code e;
-  made_dir_ = fs::create_directories(dir, e);
-  DSPDEM_CHECK(!e, "cannot make the folder '{}': {}", dir, e.message());
   // The file is removed by its holder before it lets go, so a process may lock a file that is
   // no longer the one at the path (opened just before the removal): it then tries again on the
-  // new one. Close on exec: the runs a report starts must not hold its lock on after it ends.
+  // new one; and the folder with it, when the holder had made it and left it empty. Close on
+  // exec: the runs a report starts must not hold its lock on after it ends. Read-only: a lock
+  // file a killed report left is taken by a user who may not write it.
   for (int attempt = 0; attempt < 100; ++attempt) {
-    const int fd = ::open(path_.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    std::error_code e;
+    made_dir_ = fs::create_directories(dir, e) || made_dir_;
+    DSPDEM_CHECK(!e, "cannot make the folder '{}': {}", dir, e.message());
+    const int fd = ::open(path_.c_str(), O_CREAT | O_RDONLY | O_CLOEXEC, 0644);
+    if (fd < 0 && errno == ENOENT) continue;  // the folder went meanwhile
     DSPDEM_CHECK(fd >= 0, "cannot open the lock file '{}': {}", path_, std::strerror(errno));
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;

@@ -37,14 +37,19 @@ bool marks_a_run(const fs::directory_entry& entry) {
     return name == failed_folder || name == interrupted_folder || is_staging_folder(entry.path().string());
   return name == "summary.json" || name == "run.pvd";
 }
+// An entry that marks its folder as a report's: written, or being written (its lock).
+bool marks_a_report(const fs::directory_entry& entry) {
+  const std::string name = entry.path().filename().string();
+  return name == "report.md" || name == report_lock_file;
+}
 
-// A run anywhere below the place's top level (a run made inside a place a report filled):
-// emptying the place would take it too.
-std::optional<fs::path> run_below(const fs::path& place) {
+// A run or a report anywhere below the place's top level (made inside a place a report or a
+// render filled): emptying the place would take it too.
+std::optional<fs::path> kept_below(const fs::path& place) {
   std::error_code e;
   for (auto it = fs::recursive_directory_iterator(place, e); !e && it != fs::recursive_directory_iterator();
        it.increment(e))
-    if (marks_a_run(*it)) return it->path().parent_path();
+    if (marks_a_run(*it) || marks_a_report(*it)) return it->path().parent_path();
   return std::nullopt;
 }
 }  // namespace
@@ -56,23 +61,39 @@ bool holds_a_run(const std::string& dir) {
   return false;
 }
 
+bool holds_a_report(const std::string& dir) {
+  std::error_code e;
+  for (const auto& entry : fs::directory_iterator(dir, e))
+    if (marks_a_report(entry)) return true;
+  return false;
+}
+
+std::optional<std::string> derived_from(const std::string& dir) {
+  if (!fs::exists(fs::path(dir) / kDerivedFrom)) return std::nullopt;
+  return recorded_run(dir);
+}
+
 void check_derived_place(const std::string& place, const std::string& run_dir) {
   std::error_code differ;
   if (fs::equivalent(place, run_dir, differ)) return;
+  const fs::path p = fs::weakly_canonical(place), r = fs::weakly_canonical(run_dir);
+  const auto [in_p, in_r] = std::mismatch(p.begin(), p.end(), r.begin(), r.end());
+  DSPDEM_CHECK(in_p != p.end(), "the run in {} lies inside {}, where what is derived from it would be written", run_dir,
+               place);
   DSPDEM_CHECK(!holds_a_run(place),
                "{} holds a run of its own (a summary.json, run.pvd, failed_run/, interrupted_run/ or a run's staging "
                "folder), where what is derived from the run in {} would be written; give --out a folder without "
                "one",
                place, run_dir);
-  if (const auto below = run_below(place))
+  DSPDEM_CHECK(!holds_a_report(place),
+               "{} holds a report (report.md, or {} while one is written), where what is derived from the run in {} "
+               "would be written; give --out a folder without one",
+               place, report_lock_file, run_dir);
+  if (const auto below = kept_below(place))
     fail(
-        "{} holds a run below it, in {}, which emptying it for the run in {} would take too; give --out a folder "
-        "without one",
+        "{} holds a run or a report below it, in {}, which emptying it for the run in {} would take too; give --out "
+        "a folder without one",
         place, below->string(), run_dir);
-  const fs::path p = fs::weakly_canonical(place), r = fs::weakly_canonical(run_dir);
-  const auto [in_p, in_r] = std::mismatch(p.begin(), p.end(), r.begin(), r.end());
-  DSPDEM_CHECK(in_p != p.end(), "the run in {} lies inside {}, where what is derived from it would be written", run_dir,
-               place);
   if (fs::exists(place) && !fs::is_empty(place))
     DSPDEM_CHECK(fs::exists(fs::path(place) / kDerivedFrom),
                  "{} holds files that no report or render derived from a run (no {} there); give --out another "
@@ -93,7 +114,8 @@ void prepare_derived_place(const std::string& place, const std::string& run_dir)
 }
 
 void clear_derived_place(const std::string& place) {
-  if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place) && !run_below(place)) empty_place(place);
+  if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place) && !holds_a_report(place) && !kept_below(place))
+    empty_place(place);
 }
 
 }  // namespace dspdem

@@ -4,17 +4,28 @@
 // (derived_from), so that a place filled from another run is emptied rather than mixed, and only
 // such a place; a run made into such a place empties it too (clear_derived_place).
 #pragma once
+#include <optional>
 #include <string>
 
 namespace dspdem {
+
+/// The file a report holds locked while it writes into its folder (core/folder_lock.hpp).
+inline constexpr const char* report_lock_file = ".report.lock";
 
 /// Whether `dir` holds a run: finished (summary.json, run.pvd), failed or stopped (failed_run/,
 /// interrupted_run/), or running or killed (a staging folder, io/staging.hpp).
 bool holds_a_run(const std::string& dir);
 
+/// Whether `dir` holds a report: its report.md, or the lock of one being written.
+bool holds_a_report(const std::string& dir);
+
+/// The run a report or a render filled `dir` from (its derived_from record), if any.
+std::optional<std::string> derived_from(const std::string& dir);
+
 /// Whether `place` may take what a report derives from the run in `run_dir`, changing nothing:
-/// Error when it holds another run (derived files beside it would read as its), a run anywhere
-/// below it, the run given inside it, or files but no derived_from (no report filled it).
+/// Error when the run given lies inside it, it holds another run (derived files beside it
+/// would read as its) or a report, a run or a report anywhere below it, or files but no
+/// derived_from (no report or render filled it).
 void check_derived_place(const std::string& place, const std::string& run_dir);
 
 /// check_derived_place, then makes `place` ready: nothing to do when it is the run itself; a
@@ -22,8 +33,8 @@ void check_derived_place(const std::string& place, const std::string& run_dir);
 /// run is recorded in place/derived_from.
 void prepare_derived_place(const std::string& place, const std::string& run_dir);
 
-/// A place a report filled from a run (derived_from, no run in it or below it) that a run is
-/// now to be made in: emptied, so that nothing derived from the other run stays beside the
+/// A place a report or a render filled from a run (derived_from, no run or report in it or
+/// below it) that a run is now to be made in: emptied, so that nothing derived from the other run stays beside the
 /// new one.
 void clear_derived_place(const std::string& place);
 

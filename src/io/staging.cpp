@@ -210,7 +210,17 @@ void write_files_atomic(const std::vector<std::pair<std::string, std::string>>& 
     for (std::size_t i = 0; i <= written && i < files.size(); ++i) fs::remove(files[i].first + ".tmp", ignore);
     throw;
   }
-  for (const auto& [path, text] : files) fs::rename(path + ".tmp", path);
+  // Renames within a folder do not fail short of a broken disk; should one, the rest are not
+  // made and their temporaries go, and the message names the file.
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::error_code e;
+    fs::rename(files[i].first + ".tmp", files[i].first, e);
+    if (!e) continue;
+    const std::string why = e.message();
+    for (std::size_t j = i; j < files.size(); ++j) fs::remove(files[j].first + ".tmp", e);
+    fail("cannot replace '{}' by its new version: {}{}", files[i].first, why,
+         i > 0 ? fmt::format(" (the {} before it of the {} written together were replaced)", i, files.size()) : "");
+  }
 }
 
 }  // namespace dspdem

@@ -72,7 +72,7 @@ bool left_by_killed_run(const std::string& dir);
 void write_file_atomic(const std::string& path, const std::string& text);
 
 /// Writes several files (path, text) together: every one to its temporary file first, then
-/// the renames, so that a write that fails (a full disk) replaces none of them.
+/// the renames, so that a write that fails (a full disk) replaces none of them (Error).
 void write_files_atomic(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace dspdem

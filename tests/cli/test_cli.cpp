@@ -799,6 +799,16 @@ TEST_F(Cli, ASecondReportIntoAFolderIsRefusedWhileTheFirstWrites) {
   EXPECT_NE(f.out.find("summary.json"), std::string::npos) << f.out;
   EXPECT_FALSE(fs::exists(fresh));
   EXPECT_FALSE(fs::exists(rep / ".report.lock"));
+  // A folder a render drew into from a run (derived_from) is not a report's: a later render or
+  // run into it would empty it, a report with it.
+  const fs::path drawn = dir_ / "drawn";
+  fs::create_directories(drawn / "images");
+  std::ofstream(drawn / "derived_from") << "/somewhere/run";
+  const Result d = run("report " + disc + " --no-render --out " + drawn.string());
+  EXPECT_EQ(d.code, 2) << d.out;
+  EXPECT_NE(d.out.find("holds what a render or a report drew from the run in /somewhere/run"), std::string::npos)
+      << d.out;
+  EXPECT_FALSE(fs::exists(drawn / "run"));
 }
 
 TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
@@ -1406,7 +1416,11 @@ TEST_F(Cli, AReportStoppedOrKilledInItsOwnRunResumesIt) {
                                         file, rep.string(), sets, (dir_ / "check.log").string()));
   ASSERT_GT(c, 0);
   const bool checking = wait_for_frames(rep / "stress_check", 1);
+  // A second report into the folder while this one writes there is refused at once.
+  const Result second = run("-q report " + file + " --out " + rep.string() + " --no-render " + sets);
   const int cst = stop_job(c, SIGINT);
+  EXPECT_EQ(second.code, 2) << second.out;
+  EXPECT_NE(second.out.find("another report is writing into this folder now"), std::string::npos) << second.out;
   const std::string check_log = slurp(dir_ / "check.log");
   ASSERT_TRUE(checking) << "the stress check never wrote a frame: " << check_log;
   ASSERT_TRUE(stopped_for_resume(cst, check_log));

@@ -71,7 +71,12 @@ TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmpties
   // A run inside the place would go with it when the place is emptied.
   fs::create_directories(fs::path(place) / "inner");
   std::ofstream(fs::path(place) / "inner" / "summary.json") << "{}";
-  EXPECT_THROW(prepare_derived_place(place, (fs::path(place) / "inner").string()), Error);
+  try {
+    prepare_derived_place(place, (fs::path(place) / "inner").string());
+    ADD_FAILURE() << "a run inside the place was taken";
+  } catch (const Error& e) {  // said as it is, not as a run below that emptying would take
+    EXPECT_NE(std::string(e.what()).find("lies inside"), std::string::npos) << e.what();
+  }
   EXPECT_TRUE(fs::exists(fs::path(place) / "inner" / "summary.json"));
   // So would any other run below its top level: refused for another run, and not cleared.
   EXPECT_THROW(prepare_derived_place(place, (dir_ / "b").string()), Error);
@@ -81,6 +86,21 @@ TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmpties
   fs::create_directories(fs::path(place) / "deep" / ".staging-4321");  // a killed run's, deeper
   EXPECT_THROW(check_derived_place(place, (dir_ / "b").string()), Error);
   fs::remove_all(fs::path(place) / "deep");
+  // A report written into the place (or one being written there, its lock), at its top or
+  // below: never emptied with it.
+  for (const fs::path& at : {fs::path(place), fs::path(place) / "sub"})
+    for (const char* marker : {"report.md", report_lock_file}) {
+      fs::create_directories(at);
+      std::ofstream(at / marker) << "a report";
+      EXPECT_EQ(holds_a_report(at.string()), true) << marker;
+      EXPECT_THROW(prepare_derived_place(place, (dir_ / "b").string()), Error) << marker;
+      clear_derived_place(place);
+      EXPECT_TRUE(fs::exists(at / marker)) << marker;
+      fs::remove(at / marker);
+    }
+  fs::remove_all(fs::path(place) / "sub");
+  EXPECT_NE(derived_from(place), std::nullopt);
+  EXPECT_EQ(derived_from((dir_ / "a").string()), std::nullopt);
   // A run to be made in a place a report filled: emptied; in a run's folder or one no report
   // filled: nothing happens.
   clear_derived_place(place);
