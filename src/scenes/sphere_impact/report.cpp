@@ -201,27 +201,37 @@ std::string split_times(const std::vector<SphereImpactResult>& sweep, double fra
   return s + "." + none;
 }
 
-// The report's files that only some reports write (with --realisations, --draws, runs past
-// the paper's moment, a render): one an earlier report left in this folder would otherwise
-// stay beside a report.md that no longer names it, and read as this report's. Set aside once
-// the runs are analysed (report/files_aside.hpp): dropped when this report is written, put
-// back if it stops first.
-// Each section names its own files beside the code that writes them; this report's own are
-// the crack reach (runs with a history) and the montages (a render).
-constexpr const char* kCrackReachPng = "images/crack_reach.png";
-constexpr const char* kMontageFragmentsPng = "images/montage_fragments.png";
+// The report's own files beside report.md (not its runs' places). Set aside once the runs are
+// analysed (report/files_aside.hpp): dropped when this report is written, put back if it stops
+// first, so that a report that stops leaves the earlier report's files as they were, beside
+// the earlier report.md it also leaves. Those that only some reports write (with
+// --realisations, --draws, runs past the paper's moment, a render) would otherwise also stay
+// beside a new report.md that no longer names them, and read as its own. Each section names
+// its own files beside the code that writes them; this report's are below.
+constexpr const char* kFragmentMassesCsv = "fragment_masses.csv";
+constexpr const char* kFragmentMassesPng = "images/fragment_masses.png";
+constexpr const char* kCrackAreaPng = "images/crack_area.png";
+constexpr const char* kPlateForcePng = "images/plate_force.png";
+constexpr const char* kLargestPiecePng = "images/largest_piece.png";
+constexpr const char* kCrackReachPng = "images/crack_reach.png";              // runs with a history
+constexpr const char* kMontageFragmentsPng = "images/montage_fragments.png";  // a render
 constexpr const char* kMontageCracksPng = "images/montage_cracks.png";
-const std::vector<std::string> kSometimesWritten = {sphere::kOrientationsCsv,
-                                                    sphere::kBreakagePng,
-                                                    sphere::kDrawsCsv,
-                                                    sphere::kLargePiecesTimeCsv,
-                                                    sphere::kLargePiecesTimePng,
-                                                    sphere::kSplitPrecursorsCsv,
-                                                    sphere::kPatternOverTimeCsv,
-                                                    sphere::kPatternOverTimeRunsCsv,
-                                                    kCrackReachPng,
-                                                    kMontageFragmentsPng,
-                                                    kMontageCracksPng};
+const std::vector<std::string> kReportFiles = {kFragmentMassesCsv,
+                                               kFragmentMassesPng,
+                                               kCrackAreaPng,
+                                               kPlateForcePng,
+                                               kLargestPiecePng,
+                                               kCrackReachPng,
+                                               kMontageFragmentsPng,
+                                               kMontageCracksPng,
+                                               sphere::kOrientationsCsv,
+                                               sphere::kBreakagePng,
+                                               sphere::kDrawsCsv,
+                                               sphere::kLargePiecesTimeCsv,
+                                               sphere::kLargePiecesTimePng,
+                                               sphere::kSplitPrecursorsCsv,
+                                               sphere::kPatternOverTimeCsv,
+                                               sphere::kPatternOverTimeRunsCsv};
 
 }  // namespace
 
@@ -389,13 +399,13 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       sweep_failed.push_back(fmt::format("{:g} m/s: {}", speeds[i], errors[i]));
   }
   DSPDEM_CHECK(!sweep.empty(), "sphere impact: every run of the sweep failed: {}", sweep_failed.front());
-  report::FilesAside earlier_files(dir, kSometimesWritten);
+  report::FilesAside earlier_files(dir, kReportFiles);
 
   // Plots over all speeds: cumulative mass distribution, broken joints and plate force.
   const fs::path img = fs::path(dir) / "images";
   fs::create_directories(img);
   std::vector<render::Curve> dist, cracks, force, largest_curves, reach_curves;
-  std::ofstream all(fs::path(dir) / "fragment_masses.csv");
+  std::ofstream all(fs::path(dir) / kFragmentMassesCsv);
   all << "speed,mass_kg,cumulative\n";
   for (const auto& r : sweep) {
     render::Curve d{fmt::format("{:g} m/s", r.speed), {}, {}};
@@ -420,13 +430,14 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   all.close();
   render::plot_curves(dist, "fragment mass [kg]", "mass fraction in fragments of at most this mass",
                       "cumulative fragment mass distribution at the compared time",
-                      (img / "fragment_masses.png").string(), true);
+                      (fs::path(dir) / kFragmentMassesPng).string(), true);
   render::plot_curves(cracks, "time [ms]", "broken joints' area [cm^2]", "crack area against time",
-                      (img / "crack_area.png").string());
+                      (fs::path(dir) / kCrackAreaPng).string());
   render::plot_curves(force, "time [ms]", "|f_y| on the plate [kN]", "contact force on the plate against time",
-                      (img / "plate_force.png").string());
+                      (fs::path(dir) / kPlateForcePng).string());
   render::plot_curves(largest_curves, "time after the first contact [ms]", "largest piece / sphere mass",
-                      "largest piece against time, up to the compared time", (img / "largest_piece.png").string());
+                      "largest piece against time, up to the compared time",
+                      (fs::path(dir) / kLargestPiecePng).string());
   if (!reach_curves.empty())
     render::plot_curves(
         reach_curves, "time after the first contact [ms]",
@@ -635,11 +646,11 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   }
   doc.section("Fragment size distribution");
   doc.para("Per speed in `speeds/v<speed>/fragment_masses.csv`; all speeds in `fragment_masses.csv`.");
-  doc.figure("cumulative fragment mass distribution", "images/fragment_masses.png");
+  doc.figure("cumulative fragment mass distribution", kFragmentMassesPng);
   doc.section("Cracks, pieces and contact force over time");
-  doc.figures({{"crack area", "images/crack_area.png"}, {"plate force", "images/plate_force.png"}});
+  doc.figures({{"crack area", kCrackAreaPng}, {"plate force", kPlateForcePng}});
   doc.para(split_times(sweep, c.frame_interval));
-  doc.figure("largest piece against time", "images/largest_piece.png");
+  doc.figure("largest piece against time", kLargestPiecePng);
   if (!reach_curves.empty()) {
     doc.para(fmt::format(
         "How far up the cracks reach: the height above the sphere's lowest point below which {:.0f} % of the broken "
@@ -734,7 +745,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     doc.animation(fmt::format("fragments at {:g} m/s", near->speed), rel + "/images/fragments",
                   rel + "/images/fragments/frame_0000.png");
   }
-  doc.thumbnail("fragment mass distribution", "images/fragment_masses.png");
+  doc.thumbnail("fragment mass distribution", kFragmentMassesPng);
   h.wall_s = total.seconds();
   doc.write();
   earlier_files.drop();
