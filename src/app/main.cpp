@@ -90,6 +90,11 @@ int run_main(int argc, char** argv) {
           ->type_name("S");
   run->add_flag("--progress", progress, "Show a progress line (default: on when stderr is a terminal and CI is unset)");
   run->add_flag("--no-progress", no_progress, "Never show the progress line");
+  bool estimate = false;
+  run->add_flag("--estimate", estimate,
+                "Set the case up (mesh, model, step), time its first steps for a few seconds in memory and print "
+                "the steps, frames and wall time the run would take; nothing is written")
+      ->excludes(restart_opt);
   bool discard_interrupted = false;
   run->add_flag("--discard-interrupted", discard_interrupted,
                 "Start afresh in an output folder that holds the checkpoint of a run that was stopped or killed "
@@ -335,7 +340,8 @@ int run_main(int argc, char** argv) {
       const std::vector<std::string> left = checkpoints_left(opt.out_dir);
       const bool continuing = !restart_path.empty() && fs::weakly_canonical(run_folder_of(opt.restart_file)) ==
                                                            fs::weakly_canonical(opt.out_dir);
-      DSPDEM_CHECK(left.empty() || continuing || discard_interrupted,
+      opt.estimate = estimate;
+      DSPDEM_CHECK(left.empty() || continuing || discard_interrupted || estimate,
                    "run: {} holds the checkpoint of a run that was stopped or killed ({}): continue it with `dspdem "
                    "run --restart {}`, or start afresh with --discard-interrupted",
                    opt.out_dir, fmt::join(left, ", "), opt.out_dir);

@@ -37,6 +37,7 @@
 #endif
 #include "run/case_mesh.hpp"
 #include "run/checkpoint.hpp"
+#include "run/estimate.hpp"
 #include "run/output_schedule.hpp"
 #include "run/series_units.hpp"
 #include "time/balance_watch.hpp"
@@ -142,13 +143,6 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
   cut("fragments.csv", ls.fragments_bytes);
   write_pvd((to / "run.pvd").string(), ls.frames);
   if (!ls.joint_frames.empty()) write_pvd((to / "joints.pvd").string(), ls.joint_frames);
-}
-
-std::string format_duration(double s) {
-  if (!std::isfinite(s)) return "?";
-  if (s < 120) return fmt::format("{:.0f}s", s);
-  if (s < 7200) return fmt::format("{:.0f}m{:02.0f}s", std::floor(s / 60), std::fmod(s, 60));
-  return fmt::format("{:.0f}h{:02.0f}m", std::floor(s / 3600), std::fmod(s / 60, 60));
 }
 
 class Series {
@@ -323,6 +317,17 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     long n = s0 + static_cast<long>(std::ceil((c.t_end - t0) / h - 1e-9));
     return c.max_steps > 0 ? std::min(n, c.max_steps) : n;
   };
+
+  if (opt.estimate) {
+    DSPDEM_CHECK(par::size() == 1, "run --estimate: the case is set up and timed on one process (without mpirun)");
+    const bool stops = !c.stop_series.empty();
+    estimate_run(c, model, dt, last_step(0, 0.0, dt),
+                 adaptive_dt && stops ? "about "
+                 : adaptive_dt        ? "at least "
+                 : stops              ? "at most "
+                                      : "");
+    return 0;
+  }
 
   // A distributed run (mpirun -n N): the whole model was built on every process, as above,
   // and each keeps its share (par/subdomain.hpp); the step is the whole model's.

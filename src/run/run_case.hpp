@@ -21,6 +21,8 @@ struct RunOptions {
   /// the one it was written for. Its folder holds the outputs written up to it.
   std::string restart_file;
   std::vector<std::string> sets;  ///< the --set overrides, recorded in checkpoints
+  /// Set up and time the first steps only, writing nothing (run/estimate.hpp).
+  bool estimate = false;
   /// Tests: behave as if SIGTERM arrived during this step (-1: never).
   long interrupt_at_step = -1;
 };

@@ -177,6 +177,20 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   EXPECT_TRUE(fs::exists(out / "case.resolved.toml"));
   for (const auto& e : fs::directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().rfind(".staging", 0), std::string::npos) << "staging folder left behind";
+
+  // --estimate sets the case up and times its first steps, writing nothing: the steps and
+  // frames it gives are the run's (this case neither stops early nor lowers its step).
+  const fs::path est = dir_ / "est";
+  const Result e = run("run " + c.string() + " --estimate --out " + est.string());
+  ASSERT_EQ(e.code, 0) << e.out;
+  EXPECT_FALSE(fs::exists(est));
+  const long steps = nlohmann::json::parse(summary)["steps"].get<long>();
+  EXPECT_NE(e.out.find(fmt::format("estimate (nothing written): {} steps of ", steps)), std::string::npos)
+      << e.out << "\nthe run: " << steps << " steps";
+  EXPECT_NE(e.out.find(", 3 frames"), std::string::npos) << e.out;
+  EXPECT_NE(e.out.find("the run's steps would take"), std::string::npos) << e.out;
+  // A restart goes on from a checkpoint; the two are refused together, as a command-line error.
+  EXPECT_EQ(run("run --restart " + out.string() + " --estimate").code, 1);
 }
 
 TEST_F(Cli, Msh4FileWrittenByGmshReadsEndToEnd) {
