@@ -31,11 +31,12 @@ void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, cons
   log::info("  estimate (nothing written): {}{} steps of {:.4g} s to t = {:.6g} s, {} frames", bound, n_steps, dt,
             c.t_end, frames);
   log::info(
-      "  the first {} steps took {:.2f} s ({:.3g} element-steps/s, {} threads): the run's steps would take {} at that "
-      "rate{}",
+      "  the first {} steps took {:.2f} s ({:.3g} element-steps/s, {} threads): at that rate the run's steps take {}{}",
       k, spent, static_cast<double>(k) * static_cast<double>(model.fem.n_elements) / spent, omp_get_max_threads(),
       format_duration(per_step * static_cast<double>(n_steps)),
-      k < n_steps ? "; steps grow dearer as joints break and pieces touch, and frames take their own time" : "");
+      k < n_steps ? ", a lower bound: steps grow dearer as joints break and pieces touch, many times over where "
+                    "they pile up (README, run --estimate), and frames take their own time"
+                  : "");
 }
 
 }  // namespace dspdem

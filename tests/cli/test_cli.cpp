@@ -188,7 +188,7 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   EXPECT_NE(e.out.find(fmt::format("estimate (nothing written): {} steps of ", steps)), std::string::npos)
       << e.out << "\nthe run: " << steps << " steps";
   EXPECT_NE(e.out.find(", 3 frames"), std::string::npos) << e.out;
-  EXPECT_NE(e.out.find("the run's steps would take"), std::string::npos) << e.out;
+  EXPECT_NE(e.out.find("at that rate the run's steps take"), std::string::npos) << e.out;
   // A restart goes on from a checkpoint; the two are refused together, as a command-line error.
   EXPECT_EQ(run("run --restart " + out.string() + " --estimate").code, 1);
 }
