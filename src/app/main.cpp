@@ -330,6 +330,8 @@ int run_main(int argc, char** argv) {
             "--checkpoint-wall {} is not used in a distributed run (mpirun -n {}): its processes would not agree on "
             "the step; --checkpoint-every T writes checkpoints by simulated time",
             checkpoint_wall, par::size());
+      DSPDEM_CHECK(!estimate || par::size() == 1,
+                   "run --estimate: the case is set up and timed on one process (without mpirun)");
       const CaseConfig c = read_case(case_file, sets);
       opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;

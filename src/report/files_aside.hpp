@@ -1,7 +1,7 @@
-// Files of a report's folder that an earlier report wrote and this one may not write again
-// (a table only some options give): set aside before the report writes, dropped once it has
-// written its report.md, and put back if it stops first, so that a report that fails leaves
-// the earlier one's files as they were beside the earlier report.md it also leaves.
+// Files of a report's folder that an earlier report wrote and this one writes again or may
+// not (a table only some options give): set aside before the report writes, dropped once it
+// has written its report.md, and put back if it stops first, so that a report that fails
+// leaves the earlier one's files as they were beside the earlier report.md it also leaves.
 #pragma once
 #include <string>
 #include <vector>

@@ -319,13 +319,18 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   };
 
   if (opt.estimate) {
-    DSPDEM_CHECK(par::size() == 1, "run --estimate: the case is set up and timed on one process (without mpirun)");
-    const bool stops = !c.stop_series.empty();
-    estimate_run(c, model, dt, last_step(0, 0.0, dt),
-                 adaptive_dt && stops ? "about "
-                 : adaptive_dt        ? "at least "
-                 : stops              ? "at most "
-                                      : "");
+    // A step count capped by [time] max_steps is the run's, whatever the step would do after.
+    const long n = last_step(0, 0.0, dt);
+    const bool stops = !c.stop_series.empty(), capped = c.max_steps > 0 && n == c.max_steps;
+    const bool falls = adaptive_dt && !capped;
+    estimate_run(c, model, dt, n,
+                 falls && stops ? "about "
+                 : falls        ? "at least "
+                 : stops        ? "at most "
+                                : "",
+                 [&](const Integrator& i) {
+                   if (stops) series_column(c, model, i);
+                 });
     return 0;
   }
 

@@ -179,16 +179,26 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
     EXPECT_EQ(e.path().filename().string().rfind(".staging", 0), std::string::npos) << "staging folder left behind";
 
   // --estimate sets the case up and times its first steps, writing nothing: the steps and
-  // frames it gives are the run's (this case neither stops early nor lowers its step).
-  const fs::path est = dir_ / "est";
-  const Result e = run("run " + c.string() + " --estimate --out " + est.string());
+  // frames it gives are the run's (this case neither stops early nor lowers its step), also
+  // for frames at an interval that does not divide the end (then a last one at the end); it
+  // answers with -q too, and leaves a run's folder it is given as it was.
+  const Result e = run("-q run " + c.string() + " --estimate --out " + out.string());
   ASSERT_EQ(e.code, 0) << e.out;
-  EXPECT_FALSE(fs::exists(est));
   const long steps = nlohmann::json::parse(summary)["steps"].get<long>();
   EXPECT_NE(e.out.find(fmt::format("estimate (nothing written): {} steps of ", steps)), std::string::npos)
       << e.out << "\nthe run: " << steps << " steps";
   EXPECT_NE(e.out.find(", 3 frames"), std::string::npos) << e.out;
-  EXPECT_NE(e.out.find("at that rate the run's steps take"), std::string::npos) << e.out;
+  EXPECT_NE(e.out.find("at that rate the " + std::to_string(steps) + " steps take"), std::string::npos) << e.out;
+  EXPECT_EQ(slurp(out / "summary.json"), summary);
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 6) << "a file added to the run";
+  const std::string odd = " --set output.frame_interval=0.0007";
+  const Result e2 = run("-q run " + c.string() + odd + " --estimate");
+  const Result r3 = run("-q run " + c.string() + odd + " --out " + (dir_ / "odd").string());
+  ASSERT_EQ(r3.code, 0) << r3.out;
+  const std::string pvd3 = slurp(dir_ / "odd" / "run.pvd");
+  const long frames3 = std::distance(std::sregex_iterator(pvd3.begin(), pvd3.end(), dataset), std::sregex_iterator());
+  EXPECT_EQ(frames3, 4);  // 0, 0.7, 1.4 and the end, 2 ms
+  EXPECT_NE(e2.out.find(fmt::format(", {} frames", frames3)), std::string::npos) << e2.out;
   // A restart goes on from a checkpoint; the two are refused together, as a command-line error.
   EXPECT_EQ(run("run --restart " + out.string() + " --estimate").code, 1);
 }
