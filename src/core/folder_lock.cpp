@@ -40,8 +40,8 @@ FolderLock::FolderLock(const std::string& dir, const std::string& file, const st
                 std::strerror(err));
       return;
     }
-    struct stat held {
-    }, at_path{};
+    struct stat held;     // filled by fstat before it is read
+    struct stat at_path;  // and by stat
     if (::fstat(fd, &held) == 0 && ::stat(path_.c_str(), &at_path) == 0 && held.st_ino == at_path.st_ino &&
         held.st_dev == at_path.st_dev) {
       fd_ = fd;

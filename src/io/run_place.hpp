@@ -34,8 +34,8 @@ void check_derived_place(const std::string& place, const std::string& run_dir);
 void prepare_derived_place(const std::string& place, const std::string& run_dir);
 
 /// A place a report or a render filled from a run (derived_from, no run or report in it or
-/// below it) that a run is now to be made in: emptied, so that nothing derived from the other run stays beside the
-/// new one.
+/// below it) that a run is now to be made in: emptied, so that nothing derived from the other
+/// run stays beside the new one.
 void clear_derived_place(const std::string& place);
 
 }  // namespace dspdem
