@@ -199,6 +199,14 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   const long frames3 = std::distance(std::sregex_iterator(pvd3.begin(), pvd3.end(), dataset), std::sregex_iterator());
   EXPECT_EQ(frames3, 4);  // 0, 0.7, 1.4 and the end, 2 ms
   EXPECT_NE(e2.out.find(fmt::format(", {} frames", frames3)), std::string::npos) << e2.out;
+  // A case that stops on a load drop may take fewer steps and frames; one capped by max_steps
+  // takes those.
+  const Result stops = run("-q run " + c.string() + " --set time.stop_series=kinetic --estimate");
+  EXPECT_NE(stops.out.find(fmt::format("(nothing written): at most {} steps", steps)), std::string::npos) << stops.out;
+  EXPECT_NE(stops.out.find(", at most 3 frames"), std::string::npos) << stops.out;
+  const Result capped = run("-q run " + c.string() + " --set time.max_steps=7 --estimate");
+  EXPECT_NE(capped.out.find("(nothing written): 7 steps"), std::string::npos) << capped.out;
+  EXPECT_NE(capped.out.find(", 2 frames"), std::string::npos) << capped.out;  // the start and the last step
   // A restart goes on from a checkpoint; the two are refused together, as a command-line error.
   EXPECT_EQ(run("run --restart " + out.string() + " --estimate").code, 1);
 }
@@ -474,6 +482,11 @@ TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {
   EXPECT_NE(refused.out.find("--discard-interrupted"), std::string::npos) << refused.out;
   EXPECT_EQ(slurp(kept), "a checkpoint");
   EXPECT_FALSE(fs::exists(out / "summary.json"));
+  // An estimate writes nothing, so it is not refused there, and leaves the folder as it was.
+  const Result estimate = run("-q run " + c.string() + " --estimate --out " + out.string());
+  EXPECT_EQ(estimate.code, 0) << estimate.out;
+  EXPECT_EQ(slurp(kept), "a checkpoint");
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1);
   const Result fresh = run("-q run " + c.string() + " --discard-interrupted --out " + out.string());
   ASSERT_EQ(fresh.code, 0) << fresh.out;
   EXPECT_FALSE(fs::exists(out / "interrupted_run"));
