@@ -43,6 +43,14 @@ bool marks_a_report(const fs::directory_entry& entry) {
   return name == "report.md" || name == report_lock_file;
 }
 
+// Whether an entry at the folder's top level is one that `marks` it.
+bool holds(const std::string& dir, bool (*marks)(const fs::directory_entry&)) {
+  std::error_code e;
+  for (const auto& entry : fs::directory_iterator(dir, e))
+    if (marks(entry)) return true;
+  return false;
+}
+
 // A run or a report anywhere below the place's top level (made inside a place a report or a
 // render filled): emptying the place would take it too.
 std::optional<fs::path> kept_below(const fs::path& place) {
@@ -54,19 +62,9 @@ std::optional<fs::path> kept_below(const fs::path& place) {
 }
 }  // namespace
 
-bool holds_a_run(const std::string& dir) {
-  std::error_code e;
-  for (const auto& entry : fs::directory_iterator(dir, e))
-    if (marks_a_run(entry)) return true;
-  return false;
-}
+bool holds_a_run(const std::string& dir) { return holds(dir, marks_a_run); }
 
-bool holds_a_report(const std::string& dir) {
-  std::error_code e;
-  for (const auto& entry : fs::directory_iterator(dir, e))
-    if (marks_a_report(entry)) return true;
-  return false;
-}
+bool holds_a_report(const std::string& dir) { return holds(dir, marks_a_report); }
 
 std::optional<std::string> derived_from(const std::string& dir) {
   if (!fs::exists(fs::path(dir) / kDerivedFrom)) return std::nullopt;

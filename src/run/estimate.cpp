@@ -34,7 +34,7 @@ long frames_of_run(const CaseConfig& c, Real dt, long n_steps) {
   return frames;
 }
 
-void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, const std::string& bound,
+void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, bool stops, bool falls,
                   const std::function<void(const Integrator&)>& check, double seconds) {
   Integrator it(model, dt);
   check(it);
@@ -45,7 +45,7 @@ void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, cons
     ++k;
   }
   const double spent = wall.seconds(), per_step = k > 0 ? spent / static_cast<double>(k) : 0;
-  const bool stops = bound == "at most " || bound == "about ";
+  const char* bound = falls && stops ? "about " : falls ? "at least " : stops ? "at most " : "";
   fmt::print("estimate (nothing written): {}{} steps of {:.4g} s to t = {:.6g} s, {}{} frames\n", bound, n_steps, dt,
              static_cast<double>(n_steps) * dt, stops ? "at most " : "", frames_of_run(c, dt, n_steps));
   fmt::print(

@@ -22,11 +22,11 @@ long frames_of_run(const CaseConfig& c, Real dt, long n_steps);
 
 /// Steps `model` from its start with the step `dt` for up to `seconds` of wall time or `n_steps`
 /// steps, and prints to stdout (also with -q: it is the command's answer) the run's steps, frames
-/// and the wall time its steps take at that rate. `bound`: "" when n_steps is the run's, "at
-/// least " when its step falls as joints open (extrinsic insertion), "at most " when it stops
-/// on a load drop, "about " for both. `check` sees the integrator before the first step (what
-/// the run checks only then: its stop_series column).
-void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, const std::string& bound,
+/// and the wall time its steps take at that rate. `stops`: the run ends on a load drop, so it
+/// takes at most n_steps; `falls`: its step falls as joints open (extrinsic insertion), so it
+/// takes at least n_steps. `check` sees the integrator before the first step (what the run
+/// checks only then: its stop_series column).
+void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, bool stops, bool falls,
                   const std::function<void(const Integrator&)>& check, double seconds = kEstimateSeconds);
 
 /// "42s", "3m05s", "2h10m" ("?" when not finite).

@@ -322,15 +322,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     // A step count capped by [time] max_steps is the run's, whatever the step would do after.
     const long n = last_step(0, 0.0, dt);
     const bool stops = !c.stop_series.empty(), capped = c.max_steps > 0 && n == c.max_steps;
-    const bool falls = adaptive_dt && !capped;
-    estimate_run(c, model, dt, n,
-                 falls && stops ? "about "
-                 : falls        ? "at least "
-                 : stops        ? "at most "
-                                : "",
-                 [&](const Integrator& i) {
-                   if (stops) series_column(c, model, i);
-                 });
+    estimate_run(c, model, dt, n, stops, adaptive_dt && !capped, [&](const Integrator& i) {
+      if (stops) series_column(c, model, i);
+    });
     return 0;
   }
 
