@@ -22,12 +22,26 @@ std::string recorded_run(const fs::path& place) {
   return was.str();
 }
 
-// Everything in the place but its record, then the record: a removal that stops partway
-// leaves a place still known as a report's.
+// A lock file: its holder removes it as it lets go, and one removed under its holder would let a
+// second writer in.
+bool is_lock_file(const fs::path& entry) {
+  return entry.filename() == report_lock_file || entry.filename() == render_lock_file;
+}
+
+// Everything in the place but its record and the locks, then the record: a removal that stops
+// partway leaves a place still known as a report's.
 void empty_place(const fs::path& place) {
   for (const auto& entry : fs::directory_iterator(place))
-    if (entry.path().filename() != kDerivedFrom) fs::remove_all(entry.path());
+    if (entry.path().filename() != kDerivedFrom && !is_lock_file(entry.path())) fs::remove_all(entry.path());
   fs::remove(place / kDerivedFrom);
+}
+
+// Files in the place other than the lock of the render drawing into it now.
+bool holds_files(const fs::path& place) {
+  std::error_code e;
+  for (const auto& entry : fs::directory_iterator(place, e))
+    if (entry.path().filename() != render_lock_file) return true;
+  return false;
 }
 // An entry that marks its folder as a run's: finished, failed, stopped, or running or killed.
 bool marks_a_run(const fs::directory_entry& entry) {
@@ -92,7 +106,23 @@ void check_derived_place(const std::string& place, const std::string& run_dir) {
         "{} holds a run or a report below it, in {}, which emptying it for the run in {} would take too; give --out "
         "a folder without one",
         place, below->string(), run_dir);
-  if (fs::exists(place) && !fs::is_empty(place))
+  // Inside another run's folder, or a place filled from another run: a run or report made there
+  // again, or a render of another run into it, would empty or replace it with this place.
+  for (fs::path up = p.parent_path(); !up.empty() && up != r; up = up.parent_path()) {
+    if (fs::is_directory(up)) {
+      DSPDEM_CHECK(!holds_a_run(up.string()),
+                   "{} lies inside {}, which holds a run of its own, where what is derived from the run in {} would "
+                   "be written; give --out a folder outside it",
+                   place, up.string(), run_dir);
+      const auto from = derived_from(up.string());
+      DSPDEM_CHECK(!from || *from == r.string(),
+                   "{} lies inside {}, which a render or a report filled from the run in {}, where what is derived "
+                   "from the run in {} would be written; give --out a folder outside it",
+                   place, up.string(), from.value_or(""), run_dir);
+    }
+    if (up == up.root_path()) break;
+  }
+  if (fs::exists(place) && holds_files(place))
     DSPDEM_CHECK(fs::exists(fs::path(place) / kDerivedFrom),
                  "{} holds files that no report or render derived from a run (no {} there); give --out another "
                  "folder",

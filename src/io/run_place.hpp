@@ -11,6 +11,8 @@ namespace dspdem {
 
 /// The file a report holds locked while it writes into its folder (core/folder_lock.hpp).
 inline constexpr const char* report_lock_file = ".report.lock";
+/// The file a render holds locked while it draws into its folder (the run's, or --out).
+inline constexpr const char* render_lock_file = ".render.lock";
 
 /// Whether `dir` holds a run: finished (summary.json, run.pvd), failed or stopped (failed_run/,
 /// interrupted_run/), or running or killed (a staging folder, io/staging.hpp).
@@ -23,9 +25,11 @@ bool holds_a_report(const std::string& dir);
 std::optional<std::string> derived_from(const std::string& dir);
 
 /// Whether `place` may take what a report derives from the run in `run_dir`, changing nothing:
-/// Error when the run given lies inside it, it holds another run (derived files beside it
-/// would read as its) or a report, a run or a report anywhere below it, or files but no
-/// derived_from (no report or render filled it).
+/// Error when the run given lies inside it, it lies inside another run's folder or a place
+/// filled from another run (emptied or replaced with it later), it holds another run (derived
+/// files beside it would read as its) or a report, a run or a report anywhere below it, or
+/// files but no derived_from (no report or render filled it). The render's lock file is not
+/// counted as a file.
 void check_derived_place(const std::string& place, const std::string& run_dir);
 
 /// check_derived_place, then makes `place` ready: nothing to do when it is the run itself; a

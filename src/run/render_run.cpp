@@ -10,9 +10,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/folder_lock.hpp"
 #include "core/log.hpp"
 #include "core/subprocess.hpp"
 #include "core/timer.hpp"
@@ -194,6 +196,11 @@ int render_command(const RenderArgs& in) {
   // report given -t 1 on a shared machine renders on one core too.
   int jobs = a.jobs > 0 ? a.jobs : std::max(1, omp_get_max_threads());
   jobs = std::min<int>(jobs, static_cast<int>(sel.size()));
+  // One render at a time into a folder: two would draw over each other's frames, and one
+  // emptying a place another is drawing into would leave both runs' frames mixed. Held until
+  // the render ends; its workers draw under it.
+  std::optional<FolderLock> lock;
+  if (!worker) lock.emplace(a.out_dir, render_lock_file, "another render");
   // Into another folder (--out): one that another run's images were drawn into is emptied
   // first, so that frames not drawn again do not sit beside these as theirs; one holding a run
   // or files not derived from a run is refused (io/run_place.hpp).

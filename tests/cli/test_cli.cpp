@@ -578,6 +578,34 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   EXPECT_NE(r3.out.find("no report or render derived from a run"), std::string::npos) << r3.out;
   EXPECT_EQ(slurp(dir_ / "mine" / "notes.txt"), "mine");
   EXPECT_FALSE(fs::exists(dir_ / "mine" / "images"));
+  // A render lets go of its lock as it ends, in the run's own folder and in --out.
+  EXPECT_FALSE(fs::exists(out / ".render.lock"));
+  EXPECT_FALSE(fs::exists(drawn / ".render.lock"));
+  {
+    // One render at a time into a folder: a second is refused while the first draws, and draws
+    // nothing there.
+    const dspdem::FolderLock held(drawn.string(), ".render.lock", "the test");
+    const Result busy = run("-q render " + out.string() + " --out " + drawn.string() + " --frames last");
+    EXPECT_EQ(busy.code, 2) << busy.out;
+    EXPECT_NE(busy.out.find("another render is writing into this folder now"), std::string::npos) << busy.out;
+    EXPECT_NE(slurp(drawn / "derived_from").find("nb2"), std::string::npos);
+  }
+  // A place inside another run, or inside a place drawn from another run, is refused (a run or
+  // a render into the outer folder would empty it); one inside the run drawn is not.
+  const Result in_run = run("-q render " + out.string() + " --out " + (dir_ / "nb2" / "pics").string() +
+                            " --view cracks --frames last --size 160x120 --no-animation");
+  EXPECT_EQ(in_run.code, 2) << in_run.out;
+  EXPECT_NE(in_run.out.find("which holds a run of its own"), std::string::npos) << in_run.out;
+  EXPECT_FALSE(fs::exists(dir_ / "nb2" / "pics"));
+  const Result in_drawn = run("-q render " + out.string() + " --out " + (drawn / "pics").string() +
+                              " --view cracks --frames last --size 160x120 --no-animation");
+  EXPECT_EQ(in_drawn.code, 2) << in_drawn.out;
+  EXPECT_NE(in_drawn.out.find("which a render or a report filled from the run in"), std::string::npos) << in_drawn.out;
+  EXPECT_FALSE(fs::exists(drawn / "pics"));
+  const Result own = run("-q render " + out.string() + " --out " + (out / "pics").string() +
+                         " --view cracks --frames last --size 160x120 --no-animation");
+  EXPECT_EQ(own.code, 0) << own.out;
+  EXPECT_TRUE(fs::exists(out / "pics" / "images/cracks/frame_0010.png"));
   // A run made into the drawn folder empties it first: nothing drawn from nb2 stays beside it.
   const Result r4 =
       run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/bar_tension.toml --out " + drawn.string());

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/folder_lock.hpp"
@@ -55,5 +58,40 @@ TEST(FolderLock, AFolderItMadeAndLeftEmptyGoesWithIt) {
   EXPECT_FALSE(fs::exists(base / "new"));  // a report refused at once leaves no folder
   { FolderLock kept((base / "kept").string(), ".report.lock", "another report"); }
   EXPECT_TRUE(fs::exists(base / "kept"));  // one that was there stays, empty as it was
+  fs::remove_all(base);
+}
+
+TEST(FolderLock, NeverTwoHoldersWhileManyTakeAndLetGo) {
+  // The holder removes the lock file before it lets go, and the folder when it made it: a
+  // taker that opened the old file, or whose folder went, must try again rather than hold a
+  // lock on a file no longer at the path beside the next holder. Threads stand in for
+  // processes (flock locks belong to the open file). A taker refused because another holds
+  // the lock tries again; none may ever find another holding it at the same time.
+  const fs::path base = scratch();
+  fs::create_directories(base);
+  const std::string d = (base / "rep").string();  // made and removed again and again
+  std::atomic<int> holding{0}, most{0}, taken{0};
+  std::vector<std::thread> takers;
+  for (int t = 0; t < 4; ++t)
+    takers.emplace_back([&] {
+      for (int got = 0; got < 300;) {
+        try {
+          const FolderLock lock(d, ".report.lock", "another taker");
+          const int now = ++holding;
+          int seen = most.load();
+          while (now > seen && !most.compare_exchange_weak(seen, now)) {
+          }
+          std::this_thread::yield();
+          --holding;
+          ++got;
+          ++taken;
+        } catch (const Error&) {
+          std::this_thread::yield();  // held by another: try again
+        }
+      }
+    });
+  for (auto& t : takers) t.join();
+  EXPECT_EQ(taken.load(), 1200);
+  EXPECT_EQ(most.load(), 1);
   fs::remove_all(base);
 }

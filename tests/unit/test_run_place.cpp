@@ -109,3 +109,45 @@ TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmpties
   clear_derived_place((dir_ / "a").string());
   EXPECT_TRUE(fs::exists(dir_ / "a" / "load.csv"));
 }
+
+TEST_F(RunPlace, APlaceInsideAnotherRunOrAnotherRunsPlaceIsRefusedAndOneInsideTheRunDrawnIsNot) {
+  // Inside another run's folder: a run made there again would take it.
+  try {
+    check_derived_place((dir_ / "b" / "pics").string(), (dir_ / "a").string());
+    ADD_FAILURE() << "a place inside another run was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("which holds a run of its own"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(check_derived_place((dir_ / "b" / "x" / "y").string(), (dir_ / "a").string()), Error);  // deeper
+  // Inside the run drawn: nothing there is emptied by another run's render.
+  prepare_derived_place((dir_ / "a" / "pics").string(), (dir_ / "a").string());
+  EXPECT_TRUE(fs::exists(dir_ / "a" / "pics" / "derived_from"));
+  // Inside a place filled from another run: a render of a third run into it would empty it.
+  const std::string place = (dir_ / "drawn").string();
+  prepare_derived_place(place, (dir_ / "b").string());
+  try {
+    check_derived_place((dir_ / "drawn" / "sub").string(), (dir_ / "a").string());
+    ADD_FAILURE() << "a place inside one filled from another run was taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("which a render or a report filled from the run in"), std::string::npos)
+        << e.what();
+  }
+  check_derived_place((dir_ / "drawn" / "sub").string(), (dir_ / "b").string());  // from the same run: fine
+}
+
+TEST_F(RunPlace, TheRendersLockIsNotAFileOfThePlaceAndEmptyingKeepsTheLocks) {
+  // A render takes its lock in the place before it checks it: the lock alone is not files no
+  // report or render derived.
+  const fs::path place = dir_ / "drawn";
+  fs::create_directories(place);
+  std::ofstream(place / render_lock_file) << "";
+  prepare_derived_place(place.string(), (dir_ / "a").string());
+  EXPECT_TRUE(fs::exists(place / "derived_from"));
+  // Emptied for another run: the files go, the render's lock stays (one removed under its
+  // holder would let a second render in).
+  std::ofstream(place / "load.csv") << "from a";
+  prepare_derived_place(place.string(), (dir_ / "b").string());
+  EXPECT_FALSE(fs::exists(place / "load.csv"));
+  EXPECT_TRUE(fs::exists(place / render_lock_file));
+  EXPECT_NE(derived_from(place.string())->find("b"), std::string::npos);
+}
