@@ -11,7 +11,7 @@
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
 #include "report/run_data.hpp"
-#include "run/render_run.hpp"
+#include "report/run_figures.hpp"
 #include "run/run_case.hpp"
 #include "scenes/brazilian_disc/analysis.hpp"
 #include "scenes/brazilian_disc/loading.hpp"
@@ -29,30 +29,18 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
   const DiscResult r = analyse_disc_run(c, run_dir, files);
   const fs::path img = fs::path(files) / "images";
-  if (!a.no_render) {
-    RenderArgs ra;
-    ra.run_dir = run_dir, ra.out_dir = files;
-    ra.views = {"stress", "fragments"};
-    render_command(ra);
-  }
-  fs::create_directories(img / "plots");
-  // `csv` in the report's files, or (series.csv) the run's own.
-  auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& ref,
-                  const std::string& title, const std::string& png) {
-    render::PlotSpec s{x, std::move(y), ref, title};
-    render::plot_csv((fs::path(csv == "series.csv" ? run_dir : files) / csv).string(), s,
-                     (img / "plots" / png).string());
-  };
+  report::draw_run_frames(dirs, a, {"stress", "fragments"});
+  const report::RunPlots plot(dirs);
   // The case's own loading words: the shipped case loads through the ISRM's curved jaws, the
   // paper and the study's flat_plates row through flat plates.
   const std::string by = loads_through_jaws(c) ? "jaw" : "plate";
-  plot("load.csv", "time_ms", {"load_kN"}, "", by + " load [kN] against time [ms]", "load_time.png");
-  plot("load.csv", "closure_mm", {"load_kN"}, "", fmt::format("{0} load [kN] against {0} closure [mm]", by),
+  plot("load.csv", "time_ms", {"load_kN"}, by + " load [kN] against time [ms]", "load_time.png");
+  plot("load.csv", "closure_mm", {"load_kN"}, fmt::format("{0} load [kN] against {0} closure [mm]", by),
        "load_closure.png");
-  plot("profile.csv", "y_mm", {"sigma_xx_MPa", "sigma_yy_MPa"}, (fs::path(files) / "profile_analytic.csv").string(),
+  plot("profile.csv", "y_mm", {"sigma_xx_MPa", "sigma_yy_MPa"},
        fmt::format("stresses along the loaded diameter at {:.1f} kN [MPa]; dashed: analytic", 1e-3 * r.P_profile),
-       "profile.png");
-  plot("series.csv", "time", {"balance_error"}, "", "energy balance error (fraction of the largest term)",
+       "profile.png", (fs::path(files) / "profile_analytic.csv").string());
+  plot("series.csv", "time", {"balance_error"}, "energy balance error (fraction of the largest term)",
        "balance_error.png");
 
   // The field check on a load-resolving mesh, at the scene's profile load.

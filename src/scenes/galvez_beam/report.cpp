@@ -6,13 +6,12 @@
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "io/staging.hpp"
-#include "render/plot.hpp"
 #include "report/crack_sampling.hpp"
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
 #include "report/run_data.hpp"
+#include "report/run_figures.hpp"
 #include "report/study_runner.hpp"
-#include "run/render_run.hpp"
 #include "run/run_case.hpp"
 #include "scenes/galvez_beam/analysis.hpp"
 #include "scenes/galvez_beam/scene.hpp"
@@ -94,18 +93,8 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   const report::ReportDirs dirs = report::prepare_report_run(c, a);
   const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
   const GalvezResult r = analyse_galvez_run(c, run_dir, files);
-  const fs::path img = fs::path(files) / "images";
-  if (!a.no_render) {
-    RenderArgs ra;
-    ra.run_dir = run_dir, ra.out_dir = files;
-    render_command(ra);  // the case's views: stress x100, fragments, cracks
-  }
-  fs::create_directories(img / "plots");
-  auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& title,
-                  const std::string& png) {
-    render::PlotSpec s{x, std::move(y), "", title};
-    render::plot_csv((fs::path(files) / csv).string(), s, (img / "plots" / png).string());
-  };
+  report::draw_run_frames(dirs, a);  // the case's views: stress x100, fragments, cracks
+  const report::RunPlots plot(dirs);
   plot("load.csv", "cmod_mm", {"load_kN"}, "actuator load [kN] against CMOD [mm]", "load_cmod.png");
   plot("load.csv", "deflection_mm", {"load_kN"}, "actuator load [kN] against load-point deflection [mm]",
        "load_deflection.png");

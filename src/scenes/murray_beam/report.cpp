@@ -5,12 +5,11 @@
 
 #include "core/log.hpp"
 #include "core/timer.hpp"
-#include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
 #include "report/run_data.hpp"
+#include "report/run_figures.hpp"
 #include "report/study_runner.hpp"
-#include "run/render_run.hpp"
 #include "scenes/murray_beam/analysis.hpp"
 #include "scenes/murray_beam/scene.hpp"
 
@@ -84,18 +83,8 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   const report::ReportDirs dirs = report::prepare_report_run(c, a);
   const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
   const MurrayResult r = analyse_murray_run(c, run_dir, files);
-  const fs::path img = fs::path(files) / "images";
-  if (!a.no_render) {
-    RenderArgs ra;
-    ra.run_dir = run_dir, ra.out_dir = files;
-    render_command(ra);  // the case's views: fragments, cracks, stress
-  }
-  fs::create_directories(img / "plots");
-  auto plot = [&](const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& title,
-                  const std::string& png) {
-    render::PlotSpec s{x, std::move(y), "", title};
-    render::plot_csv((fs::path(files) / csv).string(), s, (img / "plots" / png).string());
-  };
+  report::draw_run_frames(dirs, a);  // the case's views: fragments, cracks, stress
+  const report::RunPlots plot(dirs);
   plot("murray_series.csv", "time_ms", {"midspan_deflection_mm", "max_deflection_mm"},
        "deflection [mm] against time [ms]: mid-span (bottom) and largest over the bottom face", "deflection.png");
   plot("murray_series.csv", "time_ms", {"impactor_left_vy", "impactor_right_vy"},

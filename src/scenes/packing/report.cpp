@@ -5,12 +5,11 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
-#include "render/plot.hpp"
 #include "report/document.hpp"
 #include "report/report_dirs.hpp"
 #include "report/run_data.hpp"
+#include "report/run_figures.hpp"
 #include "run/montage.hpp"
-#include "run/render_run.hpp"
 #include "scenes/packing/analysis.hpp"
 #include "scenes/packing/scene.hpp"
 
@@ -36,19 +35,16 @@ int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
   const std::string &dir = dirs.dir, &run_dir = dirs.run_dir, &files = dirs.files_dir;
   const PackingResult r = analyse_packing_run(c, run_dir, files);
   const fs::path img = fs::path(files) / "images";
-  fs::create_directories(img / "plots");
+  const report::RunPlots plots(dirs);
   auto plot = [&](const std::string& y, const std::string& title, const std::string& png) {
-    render::plot_csv((fs::path(files) / "packing_series.csv").string(), render::PlotSpec{"time", {y}, "", title},
-                     (img / "plots" / png).string());
+    plots("packing_series.csv", "time", {y}, title, png);
   };
   plot("log10_kinetic_over_released", "log10(kinetic energy / potential energy released) against time [s]",
        "kinetic_decay.png");
   plot("contacts_per_particle", "feature contacts per particle against time [s]", "contacts.png");
   plot("floor_force_over_weight", "floor force over the particles' weight against time [s]", "floor_force.png");
+  report::draw_run_frames(dirs, a);  // the case's views over all frames, with the animation
   if (!a.no_render) {
-    RenderArgs ra;  // the case's views over all frames, with the animation
-    ra.run_dir = run_dir, ra.out_dir = files;
-    render_command(ra);
     for (const char* cam : {"front", "side", "iso"}) {
       MontageArgs m;
       m.run_dirs = {run_dir}, m.labels = {fmt::format("final heap, {} view", cam)};
