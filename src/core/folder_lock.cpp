@@ -25,11 +25,20 @@ FolderLock::FolderLock(const std::string& dir, const std::string& file, const st
   // file a killed report left is taken by a user who may not write it.
   for (int attempt = 0; attempt < 100; ++attempt) {
     std::error_code e;
-    made_dir_ = fs::create_directories(dir, e) || made_dir_;
+    fs::path top;  // the highest folder missing now, which create_directories makes
+    for (fs::path up = fs::absolute(dir, e); !e && !up.empty() && !fs::exists(up, e); up = up.parent_path()) {
+      top = up;
+      if (up == up.root_path()) break;
+    }
+    if (fs::create_directories(dir, e) && made_top_.empty()) made_top_ = top.string();
     DSPDEM_CHECK(!e, "cannot make the folder '{}': {}", dir, e.message());
     const int fd = ::open(path_.c_str(), O_CREAT | O_RDONLY | O_CLOEXEC, 0644);
     if (fd < 0 && errno == ENOENT) continue;  // the folder went meanwhile
-    DSPDEM_CHECK(fd >= 0, "cannot open the lock file '{}': {}", path_, std::strerror(errno));
+    if (fd < 0) {
+      const int err = errno;
+      remove_made();
+      fail("cannot open the lock file '{}': {}", path_, std::strerror(err));
+    }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;
       ::close(fd);
@@ -49,6 +58,7 @@ FolderLock::FolderLock(const std::string& dir, const std::string& file, const st
     }
     ::close(fd);
   }
+  remove_made();
   fail("{}: the lock file {} kept changing under this process; another process is taking it", dir, path_);
 }
 
@@ -56,10 +66,24 @@ FolderLock::~FolderLock() {
   if (fd_ < 0) return;
   ::unlink(path_.c_str());
   ::close(fd_);
-  if (made_dir_) {
-    std::error_code e;
-    fs::remove(dir_, e);  // only when empty: fails harmlessly otherwise
+  remove_made();
+}
+
+void FolderLock::remove_made() const {
+  if (made_top_.empty()) return;
+  std::error_code e;
+  for (fs::path up = fs::absolute(dir_, e); !e && !up.empty(); up = up.parent_path()) {
+    if (!fs::remove(up, e) || e) return;  // only while empty: stops harmlessly at the first that is not
+    if (up == made_top_ || up == up.root_path()) return;
   }
+}
+
+bool FolderLock::held(const std::string& dir, const std::string& file) {
+  const int fd = ::open((fs::path(dir) / file).c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool busy = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);  // lets go of the shared lock, if it was taken
+  return busy;
 }
 
 }  // namespace dspdem

@@ -11,19 +11,27 @@ namespace dspdem {
 class FolderLock {
  public:
   /// Makes `dir` if need be and takes the lock on `dir/<file>`; Error naming the folder when
-  /// another process holds it (`what` says what holds it, e.g. "another report"). Where the file
-  /// system has no flock the lock is not taken (a warning), as for the runs' staging folders.
+  /// another process holds it (`what` says what holds it, e.g. "another report"), leaving no
+  /// folder it made. Where the file system has no flock the lock is not taken (a warning), as
+  /// for the runs' staging folders.
   FolderLock(const std::string& dir, const std::string& file, const std::string& what);
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;
-  /// Removes the lock file while still holding it, then lets go (and removes `dir` when this
-  /// lock made it and it holds nothing else: a report refused at once leaves no folder).
+  /// Removes the lock file while still holding it, then lets go (and removes the folders this
+  /// lock made, `dir` and those above it, while they hold nothing else: a report or a render
+  /// refused at once leaves no folder).
   ~FolderLock();
 
+  /// Whether another open file holds the lock on `dir/<file>` now (a writer in that folder).
+  /// Tested with a shared lock taken and let go at once: a taker in that instant is refused as
+  /// if held, so this is for refusing, not for waiting on.
+  static bool held(const std::string& dir, const std::string& file);
+
  private:
+  void remove_made() const;
   std::string dir_, path_;
+  std::string made_top_;  ///< the highest folder this lock made, empty when it made none
   int fd_ = -1;
-  bool made_dir_ = false;
 };
 
 }  // namespace dspdem

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/folder_lock.hpp"
 #include "io/staging.hpp"
 
 namespace dspdem {
@@ -65,13 +66,21 @@ bool holds(const std::string& dir, bool (*marks)(const fs::directory_entry&)) {
   return false;
 }
 
-// A run or a report anywhere below the place's top level (made inside a place a report or a
-// render filled): emptying the place would take it too.
+// A render drawing into the folder of `entry`, its lock file, now.
+bool marks_a_render_drawing(const fs::directory_entry& entry) {
+  return entry.path().filename() == render_lock_file &&
+         FolderLock::held(entry.path().parent_path().string(), render_lock_file);
+}
+
+// A run, a report or a render drawing now anywhere below the place's top level (made inside a
+// place a report or a render filled): emptying the place would take it too. (A render drawing
+// into the place itself holds its lock for its own emptying, or is refused by the lock.)
 std::optional<fs::path> kept_below(const fs::path& place) {
   std::error_code e;
   for (auto it = fs::recursive_directory_iterator(place, e); !e && it != fs::recursive_directory_iterator();
        it.increment(e))
-    if (marks_a_run(*it) || marks_a_report(*it)) return it->path().parent_path();
+    if (marks_a_run(*it) || marks_a_report(*it) || (it.depth() > 0 && marks_a_render_drawing(*it)))
+      return it->path().parent_path();
   return std::nullopt;
 }
 }  // namespace
@@ -103,11 +112,11 @@ void check_derived_place(const std::string& place, const std::string& run_dir) {
                place, report_lock_file, run_dir);
   if (const auto below = kept_below(place))
     fail(
-        "{} holds a run or a report below it, in {}, which emptying it for the run in {} would take too; give --out "
-        "a folder without one",
+        "{} holds a run, a report or a render drawing now below it, in {}, which emptying it for the run in {} would "
+        "take too; give --out a folder without one",
         place, below->string(), run_dir);
-  // Inside another run's folder, or a place filled from another run: a run or report made there
-  // again, or a render of another run into it, would empty or replace it with this place.
+  // Inside another run's folder, its images would sit there as that run's; inside a place filled
+  // from another run, a render of a third run into that place would empty it, this one with it.
   for (fs::path up = p.parent_path(); !up.empty() && up != r; up = up.parent_path()) {
     if (fs::is_directory(up)) {
       DSPDEM_CHECK(!holds_a_run(up.string()),
@@ -141,9 +150,20 @@ void prepare_derived_place(const std::string& place, const std::string& run_dir)
   DSPDEM_CHECK(mark.flush().good(), "cannot write '{}/{}'", place, kDerivedFrom);
 }
 
+void take_derived_place(const std::string& place, const std::string& run_dir) {
+  check_derived_place(place, run_dir);
+  std::error_code differ;
+  if (fs::equivalent(place, run_dir, differ)) return;
+  const FolderLock drawing(place, render_lock_file, "a render");
+  prepare_derived_place(place, run_dir);
+}
+
 void clear_derived_place(const std::string& place) {
-  if (fs::exists(fs::path(place) / kDerivedFrom) && !holds_a_run(place) && !holds_a_report(place) && !kept_below(place))
-    empty_place(place);
+  if (!fs::exists(fs::path(place) / kDerivedFrom) || holds_a_run(place) || holds_a_report(place) || kept_below(place))
+    return;
+  // Not under a render drawing there now: refused by its lock (Error) rather than emptied under it.
+  const FolderLock drawing(place, render_lock_file, "a render");
+  empty_place(place);
 }
 
 }  // namespace dspdem

@@ -25,21 +25,28 @@ bool holds_a_report(const std::string& dir);
 std::optional<std::string> derived_from(const std::string& dir);
 
 /// Whether `place` may take what a report derives from the run in `run_dir`, changing nothing:
-/// Error when the run given lies inside it, it lies inside another run's folder or a place
-/// filled from another run (emptied or replaced with it later), it holds another run (derived
-/// files beside it would read as its) or a report, a run or a report anywhere below it, or
+/// Error when the run given lies inside it, it lies inside another run's folder (its images
+/// would sit there as that run's) or a place filled from another run (emptied with it when a
+/// third run is drawn there), it holds another run (derived files beside it would read as its)
+/// or a report, it holds a run, a report or a render drawing now anywhere below it, or it holds
 /// files but no derived_from (no report or render filled it). The render's lock file is not
 /// counted as a file.
 void check_derived_place(const std::string& place, const std::string& run_dir);
 
-/// check_derived_place, then makes `place` ready: nothing to do when it is the run itself; a
+/// check_derived_place, then makes `place` ready (for the render drawing there, which holds its
+/// render lock; other callers take_derived_place): nothing to do when it is the run itself; a
 /// place filled from another run is emptied first (its images would show as this run's); the
 /// run is recorded in place/derived_from.
 void prepare_derived_place(const std::string& place, const std::string& run_dir);
 
+/// prepare_derived_place for a caller other than the render drawing into `place` (a report's
+/// place for a run it did not make), under the place's render lock: Error, changing nothing,
+/// when a render is drawing into it now.
+void take_derived_place(const std::string& place, const std::string& run_dir);
+
 /// A place a report or a render filled from a run (derived_from, no run or report in it or
 /// below it) that a run is now to be made in: emptied, so that nothing derived from the other
-/// run stays beside the new one.
+/// run stays beside the new one; Error when a render is drawing into it now.
 void clear_derived_place(const std::string& place);
 
 }  // namespace dspdem

@@ -29,7 +29,7 @@ ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a) {
   }
   DSPDEM_CHECK(fs::exists(fs::path(d.run_dir) / "summary.json"),
                "--from-run {}: no summary.json there (not the output folder of a finished run)", d.run_dir);
-  prepare_derived_place(d.files_dir, d.run_dir);  // DIR/run may be the run itself: then nothing to do
+  take_derived_place(d.files_dir, d.run_dir);  // DIR/run may be the run itself: then nothing to do
   return d;
 }
 

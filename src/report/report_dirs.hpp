@@ -24,7 +24,7 @@ std::string report_folder(const CaseConfig& c, const ReportArgs& a);
 /// Makes DIR, runs the case into DIR/run (with --resume, keeps or continues the same run an
 /// earlier report left there) unless --from-run names a finished run (which must hold a
 /// summary.json: Error otherwise; DIR/run, where the report then writes, is made ready by
-/// prepare_derived_place), and returns the folders.
+/// take_derived_place), and returns the folders.
 ReportDirs prepare_report_run(const CaseConfig& c, const ReportArgs& a);
 
 }  // namespace dspdem::report

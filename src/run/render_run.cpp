@@ -1,6 +1,7 @@
 #include "run/render_run.hpp"
 
 #include <omp.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vtkCellData.h>
@@ -196,16 +197,27 @@ int render_command(const RenderArgs& in) {
   // report given -t 1 on a shared machine renders on one core too.
   int jobs = a.jobs > 0 ? a.jobs : std::max(1, omp_get_max_threads());
   jobs = std::min<int>(jobs, static_cast<int>(sel.size()));
+  // Into another folder (--out): one that another run's images were drawn into is emptied
+  // first, so that frames not drawn again do not sit beside these as theirs; one holding a run
+  // or files not derived from a run is refused (io/run_place.hpp). Checked before the lock too,
+  // so that a folder refused is not made.
+  if (!worker) check_derived_place(a.out_dir, a.run_dir);
   // One render at a time into a folder: two would draw over each other's frames, and one
   // emptying a place another is drawing into would leave both runs' frames mixed. Held until
   // the render ends; its workers draw under it.
   std::optional<FolderLock> lock;
   if (!worker) lock.emplace(a.out_dir, render_lock_file, "another render");
-  // Into another folder (--out): one that another run's images were drawn into is emptied
-  // first, so that frames not drawn again do not sit beside these as theirs; one holding a run
-  // or files not derived from a run is refused (io/run_place.hpp).
   if (!worker) prepare_derived_place(a.out_dir, a.run_dir);
   std::vector<pid_t> pids;
+  // Workers still drawing when this render stops early (an error below) are stopped and waited
+  // for before its lock goes: none may draw on into a folder another render then takes.
+  struct StopWorkers {
+    std::vector<pid_t>& pids;
+    ~StopWorkers() {
+      for (pid_t p : pids) ::kill(p, SIGTERM);
+      for (pid_t p : pids) wait_program(p);
+    }
+  } stop_workers{pids};
   if (!worker && jobs > 1) {
     spawn_workers(a, o, jobs, pids);
     n = static_cast<int>(pids.size()) + 1;
@@ -245,6 +257,7 @@ int render_command(const RenderArgs& in) {
     waitpid(p, &st, 0);
     failed += !(WIFEXITED(st) && WEXITSTATUS(st) == 0);
   }
+  pids.clear();  // all ended
   if (worker) return 0;
   DSPDEM_CHECK(failed == 0, "{} render worker(s) failed; see their messages above", failed);
   log::info("dspdem render: {} frame(s) x {} view(s) of {} at {}x{} with {} process(es), {:.3f} s per image here ({})",

@@ -597,6 +597,10 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   EXPECT_EQ(in_run.code, 2) << in_run.out;
   EXPECT_NE(in_run.out.find("which holds a run of its own"), std::string::npos) << in_run.out;
   EXPECT_FALSE(fs::exists(dir_ / "nb2" / "pics"));
+  const Result deeper =
+      run("-q render " + out.string() + " --out " + (dir_ / "nb2" / "x" / "pics").string() + " --frames last");
+  EXPECT_EQ(deeper.code, 2) << deeper.out;
+  EXPECT_FALSE(fs::exists(dir_ / "nb2" / "x"));  // a refused place is not made, nor what is above it
   const Result in_drawn = run("-q render " + out.string() + " --out " + (drawn / "pics").string() +
                               " --view cracks --frames last --size 160x120 --no-animation");
   EXPECT_EQ(in_drawn.code, 2) << in_drawn.out;

@@ -42,8 +42,10 @@ TEST(FolderLock, ASecondHolderIsRefusedUntilTheFirstLetsGo) {
     EXPECT_NE(m.find(d.string()), std::string::npos) << m;
     EXPECT_NE(m.find("another report is writing into this folder now"), std::string::npos) << m;
   }
+  EXPECT_TRUE(FolderLock::held(d.string(), ".report.lock"));
   std::ofstream(d / "report.md") << "written";
   first.reset();
+  EXPECT_FALSE(FolderLock::held(d.string(), ".report.lock"));
   EXPECT_FALSE(fs::exists(d / ".report.lock"));
   EXPECT_TRUE(fs::exists(d / "report.md"));  // a folder with files stays
   { FolderLock again(d.string(), ".report.lock", "another report"); }
@@ -56,6 +58,17 @@ TEST(FolderLock, AFolderItMadeAndLeftEmptyGoesWithIt) {
   fs::create_directories(base / "kept");
   { FolderLock made((base / "new").string(), ".report.lock", "another report"); }
   EXPECT_FALSE(fs::exists(base / "new"));  // a report refused at once leaves no folder
+  // Nor the folders made above it, up to the first that was there.
+  { FolderLock made((base / "kept" / "x" / "y" / "z").string(), ".report.lock", "another report"); }
+  EXPECT_FALSE(fs::exists(base / "kept" / "x"));
+  EXPECT_TRUE(fs::exists(base / "kept"));
+  {
+    FolderLock made((base / "kept" / "x" / "y").string(), ".report.lock", "another report");
+    std::ofstream(base / "kept" / "x" / "mine.txt") << "written meanwhile";
+  }
+  EXPECT_FALSE(fs::exists(base / "kept" / "x" / "y"));
+  EXPECT_TRUE(fs::exists(base / "kept" / "x" / "mine.txt"));  // a folder with files stays
+  fs::remove_all(base / "kept" / "x");
   { FolderLock kept((base / "kept").string(), ".report.lock", "another report"); }
   EXPECT_TRUE(fs::exists(base / "kept"));  // one that was there stays, empty as it was
   fs::remove_all(base);
@@ -85,7 +98,11 @@ TEST(FolderLock, NeverTwoHoldersWhileManyTakeAndLetGo) {
           --holding;
           ++got;
           ++taken;
-        } catch (const Error&) {
+        } catch (const Error& e) {
+          if (std::string(e.what()).find("is writing into this folder now") == std::string::npos) {
+            ADD_FAILURE() << e.what();  // anything else would repeat: fail, not hang
+            return;
+          }
           std::this_thread::yield();  // held by another: try again
         }
       }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/folder_lock.hpp"
 #include "io/run_place.hpp"
 
 using namespace dspdem;
@@ -149,5 +150,41 @@ TEST_F(RunPlace, TheRendersLockIsNotAFileOfThePlaceAndEmptyingKeepsTheLocks) {
   prepare_derived_place(place.string(), (dir_ / "b").string());
   EXPECT_FALSE(fs::exists(place / "load.csv"));
   EXPECT_TRUE(fs::exists(place / render_lock_file));
-  EXPECT_NE(derived_from(place.string())->find("b"), std::string::npos);
+  EXPECT_EQ(derived_from(place.string()), fs::weakly_canonical(dir_ / "b").string());
+}
+
+TEST_F(RunPlace, ARenderDrawingIntoThePlaceOrBelowItKeepsItFromBeingEmptied) {
+  const fs::path place = dir_ / "drawn";
+  prepare_derived_place(place.string(), (dir_ / "a").string());
+  std::ofstream(place / "load.csv") << "from a";
+  {
+    // A render drawing into the place: a run made there does not empty it under the render,
+    // and a report's place for another run is not taken.
+    const FolderLock drawing(place.string(), render_lock_file, "the test");
+    EXPECT_TRUE(FolderLock::held(place.string(), render_lock_file));
+    EXPECT_THROW(clear_derived_place(place.string()), Error);
+    EXPECT_THROW(take_derived_place(place.string(), (dir_ / "b").string()), Error);
+    EXPECT_TRUE(fs::exists(place / "load.csv"));
+    EXPECT_EQ(derived_from(place.string()), fs::weakly_canonical(dir_ / "a").string());
+  }
+  EXPECT_FALSE(FolderLock::held(place.string(), render_lock_file));
+  // One drawing below it: emptying the place would take its folder.
+  {
+    const FolderLock drawing((place / "sub").string(), render_lock_file, "the test");
+    try {
+      check_derived_place(place.string(), (dir_ / "b").string());
+      ADD_FAILURE() << "a place with a render drawing below it was taken";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("a render drawing now below it"), std::string::npos) << e.what();
+    }
+    clear_derived_place(place.string());  // kept, with the render's folder
+    EXPECT_TRUE(fs::exists(place / "load.csv"));
+  }
+  // A lock file a killed render left, held by none, keeps nothing.
+  fs::create_directories(place / "sub");
+  std::ofstream(place / "sub" / render_lock_file) << "";
+  take_derived_place(place.string(), (dir_ / "b").string());
+  EXPECT_FALSE(fs::exists(place / "load.csv"));
+  EXPECT_FALSE(fs::exists(place / "sub"));
+  EXPECT_FALSE(fs::exists(place / render_lock_file));  // the one the taker held, removed as it let go
 }

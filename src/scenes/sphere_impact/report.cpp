@@ -371,7 +371,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     // Every run found and none refused: only now is anything of this folder changed.
     for (std::size_t i = 0; i < plan.size(); ++i)
       if (!earlier[i].dir.empty())
-        prepare_derived_place(own_dir[i], earlier[i].dir);
+        take_derived_place(own_dir[i], earlier[i].dir);
       else if (!errors[i].empty())
         clear_derived_place(own_dir[i]);  // a failed row: nothing of another run beside it
     if (a.study) {
