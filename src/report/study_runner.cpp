@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/error.hpp"
@@ -50,6 +51,22 @@ std::vector<std::string> extrinsic_overrides(const CaseConfig& base) {
     if (base.joint_materials[i].given)
       sets.push_back(override_of("materials." + base.materials[i].name + ".joint_penalty", 2.0));
   return sets;
+}
+
+std::vector<std::vector<std::string>> study_rows(const std::vector<Variant>& variants,
+                                                 const std::vector<VariantOutcome>& out, std::size_t width,
+                                                 const std::function<std::vector<std::string>(std::size_t)>& row) {
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    if (out[i].error.empty()) {
+      rows.push_back(row(i));
+      continue;
+    }
+    std::vector<std::string> failed(std::max<std::size_t>(width, 3));
+    failed[0] = variants[i].name, failed[1] = variants[i].knob, failed[2] = "failed: " + out[i].error;
+    rows.push_back(std::move(failed));
+  }
+  return rows;
 }
 
 }  // namespace dspdem::report

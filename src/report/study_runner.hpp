@@ -29,6 +29,12 @@ struct VariantOutcome {
 std::vector<VariantOutcome> run_variants(const std::vector<Variant>& variants, const std::string& dir,
                                          const std::function<void(std::size_t, const std::string&)>& run);
 
+/// The study table's rows in the variants' order: `row(i)` for each variant that ran, and for
+/// one that failed its name, its knob and "failed: <why>" in a row `width` columns wide.
+std::vector<std::vector<std::string>> study_rows(const std::vector<Variant>& variants,
+                                                 const std::vector<VariantOutcome>& out, std::size_t width,
+                                                 const std::function<std::vector<std::string>(std::size_t)>& row);
+
 /// The base case re-read with the variant's overrides and run into `run_dir` as `runs` says
 /// (run_or_resume); returns the case as run (its case.resolved.toml is in the folder).
 CaseConfig run_variant_case(const CaseConfig& base, const Variant& v, const std::string& run_dir,

@@ -35,3 +35,14 @@ TEST(StudyRunner, AnInterruptStopsTheStudy) {
                Interrupted);
   EXPECT_EQ(ran, (std::vector<std::size_t>{0, 1}));
 }
+
+TEST(StudyRunner, AFailedVariantsRowNamesItAndIsAsWideAsTheOthers) {
+  const std::vector<report::Variant> v = {{"reference", "-", {}, true}, {"fine", "mesh / 2", {}, false}};
+  const std::vector<report::VariantOutcome> out = {{"", ""}, {"study/fine", "NaN at step 12"}};
+  const auto rows = report::study_rows(v, out, 4, [&](std::size_t i) {
+    return std::vector<std::string>{v[i].name, v[i].knob, "1.0", "2.0"};
+  });
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"reference", "-", "1.0", "2.0"}));
+  EXPECT_EQ(rows[1], (std::vector<std::string>{"fine", "mesh / 2", "failed: NaN at step 12", ""}));
+}

@@ -111,23 +111,24 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
       rows[i] = analyse_galvez_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, "");
     });
-    for (std::size_t i = 0; i < variants.size(); ++i) {
-      const auto& v = variants[i];
-      if (!out[i].error.empty()) {
-        study_rows.push_back({v.name, v.knob, "failed: " + out[i].error, "", "", "", "", "", "", ""});
-        continue;
-      }
+    study_rows = report::study_rows(variants, out, 10, [&](std::size_t i) -> std::vector<std::string> {
       const GalvezResult& q = rows[i];
       std::string dist = "-";
       if (i > 0 && !q.path_mid.empty() && !r.path_mid.empty()) {
         const auto d = report::path_distance(q.path_mid, r.path_mid);
         dist = fmt::format("{:.1f} / {:.1f}", 1e3 * d.mean, 1e3 * d.hausdorff);
       }
-      study_rows.push_back({v.name, v.knob, std::to_string(q.elements), fmt::format("{:.1f}", q.wall_s),
-                            std::to_string(q.steps), fmt::format("{:.3f}", 1e-3 * q.P_peak),
-                            fmt::format("{:.4f}", 1e3 * q.cmod_peak), fmt::format("{:.1f}", 1e3 * q.top_x), dist,
-                            fmt::format("{:.3f}", q.ke_ratio_max)});
-    }
+      return {variants[i].name,
+              variants[i].knob,
+              std::to_string(q.elements),
+              fmt::format("{:.1f}", q.wall_s),
+              std::to_string(q.steps),
+              fmt::format("{:.3f}", 1e-3 * q.P_peak),
+              fmt::format("{:.4f}", 1e3 * q.cmod_peak),
+              fmt::format("{:.1f}", 1e3 * q.top_x),
+              dist,
+              fmt::format("{:.3f}", q.ke_ratio_max)};
+    });
   }
 
   report::Document doc(dir, files);

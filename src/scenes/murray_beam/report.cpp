@@ -102,14 +102,9 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
     const auto out = report::run_variants(variants, dir, [&](std::size_t i, const std::string& rd) {
       rows[i] = analyse_murray_run(report::run_variant_case(c, variants[i], rd, a.runs), rd, "");
     });
-    for (std::size_t i = 0; i < variants.size(); ++i) {
-      if (!out[i].error.empty()) {
-        std::vector<std::string> row(study_row(variants[i], MurrayResult{}).size());  // the table's width
-        row[0] = variants[i].name, row[1] = variants[i].knob, row[2] = "failed: " + out[i].error;
-        study_rows.push_back(row);
-      } else
-        study_rows.push_back(study_row(variants[i], rows[i]));
-    }
+    const std::size_t width = study_row(variants[0], MurrayResult{}).size();
+    study_rows =
+        report::study_rows(variants, out, width, [&](std::size_t i) { return study_row(variants[i], rows[i]); });
   }
 
   report::Document doc(dir, files);
