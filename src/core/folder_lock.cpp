@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -17,20 +18,23 @@ namespace dspdem {
 namespace fs = std::filesystem;
 
 FolderLock::FolderLock(const std::string& dir, const std::string& file, const std::string& what)
-    : dir_(dir), path_((fs::path(dir) / file).string()) {
+    : dir_(fs::absolute(dir).lexically_normal()), path_((dir_ / file).string()) {
+  if (!dir_.has_filename()) dir_ = dir_.parent_path();  // a trailing slash
   // The file is removed by its holder before it lets go, so a process may lock a file that is
   // no longer the one at the path (opened just before the removal): it then tries again on the
   // new one; and the folder with it, when the holder had made it and left it empty. Close on
   // exec: the runs a report starts must not hold its lock on after it ends. Read-only: a lock
   // file a killed report left is taken by a user who may not write it.
   for (int attempt = 0; attempt < 100; ++attempt) {
+    // Made a level at a time from the highest one missing, so that only the folders this lock
+    // made count as its own (another process may make one of them meanwhile).
+    std::vector<fs::path> missing;
+    for (fs::path up = dir_; !fs::exists(up) && up != up.root_path(); up = up.parent_path()) missing.push_back(up);
     std::error_code e;
-    fs::path top;  // the highest folder missing now, which create_directories makes
-    for (fs::path up = fs::absolute(dir, e); !e && !up.empty() && !fs::exists(up, e); up = up.parent_path()) {
-      top = up;
-      if (up == up.root_path()) break;
-    }
-    if (fs::create_directories(dir, e) && made_top_.empty()) made_top_ = top.string();
+    for (auto level = missing.rbegin(); level != missing.rend() && !e; ++level)
+      if (fs::create_directory(*level, e) && made_top_.empty()) made_top_ = *level;
+    // A folder above went meanwhile, or one was made and went again while this made it.
+    if (e == std::errc::no_such_file_or_directory || e == std::errc::file_exists) continue;
     DSPDEM_CHECK(!e, "cannot make the folder '{}': {}", dir, e.message());
     const int fd = ::open(path_.c_str(), O_CREAT | O_RDONLY | O_CLOEXEC, 0644);
     if (fd < 0 && errno == ENOENT) continue;  // the folder went meanwhile
@@ -72,9 +76,9 @@ FolderLock::~FolderLock() {
 void FolderLock::remove_made() const {
   if (made_top_.empty()) return;
   std::error_code e;
-  for (fs::path up = fs::absolute(dir_, e); !e && !up.empty(); up = up.parent_path()) {
+  for (fs::path up = dir_; up != up.root_path(); up = up.parent_path()) {
     if (!fs::remove(up, e) || e) return;  // only while empty: stops harmlessly at the first that is not
-    if (up == made_top_ || up == up.root_path()) return;
+    if (up == made_top_) return;
   }
 }
 

@@ -4,6 +4,7 @@
 // writing over each other's report. The kernel drops the lock when the process ends, however
 // it ends, so a killed report leaves nothing to clear by hand.
 #pragma once
+#include <filesystem>
 #include <string>
 
 namespace dspdem {
@@ -29,8 +30,9 @@ class FolderLock {
 
  private:
   void remove_made() const;
-  std::string dir_, path_;
-  std::string made_top_;  ///< the highest folder this lock made, empty when it made none
+  std::filesystem::path dir_;  ///< absolute, normalised: a later change of folder does not move it
+  std::string path_;
+  std::filesystem::path made_top_;  ///< the highest folder this lock made, empty when it made none
   int fd_ = -1;
 };
 

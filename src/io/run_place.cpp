@@ -115,14 +115,16 @@ void check_derived_place(const std::string& place, const std::string& run_dir) {
         "{} holds a run, a report or a render drawing now below it, in {}, which emptying it for the run in {} would "
         "take too; give --out a folder without one",
         place, below->string(), run_dir);
-  // Inside another run's folder, its images would sit there as that run's; inside a place filled
-  // from another run, a render of a third run into that place would empty it, this one with it.
-  for (fs::path up = p.parent_path(); !up.empty() && up != r; up = up.parent_path()) {
+  // Inside a place filled from another run: a render of a third run into that place would empty
+  // it, this one with it. Inside another run's images/: a run made there again removes them.
+  // (Elsewhere inside another run's folder nothing removes it, and derived_from says whose it is.)
+  fs::path below = p;
+  for (fs::path up = p.parent_path(); !up.empty() && up != r; below = up, up = up.parent_path()) {
     if (fs::is_directory(up)) {
-      DSPDEM_CHECK(!holds_a_run(up.string()),
-                   "{} lies inside {}, which holds a run of its own, where what is derived from the run in {} would "
-                   "be written; give --out a folder outside it",
-                   place, up.string(), run_dir);
+      DSPDEM_CHECK(below.filename() != "images" || !holds_a_run(up.string()),
+                   "{} lies inside {}, the images of the run in {}, which a run made there again removes; give --out "
+                   "a folder outside it",
+                   place, below.string(), up.string());
       const auto from = derived_from(up.string());
       DSPDEM_CHECK(!from || *from == r.string(),
                    "{} lies inside {}, which a render or a report filled from the run in {}, where what is derived "
@@ -159,8 +161,16 @@ void take_derived_place(const std::string& place, const std::string& run_dir) {
 }
 
 void clear_derived_place(const std::string& place) {
-  if (!fs::exists(fs::path(place) / kDerivedFrom) || holds_a_run(place) || holds_a_report(place) || kept_below(place))
+  if (!fs::exists(fs::path(place) / kDerivedFrom) || holds_a_run(place) || holds_a_report(place)) return;
+  if (const auto below = kept_below(place)) {
+    // A run or a report below stays, and the place with it; a render drawing below ends soon,
+    // and the run would otherwise go on beside what was derived from another run.
+    DSPDEM_CHECK(!FolderLock::held(below->string(), render_lock_file),
+                 "{}: a render is drawing into {} now, in a folder filled from another run that this run would "
+                 "empty; wait for it to end",
+                 place, below->string());
     return;
+  }
   // Not under a render drawing there now: refused by its lock (Error) rather than emptied under it.
   const FolderLock drawing(place, render_lock_file, "a render");
   empty_place(place);

@@ -25,9 +25,9 @@ bool holds_a_report(const std::string& dir);
 std::optional<std::string> derived_from(const std::string& dir);
 
 /// Whether `place` may take what a report derives from the run in `run_dir`, changing nothing:
-/// Error when the run given lies inside it, it lies inside another run's folder (its images
-/// would sit there as that run's) or a place filled from another run (emptied with it when a
-/// third run is drawn there), it holds another run (derived files beside it would read as its)
+/// Error when the run given lies inside it, it lies inside another run's images/ (removed when
+/// a run is made there again) or inside a place filled from another run (emptied with it when
+/// a third run is drawn there), it holds another run (derived files beside it would read as its)
 /// or a report, it holds a run, a report or a render drawing now anywhere below it, or it holds
 /// files but no derived_from (no report or render filled it). The render's lock file is not
 /// counted as a file.
@@ -46,7 +46,7 @@ void take_derived_place(const std::string& place, const std::string& run_dir);
 
 /// A place a report or a render filled from a run (derived_from, no run or report in it or
 /// below it) that a run is now to be made in: emptied, so that nothing derived from the other
-/// run stays beside the new one; Error when a render is drawing into it now.
+/// run stays beside the new one; Error when a render is drawing into it or below it now.
 void clear_derived_place(const std::string& place);
 
 }  // namespace dspdem

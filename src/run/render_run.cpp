@@ -112,7 +112,11 @@ void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, 
                                      fmt::format("{}x{}", o.width, o.height)};
     if (o.edges) args.push_back("--edges");
     for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
-    const pid_t pid = spawn_program("/proc/self/exe", args);  // its messages on our stderr
+    // Its messages on our stderr. In a group of its own, so that it is stopped when this render
+    // dies, however it dies (stop_with_parent): none draws on into a folder whose lock is gone.
+    SpawnOptions so;
+    so.own_group = true;
+    const pid_t pid = spawn_program("/proc/self/exe", args, so);
     if (pid > 0)
       pids.push_back(pid);
     else
@@ -206,10 +210,10 @@ int render_command(const RenderArgs& in) {
   // emptying a place another is drawing into would leave both runs' frames mixed. Held until
   // the render ends; its workers draw under it.
   std::optional<FolderLock> lock;
-  if (!worker) lock.emplace(a.out_dir, render_lock_file, "another render");
+  if (!worker) lock.emplace(a.out_dir, render_lock_file, "another render (or a run or a report emptying it)");
   if (!worker) prepare_derived_place(a.out_dir, a.run_dir);
   std::vector<pid_t> pids;
-  // Workers still drawing when this render stops early (an error below) are stopped and waited
+  // Workers still drawing when this render stops early on an error below are stopped and waited
   // for before its lock goes: none may draw on into a folder another render then takes.
   struct StopWorkers {
     std::vector<pid_t>& pids;

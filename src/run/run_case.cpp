@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "core/error.hpp"
+#include "core/folder_lock.hpp"
 #include "core/log.hpp"
 #include "core/signals.hpp"
 #include "core/timer.hpp"
@@ -374,7 +375,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // A folder a report or a render filled from another run (io/run_place.hpp): its images and
   // tables would sit beside this run's results as if they were its own. Emptied once the set-up
   // has succeeded, so a run refused in its set-up leaves it as it was.
-  if (my_rank == 0) clear_derived_place(opt.out_dir);
+  if (my_rank == 0) {
+    // A render drawing the run this one is to replace would go on reading its frames as they
+    // are replaced, and the images it leaves would mix both runs.
+    DSPDEM_CHECK(!FolderLock::held(opt.out_dir, render_lock_file),
+                 "{}: a render is drawing into this folder now; wait for it to end, or give --out another folder",
+                 opt.out_dir);
+    clear_derived_place(opt.out_dir);
+  }
   // Process 0 makes the staging folder and commits it; the others write their pieces into it.
   Staging stage(opt.out_dir, par::broadcast(static_cast<long>(getpid())), my_rank == 0);
   par::barrier();  // the folder made before anyone writes into it
@@ -734,7 +742,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // they were its own (a frame_0040.png of t = 100 ms beside a run of 5 ms): they go with the
   // frames they were drawn from; `dspdem render` draws this run's. Only where a run was
   // replaced: a first run into a folder leaves an images/ it did not make alone.
-  if (std::error_code ec; replaces && fs::remove_all(images, ec) > 0 && !ec)
+  if (replaces && FolderLock::held(opt.out_dir, render_lock_file))
+    log::warn(
+        "{}: a render started during this run is drawing the run it replaced: its images were not removed and may mix "
+        "both runs; draw this one again once it ends (dspdem render {})",
+        opt.out_dir, opt.out_dir);
+  else if (std::error_code ec; replaces && fs::remove_all(images, ec) > 0 && !ec)
     log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)", opt.out_dir);
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.

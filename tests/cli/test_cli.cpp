@@ -587,20 +587,20 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
     const dspdem::FolderLock held(drawn.string(), ".render.lock", "the test");
     const Result busy = run("-q render " + out.string() + " --out " + drawn.string() + " --frames last");
     EXPECT_EQ(busy.code, 2) << busy.out;
-    EXPECT_NE(busy.out.find("another render is writing into this folder now"), std::string::npos) << busy.out;
+    EXPECT_NE(busy.out.find("another render (or a run or a report emptying it) is writing into this folder now"),
+              std::string::npos)
+        << busy.out;
     EXPECT_NE(slurp(drawn / "derived_from").find("nb2"), std::string::npos);
   }
-  // A place inside another run, or inside a place drawn from another run, is refused (a run or
-  // a render into the outer folder would empty it); one inside the run drawn is not.
-  const Result in_run = run("-q render " + out.string() + " --out " + (dir_ / "nb2" / "pics").string() +
-                            " --view cracks --frames last --size 160x120 --no-animation");
+  // A place inside another run's images/ (a run made there again removes them), or inside a
+  // place drawn from another run (a render of a third run there would empty it), is refused, and
+  // not made; one inside the run drawn is not.
+  const Result in_run =
+      run("-q render " + out.string() + " --out " + (dir_ / "nb2" / "images" / "x" / "pics").string() +
+          " --view cracks --frames last --size 160x120 --no-animation");
   EXPECT_EQ(in_run.code, 2) << in_run.out;
-  EXPECT_NE(in_run.out.find("which holds a run of its own"), std::string::npos) << in_run.out;
-  EXPECT_FALSE(fs::exists(dir_ / "nb2" / "pics"));
-  const Result deeper =
-      run("-q render " + out.string() + " --out " + (dir_ / "nb2" / "x" / "pics").string() + " --frames last");
-  EXPECT_EQ(deeper.code, 2) << deeper.out;
-  EXPECT_FALSE(fs::exists(dir_ / "nb2" / "x"));  // a refused place is not made, nor what is above it
+  EXPECT_NE(in_run.out.find("which a run made there again removes"), std::string::npos) << in_run.out;
+  EXPECT_FALSE(fs::exists(dir_ / "nb2" / "images"));  // nor what is above it
   const Result in_drawn = run("-q render " + out.string() + " --out " + (drawn / "pics").string() +
                               " --view cracks --frames last --size 160x120 --no-animation");
   EXPECT_EQ(in_drawn.code, 2) << in_drawn.out;
@@ -610,6 +610,16 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
                          " --view cracks --frames last --size 160x120 --no-animation");
   EXPECT_EQ(own.code, 0) << own.out;
   EXPECT_TRUE(fs::exists(out / "pics" / "images/cracks/frame_0010.png"));
+  {
+    // Not while a render draws there: it would read the frames this run replaces.
+    const dspdem::FolderLock held(drawn.string(), ".render.lock", "the test");
+    const Result busy =
+        run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/bar_tension.toml --out " + drawn.string());
+    EXPECT_EQ(busy.code, 2) << busy.out;
+    EXPECT_NE(busy.out.find("a render is drawing into this folder now"), std::string::npos) << busy.out;
+    EXPECT_TRUE(fs::exists(drawn / "derived_from"));
+    EXPECT_FALSE(fs::exists(drawn / "summary.json"));
+  }
   // A run made into the drawn folder empties it first: nothing drawn from nb2 stays beside it.
   const Result r4 =
       run("-q run " + std::string(DSPDEM_SOURCE_DIR) + "/tests/data/bar_tension.toml --out " + drawn.string());

@@ -62,6 +62,10 @@ TEST(FolderLock, AFolderItMadeAndLeftEmptyGoesWithIt) {
   { FolderLock made((base / "kept" / "x" / "y" / "z").string(), ".report.lock", "another report"); }
   EXPECT_FALSE(fs::exists(base / "kept" / "x"));
   EXPECT_TRUE(fs::exists(base / "kept"));
+  // Named through '..' and with a trailing slash: the same folders, and they go as well.
+  { FolderLock made((base / "kept" / "x" / ".." / "w" / "v" / "").string(), ".report.lock", "another report"); }
+  EXPECT_FALSE(fs::exists(base / "kept" / "w"));
+  EXPECT_FALSE(fs::exists(base / "kept" / "x"));
   {
     FolderLock made((base / "kept" / "x" / "y").string(), ".report.lock", "another report");
     std::ofstream(base / "kept" / "x" / "mine.txt") << "written meanwhile";

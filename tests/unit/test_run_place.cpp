@@ -111,15 +111,19 @@ TEST_F(RunPlace, ACheckChangesNothingARunInsideThePlaceIsRefusedAndAClearEmpties
   EXPECT_TRUE(fs::exists(dir_ / "a" / "load.csv"));
 }
 
-TEST_F(RunPlace, APlaceInsideAnotherRunOrAnotherRunsPlaceIsRefusedAndOneInsideTheRunDrawnIsNot) {
-  // Inside another run's folder: a run made there again would take it.
+TEST_F(RunPlace, APlaceInsideAnotherRunsImagesOrAnotherRunsPlaceIsRefusedAndOneInsideTheRunDrawnIsNot) {
+  // Inside another run's images/: a run made there again removes them.
   try {
-    check_derived_place((dir_ / "b" / "pics").string(), (dir_ / "a").string());
-    ADD_FAILURE() << "a place inside another run was taken";
+    check_derived_place((dir_ / "b" / "images" / "pics").string(), (dir_ / "a").string());
+    ADD_FAILURE() << "a place inside another run's images was taken";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("which holds a run of its own"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("which a run made there again removes"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(check_derived_place((dir_ / "b" / "x" / "y").string(), (dir_ / "a").string()), Error);  // deeper
+  EXPECT_THROW(check_derived_place((dir_ / "b" / "images").string(), (dir_ / "a").string()), Error);
+  EXPECT_THROW(check_derived_place((dir_ / "b" / "images" / "x" / "y").string(), (dir_ / "a").string()), Error);
+  // Elsewhere inside another run's folder nothing removes it, and derived_from says whose it is.
+  prepare_derived_place((dir_ / "b" / "pics").string(), (dir_ / "a").string());
+  EXPECT_EQ(derived_from((dir_ / "b" / "pics").string()), fs::weakly_canonical(dir_ / "a").string());
   // Inside the run drawn: nothing there is emptied by another run's render.
   prepare_derived_place((dir_ / "a" / "pics").string(), (dir_ / "a").string());
   EXPECT_TRUE(fs::exists(dir_ / "a" / "pics" / "derived_from"));
@@ -177,7 +181,13 @@ TEST_F(RunPlace, ARenderDrawingIntoThePlaceOrBelowItKeepsItFromBeingEmptied) {
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("a render drawing now below it"), std::string::npos) << e.what();
     }
-    clear_derived_place(place.string());  // kept, with the render's folder
+    // A run made there meanwhile is refused: it would go on beside what was derived from a.
+    try {
+      clear_derived_place(place.string());
+      ADD_FAILURE() << "a run into a place with a render drawing below it went on";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("a render is drawing into"), std::string::npos) << e.what();
+    }
     EXPECT_TRUE(fs::exists(place / "load.csv"));
   }
   // A lock file a killed render left, held by none, keeps nothing.
