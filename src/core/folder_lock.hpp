@@ -1,8 +1,9 @@
 // One writer at a time for a folder: a report holds an exclusive flock on DIR/.report.lock
 // while it writes into DIR, so that a second report into the same folder is refused at its
 // start instead of both setting the other's files aside, running into the same run folders and
-// writing over each other's report. The kernel drops the lock when the process ends, however
-// it ends, so a killed report leaves nothing to clear by hand.
+// writing over each other's report; and a render on DIR/.render.lock while it draws into DIR
+// (io/run_place.hpp). The kernel drops the lock when the process ends, however it ends, so a
+// killed report or render leaves nothing to clear by hand (at most a lock file the next takes).
 #pragma once
 #include <filesystem>
 #include <string>
