@@ -176,4 +176,13 @@ void clear_derived_place(const std::string& place) {
   empty_place(place);
 }
 
+std::optional<std::string> remove_replaced_images(const std::string& run_dir) {
+  const fs::path images = fs::path(run_dir) / "images";
+  if (!fs::is_directory(images)) return std::nullopt;
+  if (const auto inside = kept_below(images)) return inside->string();
+  std::error_code ec;
+  fs::remove_all(images, ec);
+  return std::nullopt;
+}
+
 }  // namespace dspdem

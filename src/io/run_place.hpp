@@ -49,4 +49,10 @@ void take_derived_place(const std::string& place, const std::string& run_dir);
 /// run stays beside the new one; Error when a render is drawing into it or below it now.
 void clear_derived_place(const std::string& place);
 
+/// The images/ of a run in `run_dir` that a new run has just replaced: removed, as they were
+/// drawn from the frames it replaced; kept when a run, a report or a render drawing now lies
+/// inside it (made there by hand: removing it would take that too). Returns where such a one
+/// lies, or nothing when images/ was removed or was not there.
+std::optional<std::string> remove_replaced_images(const std::string& run_dir);
+
 }  // namespace dspdem

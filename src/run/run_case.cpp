@@ -747,8 +747,16 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         "{}: a render started during this run is drawing the run it replaced: its images were not removed and may mix "
         "both runs; draw this one again once it ends (dspdem render {})",
         opt.out_dir, opt.out_dir);
-  else if (std::error_code ec; replaces && fs::remove_all(images, ec) > 0 && !ec)
-    log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)", opt.out_dir);
+  else if (replaces && fs::is_directory(images)) {
+    if (const auto inside = remove_replaced_images(opt.out_dir))
+      log::warn(
+          "{}: the images of the run this one replaced were kept, since {} inside them holds a run, a report or a "
+          "render drawing now, which removing them would take too; they are not this run's (draw this one with "
+          "dspdem render {} --out OTHER)",
+          opt.out_dir, *inside, opt.out_dir);
+    else
+      log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)", opt.out_dir);
+  }
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.
   if (!restart_file.empty()) {

@@ -511,6 +511,16 @@ TEST_F(Cli, ARunThatReplacesAnotherTakesItsImagesAway) {
   std::ofstream(old) << "drawn from the run before";
   EXPECT_EQ(run("-q run " + c.string() + " --out " + out.string() + " --set time.dt=1.0").code, 2);
   EXPECT_TRUE(fs::exists(old));
+  // A run made inside them by hand would go with them: they are kept, and the run says why.
+  const fs::path inner = out / "images" / "x";
+  ASSERT_EQ(run("-q run " + c.string() + " --out " + inner.string()).code, 0);
+  const Result kept = run("run " + c.string() + " --out " + out.string());
+  ASSERT_EQ(kept.code, 0) << kept.out;
+  EXPECT_NE(kept.out.find("the images of the run this one replaced were kept, since " + inner.string()),
+            std::string::npos)
+      << kept.out;
+  EXPECT_TRUE(fs::exists(inner / "summary.json"));
+  fs::remove_all(inner);
   ASSERT_EQ(run("-q run " + c.string() + " --out " + out.string()).code, 0);
   EXPECT_FALSE(fs::exists(out / "images"));
   EXPECT_TRUE(fs::exists(out / "summary.json"));

@@ -198,3 +198,20 @@ TEST_F(RunPlace, ARenderDrawingIntoThePlaceOrBelowItKeepsItFromBeingEmptied) {
   EXPECT_FALSE(fs::exists(place / "sub"));
   EXPECT_FALSE(fs::exists(place / render_lock_file));  // the one the taker held, removed as it let go
 }
+
+TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThem) {
+  const fs::path images = dir_ / "a" / "images";
+  EXPECT_EQ(remove_replaced_images((dir_ / "a").string()), std::nullopt);  // none there: nothing to do
+  fs::create_directories(images / "stress");
+  std::ofstream(images / "stress" / "frame_0040.png") << "drawn from the replaced run";
+  // A run made inside them by hand: kept, with them, and named.
+  fs::create_directories(images / "x");
+  std::ofstream(images / "x" / "summary.json") << "{}";
+  EXPECT_EQ(remove_replaced_images((dir_ / "a").string()), (images / "x").string());
+  EXPECT_TRUE(fs::exists(images / "x" / "summary.json"));
+  EXPECT_TRUE(fs::exists(images / "stress" / "frame_0040.png"));
+  fs::remove_all(images / "x");
+  EXPECT_EQ(remove_replaced_images((dir_ / "a").string()), std::nullopt);
+  EXPECT_FALSE(fs::exists(images));
+  EXPECT_TRUE(fs::exists(dir_ / "a" / "summary.json"));  // the run itself is not touched
+}
