@@ -45,12 +45,14 @@ FolderLock::FolderLock(const std::string& dir, const std::string& file, const st
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;
-      ::close(fd);
-      if (err == EWOULDBLOCK)
+      if (err == EWOULDBLOCK) {
+        ::close(fd);
         fail("{}: {} is writing into this folder now (it holds {}); wait for it to end, or give another folder", dir,
              what, path_);
+      }
       log::warn("{}: no lock taken ({}): two writers into this folder at once would not be stopped", dir,
                 std::strerror(err));
+      fd_ = fd;  // held open all the same, so that the file goes when this lets go, as a held one does
       return;
     }
     struct stat held;     // filled by fstat before it is read

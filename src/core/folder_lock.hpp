@@ -15,7 +15,7 @@ class FolderLock {
   /// Makes `dir` if need be and takes the lock on `dir/<file>`; Error naming the folder when
   /// another process holds it (`what` says what holds it, e.g. "another report"), leaving no
   /// folder it made. Where the file system has no flock the lock is not taken (a warning), as
-  /// for the runs' staging folders.
+  /// for the runs' staging folders; its file still goes when this lets go.
   FolderLock(const std::string& dir, const std::string& file, const std::string& what);
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;

@@ -176,13 +176,21 @@ void clear_derived_place(const std::string& place) {
   empty_place(place);
 }
 
-std::optional<std::string> remove_replaced_images(const std::string& run_dir) {
+ReplacedImages remove_replaced_images(const std::string& run_dir) {
+  // Under the folder's render lock, so that no render starts drawing between the look and the
+  // removal; refused means a render is drawing into the folder now.
+  std::optional<FolderLock> drawing;
+  try {
+    drawing.emplace(run_dir, render_lock_file, "a render");
+  } catch (const Error&) {
+    return {ReplacedImages::Fate::render_drawing, {}};
+  }
   const fs::path images = fs::path(run_dir) / "images";
-  if (!fs::is_directory(images)) return std::nullopt;
-  if (const auto inside = kept_below(images)) return inside->string();
+  if (!fs::is_directory(images)) return {};
+  if (const auto inside = kept_below(images)) return {ReplacedImages::Fate::holds_inside, inside->string()};
   std::error_code ec;
   fs::remove_all(images, ec);
-  return std::nullopt;
+  return {ReplacedImages::Fate::removed, {}};
 }
 
 }  // namespace dspdem

@@ -49,10 +49,23 @@ void take_derived_place(const std::string& place, const std::string& run_dir);
 /// run stays beside the new one; Error when a render is drawing into it or below it now.
 void clear_derived_place(const std::string& place);
 
-/// The images/ of a run in `run_dir` that a new run has just replaced: removed, as they were
-/// drawn from the frames it replaced; kept when a run, a report or a render drawing now lies
-/// inside it (made there by hand: removing it would take that too). Returns where such a one
-/// lies, or nothing when images/ was removed or was not there.
-std::optional<std::string> remove_replaced_images(const std::string& run_dir);
+/// What became of the images/ of a run a new run replaced (remove_replaced_images).
+struct ReplacedImages {
+  enum class Fate {
+    none,            ///< there were none
+    removed,         ///< drawn from the frames replaced, they went with them
+    render_drawing,  ///< kept: a render is drawing into the run's folder now
+    holds_inside,    ///< kept: a run, a report or a render drawing now lies inside them
+  };
+  Fate fate = Fate::none;
+  std::string inside;  ///< for holds_inside: where that one lies
+};
+
+/// The images/ of a run in `run_dir` that a new run has just replaced: removed, under the
+/// folder's render lock, as they were drawn from the frames it replaced; kept when a render is
+/// drawing into the folder now (it may have drawn the new run's frames already) or when a run, a
+/// report or a render drawing now lies inside them (made there by hand: removing them would take
+/// that too).
+ReplacedImages remove_replaced_images(const std::string& run_dir);
 
 }  // namespace dspdem

@@ -734,7 +734,6 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   fs::remove(ckpt);              // a finished run needs none (each process its own file)
   par::barrier();                // every piece written before process 0 moves the folder into place
   if (my_rank != 0) return 0;
-  const fs::path images = fs::path(opt.out_dir) / "images";
   const bool replaces =
       fs::exists(fs::path(opt.out_dir) / "run.pvd") || fs::exists(fs::path(opt.out_dir) / "summary.json");
   stage.commit();
@@ -742,20 +741,29 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // they were its own (a frame_0040.png of t = 100 ms beside a run of 5 ms): they go with the
   // frames they were drawn from; `dspdem render` draws this run's. Only where a run was
   // replaced: a first run into a folder leaves an images/ it did not make alone.
-  if (replaces && FolderLock::held(opt.out_dir, render_lock_file))
-    log::warn(
-        "{}: a render started during this run is drawing the run it replaced: its images were not removed and may mix "
-        "both runs; draw this one again once it ends (dspdem render {})",
-        opt.out_dir, opt.out_dir);
-  else if (replaces && fs::is_directory(images)) {
-    if (const auto inside = remove_replaced_images(opt.out_dir))
-      log::warn(
-          "{}: the images of the run this one replaced were kept, since {} inside them holds a run, a report or a "
-          "render drawing now, which removing them would take too; they are not this run's (draw this one with "
-          "dspdem render {} --out OTHER)",
-          opt.out_dir, *inside, opt.out_dir);
-    else
-      log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)", opt.out_dir);
+  if (replaces) {
+    const ReplacedImages images = remove_replaced_images(opt.out_dir);
+    switch (images.fate) {
+      case ReplacedImages::Fate::none:
+        break;
+      case ReplacedImages::Fate::removed:
+        log::info("  the images of the run this one replaced were removed (dspdem render {} draws its own)",
+                  opt.out_dir);
+        break;
+      case ReplacedImages::Fate::render_drawing:
+        log::warn(
+            "{}: a render started during this run is drawing the run it replaced: its images were not removed and "
+            "may mix both runs; draw this one again once it ends (dspdem render {})",
+            opt.out_dir, opt.out_dir);
+        break;
+      case ReplacedImages::Fate::holds_inside:
+        log::warn(
+            "{}: the images of the run this one replaced were kept, since {} inside them holds a run, a report or a "
+            "render drawing now, which removing them would take too; they are not this run's (draw this one with "
+            "dspdem render {} --out OTHER)",
+            opt.out_dir, images.inside, opt.out_dir);
+        break;
+    }
   }
   // The folder a restart came from (an interrupted run, or the staging folder of a killed
   // one) is superseded by these results.

@@ -1,9 +1,11 @@
 // core/folder_lock: one writer at a time for a folder (a report's), taken on a lock file the
 // kernel drops when the holder ends; the second is refused with the folder named.
 #include <gtest/gtest.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -25,7 +27,19 @@ fs::path scratch() {
   fs::remove_all(d);
   return d;
 }
+
+// A file system without flock (some network mounts), stood in for: this executable's flock is
+// the one FolderLock calls, and it fails as such a file system does while the flag is set.
+std::atomic<bool> no_flock{false};
 }  // namespace
+
+extern "C" int flock(int fd, int operation) {
+  if (no_flock) {
+    errno = ENOLCK;
+    return -1;
+  }
+  return static_cast<int>(::syscall(SYS_flock, fd, operation));
+}
 
 TEST(FolderLock, ASecondHolderIsRefusedUntilTheFirstLetsGo) {
   const fs::path d = scratch() / "rep";
@@ -115,4 +129,21 @@ TEST(FolderLock, NeverTwoHoldersWhileManyTakeAndLetGo) {
   EXPECT_EQ(taken.load(), 1200);
   EXPECT_EQ(most.load(), 1);
   fs::remove_all(base);
+}
+
+TEST(FolderLock, WithoutFlockItWarnsAndStillRemovesItsFile) {
+  const fs::path d = scratch() / "nfs";
+  no_flock = true;
+  {
+    const FolderLock unlocked(d.string(), ".render.lock", "a render");
+    EXPECT_TRUE(fs::exists(d / ".render.lock"));
+    // Not held: nothing stops a second writer there (the warning says so).
+    EXPECT_NO_THROW(FolderLock(d.string(), ".render.lock", "a render"));
+  }
+  no_flock = false;
+  EXPECT_FALSE(fs::exists(d / ".render.lock"));  // left behind by every render before
+  EXPECT_FALSE(fs::exists(d));                   // and the folder it made, now empty
+  // The flag really reached FolderLock: with flock back, a held lock refuses a second.
+  const FolderLock held(d.string(), ".render.lock", "a render");
+  EXPECT_THROW(FolderLock(d.string(), ".render.lock", "a render"), Error);
 }

@@ -199,19 +199,31 @@ TEST_F(RunPlace, ARenderDrawingIntoThePlaceOrBelowItKeepsItFromBeingEmptied) {
   EXPECT_FALSE(fs::exists(place / render_lock_file));  // the one the taker held, removed as it let go
 }
 
-TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThem) {
-  const fs::path images = dir_ / "a" / "images";
-  EXPECT_EQ(remove_replaced_images((dir_ / "a").string()), std::nullopt);  // none there: nothing to do
+TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThemOrARenderDrawsThem) {
+  using Fate = ReplacedImages::Fate;
+  const fs::path run = dir_ / "a";
+  const fs::path images = run / "images";
+  fs::create_directories(run);
+  EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::none);  // none there: nothing to do
   fs::create_directories(images / "stress");
   std::ofstream(images / "stress" / "frame_0040.png") << "drawn from the replaced run";
+  // A render drawing into the run's folder now (its lock held): kept, whatever lies inside.
+  {
+    const FolderLock drawing(run.string(), render_lock_file, "a render");
+    EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::render_drawing);
+    EXPECT_TRUE(fs::exists(images / "stress" / "frame_0040.png"));
+  }
   // A run made inside them by hand: kept, with them, and named.
   fs::create_directories(images / "x");
   std::ofstream(images / "x" / "summary.json") << "{}";
-  EXPECT_EQ(remove_replaced_images((dir_ / "a").string()), (images / "x").string());
+  const ReplacedImages kept = remove_replaced_images(run.string());
+  EXPECT_EQ(kept.fate, Fate::holds_inside);
+  EXPECT_EQ(kept.inside, (images / "x").string());
   EXPECT_TRUE(fs::exists(images / "x" / "summary.json"));
   EXPECT_TRUE(fs::exists(images / "stress" / "frame_0040.png"));
   fs::remove_all(images / "x");
-  EXPECT_EQ(remove_replaced_images((dir_ / "a").string()), std::nullopt);
+  EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::removed);
   EXPECT_FALSE(fs::exists(images));
-  EXPECT_TRUE(fs::exists(dir_ / "a" / "summary.json"));  // the run itself is not touched
+  EXPECT_TRUE(fs::exists(run / "summary.json"));     // the run itself is not touched
+  EXPECT_FALSE(fs::exists(run / render_lock_file));  // the lock it took went as it let go
 }
