@@ -17,7 +17,7 @@ namespace dspdem {
 
 namespace fs = std::filesystem;
 
-FolderLock::FolderLock(const std::string& dir, const std::string& file, const std::string& what)
+FolderLock::FolderLock(const std::string& dir, const std::string& file, const std::string& what, NoFlock no_flock)
     : dir_(fs::absolute(dir).lexically_normal()), path_((dir_ / file).string()) {
   if (!dir_.has_filename()) dir_ = dir_.parent_path();  // a trailing slash
   // The file is removed by its holder before it lets go, so a process may lock a file that is
@@ -47,11 +47,13 @@ FolderLock::FolderLock(const std::string& dir, const std::string& file, const st
       const int err = errno;
       if (err == EWOULDBLOCK) {
         ::close(fd);
-        fail("{}: {} is writing into this folder now (it holds {}); wait for it to end, or give another folder", dir,
-             what, path_);
+        throw FolderBusy(fmt::format(
+            "{}: {} is writing into this folder now (it holds {}); wait for it to end, or give another folder", dir,
+            what, path_));
       }
-      log::warn("{}: no lock taken ({}): two writers into this folder at once would not be stopped", dir,
-                std::strerror(err));
+      if (no_flock == NoFlock::warn)
+        log::warn("{}: no lock taken ({}): two writers into this folder at once would not be stopped", dir,
+                  std::strerror(err));
       fd_ = fd;  // held open all the same, so that the file goes when this lets go, as a held one does
       return;
     }
@@ -65,7 +67,8 @@ FolderLock::FolderLock(const std::string& dir, const std::string& file, const st
     ::close(fd);
   }
   remove_made();
-  fail("{}: the lock file {} kept changing under this process; another process is taking it", dir, path_);
+  throw FolderBusy(
+      fmt::format("{}: the lock file {} kept changing under this process; another process is taking it", dir, path_));
 }
 
 FolderLock::~FolderLock() {

@@ -8,15 +8,28 @@
 #include <filesystem>
 #include <string>
 
+#include "core/error.hpp"
+
 namespace dspdem {
+
+/// A FolderLock refused because another writer holds the folder now (not for a folder or a
+/// lock file that cannot be made: those are plain Errors), so that a caller can tell the two.
+class FolderBusy : public Error {
+ public:
+  using Error::Error;
+};
 
 class FolderLock {
  public:
-  /// Makes `dir` if need be and takes the lock on `dir/<file>`; Error naming the folder when
-  /// another process holds it (`what` says what holds it, e.g. "another report"), leaving no
-  /// folder it made. Where the file system has no flock the lock is not taken (a warning), as
-  /// for the runs' staging folders; its file still goes when this lets go.
-  FolderLock(const std::string& dir, const std::string& file, const std::string& what);
+  /// Whether a file system without flock is warned of (the lock is then not taken).
+  enum class NoFlock { warn, quiet };
+
+  /// Makes `dir` if need be and takes the lock on `dir/<file>`; FolderBusy naming the folder
+  /// when another process holds it (`what` says what holds it, e.g. "another report"), leaving
+  /// no folder it made. Where the file system has no flock the lock is not taken (a warning
+  /// unless `quiet`), as for the runs' staging folders; its file still goes when this lets go.
+  FolderLock(const std::string& dir, const std::string& file, const std::string& what,
+             NoFlock no_flock = NoFlock::warn);
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;
   /// Removes the lock file while still holding it, then lets go (and removes the folders this

@@ -178,18 +178,20 @@ void clear_derived_place(const std::string& place) {
 
 ReplacedImages remove_replaced_images(const std::string& run_dir) {
   // Under the folder's render lock, so that no render starts drawing between the look and the
-  // removal; refused means a render is drawing into the folder now.
+  // removal; refused means a render is drawing into the folder now. Without flock there is no
+  // lock to take, and the run's end has nothing to warn of.
   std::optional<FolderLock> drawing;
   try {
-    drawing.emplace(run_dir, render_lock_file, "a render");
-  } catch (const Error&) {
+    drawing.emplace(run_dir, render_lock_file, "a render", FolderLock::NoFlock::quiet);
+  } catch (const FolderBusy&) {
     return {ReplacedImages::Fate::render_drawing, {}};
   }
   const fs::path images = fs::path(run_dir) / "images";
-  if (!fs::is_directory(images)) return {};
-  if (const auto inside = kept_below(images)) return {ReplacedImages::Fate::holds_inside, inside->string()};
   std::error_code ec;
+  if (!fs::is_directory(images, ec)) return {};
+  if (const auto inside = kept_below(images)) return {ReplacedImages::Fate::holds_inside, inside->string()};
   fs::remove_all(images, ec);
+  DSPDEM_CHECK(!ec, "cannot remove '{}': {}", images.string(), ec.message());
   return {ReplacedImages::Fate::removed, {}};
 }
 

@@ -742,7 +742,14 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // frames they were drawn from; `dspdem render` draws this run's. Only where a run was
   // replaced: a first run into a folder leaves an images/ it did not make alone.
   if (replaces) {
-    const ReplacedImages images = remove_replaced_images(opt.out_dir);
+    // The results are in place: what fails from here on is warned of, and the run ends well.
+    ReplacedImages images;
+    try {
+      images = remove_replaced_images(opt.out_dir);
+    } catch (const std::exception& e) {
+      log::warn("{}: the images of the run this one replaced may be left beside its results: {}", opt.out_dir,
+                e.what());
+    }
     switch (images.fate) {
       case ReplacedImages::Fate::none:
         break;
@@ -769,7 +776,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   // one) is superseded by these results.
   if (!restart_file.empty()) {
     const fs::path src = fs::path(restart_file).parent_path();
-    if (is_side_folder(src.string())) fs::remove_all(src);
+    std::error_code ec;
+    if (is_side_folder(src.string())) fs::remove_all(src, ec);
+    if (ec) log::warn("{}: the folder the run restarted from was not removed: {}", src.string(), ec.message());
   }
   log::info("  {} steps to t = {:.6g} s in {:.2f} s ({:.3g} element-steps/s, {} threads); energy balance error {:.2e}",
             it.steps(), it.time(), wall.seconds(),

@@ -226,4 +226,16 @@ TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThemOrARenderDrawsThem
   EXPECT_FALSE(fs::exists(images));
   EXPECT_TRUE(fs::exists(run / "summary.json"));     // the run itself is not touched
   EXPECT_FALSE(fs::exists(run / render_lock_file));  // the lock it took went as it let go
+  // A lock that cannot be taken for another reason (here no folder to hold it) is an error of
+  // its own, not read as a render drawing there.
+  const fs::path not_a_folder = dir_ / "file";
+  std::ofstream(not_a_folder) << "a file";
+  try {
+    remove_replaced_images(not_a_folder.string());
+    ADD_FAILURE() << "a lock file was made inside a file";
+  } catch (const FolderBusy& e) {
+    ADD_FAILURE() << "read as a render drawing: " << e.what();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot open the lock file"), std::string::npos) << e.what();
+  }
 }
