@@ -21,9 +21,12 @@
 //    create energy (seen in a notched-bar run);
 //  - compression is a penalty and never damages the joint;
 //  - once broken, a joint carries no tension; in compression it keeps the normal penalty and
-//    a Coulomb residual friction |s_s| <= -s_n tan(phi) (elastic-plastic along the slip
-//    magnitude, with a plastic slip history; a slip that turns in the tangent plane without
-//    changing its magnitude is not resisted: the contact issue's tangential history will be);
+//    a Coulomb residual friction |s_s| <= -s_n tan(phi), elastic-plastic on the slip vector
+//    in the face's plane (its components on a frame that turns with the face, Slip): the
+//    friction is a vector, a tangential spring capped radially, as the contacts' are. (Until
+//    session 104 it followed the slip's magnitude alone: a slip turning without growing was
+//    not resisted, and one passing back through zero kept the friction's sign, so that it
+//    pushed along the motion for cap / k_s; REFERENCE.md.)
 //  - energy: the work of the tractions is integrated (trapezoid) per mode; dissipation is
 //    work minus the recoverable elastic energy (1/2 s dn on the secant), so at complete
 //    separation mode-I dissipation is G_fI + f_t^2 / (2 k_n); residual friction books, step
@@ -62,9 +65,20 @@ struct CohesiveParams {
 enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
 
 /// History and last state of one integration point.
+/// The slip at a point: its magnitude ds as the joint kernel measures it (what the laws of an
+/// unbroken point follow), and its components (u, v) on an orthonormal frame of the face's
+/// plane that turns with the face (what a broken point's friction follows, as a vector).
+/// A law called with a magnitude alone takes the slip along u.
+struct Slip {
+  Real ds = 0, u = 0, v = 0;
+  Slip() = default;
+  Slip(Real ds_) : ds(ds_), u(ds_) {}  // NOLINT(google-explicit-constructor): a slip along u
+  Slip(Real ds_, Real u_, Real v_) : ds(ds_), u(u_), v(v_) {}
+};
+
 struct CohesiveState {
   Real dn_max = 0;      ///< largest opening reached [m]
-  Real ds_plastic = 0;  ///< plastic slip of the residual friction (broken joints) [m]
+  Real ds_plastic = 0;  ///< paper_residual, before its break: the shear's plastic slip [m]
   Real ks_secant = -1;  ///< damaged shear stiffness, only ever decreasing (< 0: undamaged) [Pa/m]
   /// Only ever increasing. Coupled law: secant damage d in [0, 1]. The paper's law: the shear
   /// damage b of eq. 6, the largest <ds - w_fs> / w_GII reached (past 1 at the break).
@@ -73,7 +87,9 @@ struct CohesiveState {
   Real diss_II_at_break = 0;
   Real friction = 0;            ///< residual-friction dissipation since then (residual_friction) [J/m^2]
   Real dn = 0, ds = 0;          ///< last opening and slip [m]
-  Real sn = 0, ss = 0;          ///< last tractions [Pa]
+  Real sn = 0, ss = 0;          ///< last tractions [Pa] (a broken point's ss: its friction's magnitude)
+  Real su = 0, sv = 0;          ///< last slip's components on the face's frame (Slip) [m]
+  Real fu = 0, fv = 0;          ///< a broken point's friction on the face's frame, against the slip [Pa]
   Real work_n = 0, work_s = 0;  ///< work of the tractions per unit area [J/m^2]
   /// The shear traction a forced break (force_break) dropped after the step's forces had
   /// been applied with it: the next update books the work it does over that step [Pa].
@@ -98,10 +114,18 @@ struct CohesiveState {
   }
   /// Ends an update at opening dn, slip ds with tractions sn, ss: the work of the tractions
   /// over the step (trapezoid rule) and the new last state. Every law ends so.
-  void advance(Real dn_new, Real ds_new, Real sn_new, Real ss_new) {
+  void advance(Real dn_new, const Slip& sl, Real sn_new, Real ss_new) {
     work_n += 0.5 * (sn + sn_new) * (dn_new - dn);
-    work_s += 0.5 * (ss + ss_new) * (ds_new - ds);
-    dn = dn_new, ds = ds_new, sn = sn_new, ss = ss_new;
+    work_s += 0.5 * (ss + ss_new) * (sl.ds - ds);
+    dn = dn_new, ds = sl.ds, sn = sn_new, ss = ss_new;
+    su = sl.u, sv = sl.v;
+  }
+  /// A point that breaks starts its friction from the shear traction ss it carries, which
+  /// acts along its last slip (su, sv).
+  void start_friction() {
+    const Real m = std::sqrt(su * su + sv * sv);
+    fu = m > 0 ? ss * su / m : 0.0;
+    fv = m > 0 ? ss * sv / m : 0.0;
   }
 };
 
@@ -119,34 +143,58 @@ inline Real drop_to_cap(Real& e, Real cap, Real ks) {
   return released;
 }
 
-/// Shear traction of a broken point: residual Coulomb friction, elastic-plastic along the
-/// slip, |s_s| <= -s_n tan(phi), with the sign allowed to reverse so that sliding back is
-/// resisted too: the cap changes at fixed slip (a fallen cap drops the traction to it), then
-/// the slip increment goes elastic and slides on the cap.
+/// Shear traction of a broken point: residual Coulomb friction, a tangential spring on the
+/// slip vector in the face's plane (components on the face's frame, Slip), |f| <= -s_n
+/// tan(phi): the cap changes at fixed slip (a fallen cap drops the traction to it, radially),
+/// then the slip's increment goes elastic and the trial traction is brought back radially
+/// onto the cap (sliding). So sliding back, or across, is resisted at once. Returns |f|.
 /// Dissipation: the forces' work over the step by the trapezoid rule less the change of the
-/// stored energy 1/2 s_s^2 / k_s, as the contacts' tangential springs book it
+/// stored energy 1/2 |f|^2 / k_s, as the contacts' tangential springs book it
 /// (contact_law.hpp), so the books follow the bodies' work. Booked at the law's own values
 /// (the released (s^2 - cap^2) / 2 k_s of a drop, cap x plastic slip), they ran ahead of it
 /// at every step that went from elastic to sliding: a step's work counts the traction's
-/// mean, the law the cap. That was the upward drift of the ledger after a break. Positive
-/// but for a step that both drops the cap and reverses the friction past zero: there the
-/// trapezoid hands the bodies back energy the spring never stored, so the step books none
-/// (a point's dissipation never falls) and the balance shows the step's error instead.
-inline Real residual_friction(const CohesiveParams& p, Real sn, Real ds, CohesiveState& s) {
-  // A forced break zeroed the shear after the forces were assembled with it: the bodies
-  // felt it over the step that ends now, so its half of the trapezoid is dissipated here.
-  s.diss_II_at_break += 0.5 * s.ss_forced * (ds - s.ds);
-  s.ss_forced = 0;
-  const Real cap = p.tan_phi * std::max<Real>(0.0, -sn), dslip = ds - s.ds;
-  Real e = s.ss;
-  const bool dropped = drop_to_cap(e, cap, p.ks) > 0;
-  Real t = e + p.ks * dslip;
-  const bool slid = std::abs(t) > cap;
-  if (slid) t = t > 0 ? cap : -cap;
+/// mean, the law the cap. That was the upward drift of the ledger after a break. A step that
+/// both drops the cap and turns the friction can make the trapezoid hand the bodies back
+/// energy the spring never stored: the step then books none (a point's dissipation never
+/// falls) and the balance shows the step's error instead.
+inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, CohesiveState& s) {
+  const Real du = sl.u - s.su, dv = sl.v - s.sv;
+  // A forced break zeroed the shear after the forces were assembled with it, along the last
+  // slip: the bodies felt it over the step that ends now, so its half of the trapezoid is
+  // dissipated here.
+  if (s.ss_forced != 0) {
+    const Real m = std::sqrt(s.su * s.su + s.sv * s.sv);
+    if (m > 0) s.diss_II_at_break += 0.5 * s.ss_forced * (s.su * du + s.sv * dv) / m;
+    s.ss_forced = 0;
+  }
+  const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
+  // Lengths compared squared, and a square root and a division taken only to scale a vector
+  // down onto a cap above zero: this runs for every broken point at every step, and the
+  // square roots and divisions in one chain were most of its cost (session 104's benchmark,
+  // BM_JointForcesBroken). sqrt(u^2 + v^2), not std::hypot: no slip or traction comes near
+  // its overflow, and hypot is several times slower.
+  Real eu = s.fu, ev = s.fv;
+  const Real e2 = eu * eu + ev * ev, cap2 = cap * cap;
+  const bool dropped = e2 > cap2;
+  if (dropped) {
+    const Real r = cap > 0 ? cap / std::sqrt(e2) : 0.0;
+    eu *= r, ev *= r;
+  }
+  Real tu = eu + p.ks * du, tv = ev + p.ks * dv;
+  const Real t2 = tu * tu + tv * tv;
+  const bool slid = t2 > cap2;
+  if (slid) {
+    const Real r = cap > 0 ? cap / std::sqrt(t2) : 0.0;
+    tu *= r, tv *= r;
+  }
   // An elastic step dissipates nothing; it is not computed there, where it is rounding.
-  if (dropped || slid) s.friction += std::max<Real>(0.0, 0.5 * (s.ss + t) * (dslip - (t - s.ss) / p.ks));
-  s.ds_plastic = ds - t / p.ks;
-  return t;
+  if (dropped || slid) {
+    const Real work = 0.5 * ((s.fu + tu) * du + (s.fv + tv) * dv);
+    const Real stored = (tu * tu + tv * tv - s.fu * s.fu - s.fv * s.fv) / (2.0 * p.ks);
+    s.friction += std::max<Real>(0.0, work - stored);
+  }
+  s.fu = tu, s.fv = tv;
+  return slid ? cap : std::sqrt(t2);
 }
 
 /// The paper's normal traction (eq. 3) at opening dn, with its history (the largest opening);
@@ -168,14 +216,14 @@ inline bool eq6_broken(const CohesiveParams& p, Real dn_max, Real b) {
   return a * a + b * b >= 1.0;
 }
 
-/// Advances one integration point to opening dn and slip magnitude ds (>= 0); updates the
+/// Advances one integration point to opening dn and slip sl (magnitude ds >= 0); updates the
 /// tractions sn, ss (ss acts against the slip), the history and the work integrals.
-inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
-  const Real w_ft = p.ft / p.kn;
+inline void cohesive_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  const Real w_ft = p.ft / p.kn, ds = sl.ds;
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
   if (s.status == JointStatus::Broken) {
-    ss = residual_friction(p, sn, ds, s);
+    ss = residual_friction(p, sn, sl, s);
   } else {
     const bool mode_i = p.law == JointLaw::ModeI;
     const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
@@ -191,7 +239,6 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
     // Mixed-mode failure (eq. 6); mode I only: b = 0.
     if (eq6_broken(p, s.dn_max, mode_i ? 0.0 : s.damage)) {
       s.status = JointStatus::Broken;
-      s.ds_plastic = ds;
       sn = dn < 0 ? p.kn * dn : 0.0;
       ss = 0.0;
       s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
@@ -199,7 +246,8 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
       s.status = JointStatus::Softening;
     }
   }
-  s.advance(dn, ds, sn, ss);
+  s.advance(dn, sl, sn, ss);
+  // s_s dropped to 0 at a break: the friction starts from nothing (fu = fv = 0).
 }
 
 /// Fails a point that has not reached eq. 6 itself, because its joint failed elsewhere: it
@@ -208,10 +256,10 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
 inline void force_break(CohesiveState& s) {
   if (s.status == JointStatus::Broken) return;
   s.status = JointStatus::Broken;
-  s.ds_plastic = s.ds;
   s.diss_II_at_break = s.work_s;  // the stored shear energy is released: no elastic part is left
   s.ss_forced = s.ss;             // this step's forces carried it: booked at the next update
   s.ss = 0.0;
+  s.fu = s.fv = 0.0;  // the friction starts from nothing
 }
 
 /// Largest stiffness the joint presents (for the stable time step).

@@ -88,13 +88,14 @@ inline Real coupled_shear_strength(const CohesiveParams& p, Real dn) {
   return p.c + std::max<Real>(0.0, -p.kn * dn) * p.tan_phi;
 }
 
-/// Advances one integration point to opening dn and slip magnitude ds (>= 0) under the
+/// Advances one integration point to opening dn and slip sl (magnitude ds >= 0) under the
 /// coupled law; same state and energy bookkeeping as cohesive_update.
-inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+inline void coupled_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  const Real ds = sl.ds;
   Real sn, ss;
   if (s.status == JointStatus::Broken) {
     sn = dn < 0 ? p.kn * dn : 0.0;
-    ss = residual_friction(p, sn, ds, s);
+    ss = residual_friction(p, sn, sl, s);
   } else {
     const Real un = std::max<Real>(0.0, dn);
     const Real fs = coupled_shear_strength(p, dn);
@@ -114,8 +115,7 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
     }
     s.dn_max = std::max(s.dn_max, dn);
     if (s.damage >= 1.0) {
-      s.status = JointStatus::Broken;
-      s.ds_plastic = ds;
+      s.status = JointStatus::Broken;  // the friction starts from nothing (fu = fv = 0)
       sn = dn < 0 ? p.kn * dn : 0.0;
       ss = 0.0;
       s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
@@ -126,7 +126,7 @@ inline void coupled_update(const CohesiveParams& p, Real dn, Real ds, CohesiveSt
       if (s.damage > 0) s.status = JointStatus::Softening;
     }
   }
-  s.advance(dn, ds, sn, ss);
+  s.advance(dn, sl, sn, ss);
 }
 
 }  // namespace dspdem::joint

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "joint/joint_law.hpp"
 #include "joint/lane4.hpp"
@@ -100,8 +101,11 @@ void build_gather(JointSet& js) {
 // the oracle's +0 - y, so that no -0 appears).
 template <int NPF, bool NODAL, int B>
 void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
-  Vec3 dx[B][NPF], n[B];
+  Vec3 dx[B][NPF], n[B], edge[B];
   bool live[B];
+  // The face's frame, made at first need: only a point kept in full needs it (a lean point's
+  // law takes the slip's magnitude alone).
+  std::optional<FaceFrame> frame[B];
   for (int b = 0; b < B; ++b) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j0 + b);
     Vec3 xm[NPF];
@@ -110,6 +114,7 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       dx[b][k] = xb - xa;
       xm[k] = 0.5 * (xa + xb);
     }
+    edge[b] = xm[1] - xm[0];  // for the face's frame (FaceFrame), if a point needs it
     n[b] = NPF == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
     const Real nl = n[b].norm();
     live[b] = nl > 0;  // a collapsed face: nothing sensible to apply (the element check reports it)
@@ -133,6 +138,9 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       ds[b][g] = sv[b][g].norm();
     }
   Real sn[B][NPF], ss[B][NPF];
+  // A broken point's friction, a vector on the face's frame; fr: the point has one.
+  Real fu[B][NPF], fv[B][NPF];
+  bool fr[B][NPF] = {};
   int broken[B] = {}, touched[B] = {};
   for (int b = 0; b < B; ++b) {
     if (!live[b]) continue;
@@ -142,10 +150,12 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       // An elastic point stays lean (lean_point.hpp); any other runs its law on the full state.
       if (js.full[js4 + g] || !lean_update(p, dn[b][g], ds[b][g], js.lean[js4 + g], sn[b][g], ss[b][g])) {
         CohesiveState& st = js.full_point(js4 + g);
-        joint_law_update(p, dn[b][g], ds[b][g], st);
+        if (!frame[b]) frame[b].emplace(edge[b], n[b]);
+        joint_law_update(p, dn[b][g], frame[b]->slip(sv[b][g], ds[b][g]), st);
         broken[b] += st.status == JointStatus::Broken;
         touched[b] += st.status != JointStatus::Intact;
         sn[b][g] = st.sn, ss[b][g] = st.ss;
+        fr[b][g] = st.status == JointStatus::Broken, fu[b][g] = st.fu, fv[b][g] = st.fv;
       }
   }
   for (int b = 0; b < B; ++b) {
@@ -159,7 +169,10 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
     for (int g = 0; g < NPF; ++g) {
       // Traction on side B (force per area): pulls B back towards A in tension, resists slip.
       Vec3 t = -sn[b][g] * n[b];
-      if (ds[b][g] > 0) t -= (ss[b][g] / ds[b][g]) * sv[b][g];
+      if (fr[b][g])
+        t -= frame[b]->vector(fu[b][g], fv[b][g]);
+      else if (ds[b][g] > 0)
+        t -= (ss[b][g] / ds[b][g]) * sv[b][g];
       const Real wa = w[g] * js.area0[j];
       if constexpr (NODAL) {
         for (int d = 0; d < 3; ++d) fa[3 * g + d] = 0.0 - wa * t(d);
@@ -173,7 +186,19 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
     // a half-failed facet would otherwise hold two separated pieces together.
     const std::size_t js4 = 4 * static_cast<std::size_t>(j);
     if (broken[b] > 0 && broken[b] < NPF)
-      for (int g = 0; g < NPF; ++g) joint_force_break(js.params[js.param[j]], js.full_point(js4 + g));
+      for (int g = 0; g < NPF; ++g) {
+        // A lean point keeps the slip's magnitude alone: a forced break needs its components
+        // too (its friction starts along the slip, and the dropped shear's work is booked
+        // along it at the next update).
+        const bool lean = !js.full[js4 + g];
+        CohesiveState& st = js.full_point(js4 + g);
+        if (lean) {
+          if (!frame[b]) frame[b].emplace(edge[b], n[b]);
+          const Slip sl = frame[b]->slip(sv[b][g], ds[b][g]);
+          st.su = sl.u, st.sv = sl.v;
+        }
+        joint_force_break(js.params[js.param[j]], st);
+      }
     const JointStatus before = js.status[j];
     js.status[j] = broken[b] > 0 ? JointStatus::Broken : touched[b] > 0 ? JointStatus::Softening : JointStatus::Intact;
     js.newly_failed[j] = before != JointStatus::Broken && js.status[j] == JointStatus::Broken;

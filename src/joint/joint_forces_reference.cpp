@@ -26,6 +26,7 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
     double N[4][4], w[4];
     const int ng = face_quadrature(npf, js.rule(j), N, w);
     const CohesiveParams& p = js.params[js.param[j]];
+    const FaceFrame frame(xm[1] - xm[0], n);
     Real out[24] = {};
     int broken = 0, touched = 0;
     for (int g = 0; g < ng; ++g) {
@@ -36,11 +37,14 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
       if (!js.offset.empty()) apply_offset(&js.offset[4 * (js4 + g)], n, dn, sv);
       const Real ds = sv.norm();
       CohesiveState& st = js.full_point(js4 + g);  // the oracle keeps every point in full
-      joint_law_update(p, dn, ds, st);
+      joint_law_update(p, dn, frame.slip(sv, ds), st);
       broken += st.status == JointStatus::Broken;
       touched += st.status != JointStatus::Intact;
       Vec3 t = -st.sn * n;
-      if (ds > 0) t -= (st.ss / ds) * sv;
+      if (st.status == JointStatus::Broken)
+        t -= frame.vector(st.fu, st.fv);
+      else if (ds > 0)
+        t -= (st.ss / ds) * sv;
       const Real wa = w[g] * js.area0[j];
       for (int k = 0; k < npf; ++k)
         for (int d = 0; d < 3; ++d) {

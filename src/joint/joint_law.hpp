@@ -19,13 +19,13 @@ inline Real damage_index(const CohesiveParams& p, const CohesiveState& s) {
 }
 
 /// The law a point follows, by its material's choice.
-inline void joint_law_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+inline void joint_law_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
   if (p.law == JointLaw::Coupled)
-    coupled_update(p, dn, ds, s);
+    coupled_update(p, dn, sl, s);
   else if (p.law == JointLaw::PaperResidual)
-    residual_update(p, dn, ds, s);
+    residual_update(p, dn, sl, s);
   else
-    cohesive_update(p, dn, ds, s);
+    cohesive_update(p, dn, sl, s);
 }
 
 /// Fails a point because its joint failed at another point (joint_forces.cpp: a face is the

@@ -96,6 +96,24 @@ inline void apply_offset(const Real* o, const Vec3& n, Real& dn, Vec3& sv) {
   sv += s0 - s0.dot(n) * n;
 }
 
+/// An orthonormal frame of a face's plane (unit normal n) that turns with the face: e1 along
+/// the mid-surface's edge from node 0 to node 1 (its part in the plane), e2 = n x e1. A slip's
+/// components on it do not change under a rigid rotation, and a broken point's friction,
+/// stored on it, turns with its face.
+struct FaceFrame {
+  Vec3 e1, e2;
+  FaceFrame(const Vec3& edge01, const Vec3& n) {
+    e1 = edge01 - edge01.dot(n) * n;
+    const Real l = e1.norm();
+    e1 = l > 0 ? Vec3(e1 * (1.0 / l)) : Vec3(n.unitOrthogonal());  // one division, not three
+    e2 = n.cross(e1);
+  }
+  /// The slip sv (in the plane, of magnitude ds as the kernel measured it) as the laws take it.
+  Slip slip(const Vec3& sv, Real ds) const { return {ds, sv.dot(e1), sv.dot(e2)}; }
+  /// A vector of components (u, v) on the frame.
+  Vec3 vector(Real u, Real v) const { return u * e1 + v * e2; }
+};
+
 /// Which faces get joints: interior faces whose two elements are both marked fracturable
 /// and in the same body.
 struct InsertionInput {

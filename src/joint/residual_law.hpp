@@ -23,13 +23,16 @@
 //            the same slip, dissipated but no damage (no slip has happened).
 //   break  : eq. 6 with b = D; then the residual friction of a broken point (cohesive_law.hpp),
 //            which starts from the traction the face had, capped at f_mu: no drop to zero.
+//            That friction is a vector in the face's plane; the shear before the break
+//            still follows the slip's magnitude, as above.
 //
 // At constant s_n and growing slip this is eq. 4's curve with its softening line ending on
 // the friction, as Fig. 2(b) draws it (the softening measured in plastic slip: its end lies
 // (f_s - f_mu) / k_s short of the printed w_fs + w_GII, a fraction c^2 / (2 k_s G_fII) of
 // w_GII in compression, 2 % for the sphere's joints). The mode-II dissipation (dissipated_II) then holds
-// G_fII and the friction's work while the face slides. Like the residual friction, the law
-// acts on the slip's magnitude: a slip that turns without growing is not resisted.
+// G_fII and the friction's work while the face slides. Unlike the residual friction of a
+// broken point, the law acts on the slip's magnitude: a slip that turns without growing is
+// not resisted.
 // Where it differs from the printed law: once a face passes its shear strength (it unloads
 // elastically from the cap, not along the secant to the origin, and keeps its friction in
 // compression), and where a compressed face breaks (it keeps its friction, not zero).
@@ -38,13 +41,15 @@
 
 namespace dspdem::joint {
 
-/// Advances one integration point of paper_residual to opening dn and slip magnitude ds >= 0.
-inline void residual_update(const CohesiveParams& p, Real dn, Real ds, CohesiveState& s) {
+/// Advances one integration point of paper_residual to opening dn and slip sl (magnitude
+/// ds >= 0).
+inline void residual_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  const Real ds = sl.ds;
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
-  bool slid = false;
+  bool slid = false, breaks = false;
   if (s.status == JointStatus::Broken) {
-    ss = residual_friction(p, sn, ds, s);
+    ss = residual_friction(p, sn, sl, s);
   } else {
     const Real fs = shear_strength(p, sn);
     const Real mu = p.tan_phi * std::max<Real>(0.0, -sn);
@@ -93,16 +98,17 @@ inline void residual_update(const CohesiveParams& p, Real dn, Real ds, CohesiveS
       // Broken: no tension, no cohesion; the friction keeps what it can carry, and the rest
       // of the shear traction is released at this slip (dissipated).
       s.status = JointStatus::Broken;
+      breaks = true;
       sn = dn < 0 ? p.kn * dn : 0.0;
       s.diss_II_at_break += drop_to_cap(ss, p.tan_phi * std::max<Real>(0.0, -sn), p.ks);
-      s.ds_plastic = ds - ss / p.ks;
     } else if (s.dn_max > p.ft / p.kn || s.damage > 0 || slid) {
       s.status = JointStatus::Softening;
     }
   }
   // The work of the tractions, as the other laws book it; this law's dissipation is booked
   // exactly above (CohesiveState::dissipated_II).
-  s.advance(dn, ds, sn, ss);
+  s.advance(dn, sl, sn, ss);
+  if (breaks) s.start_friction();  // from what the shear kept, along this slip
 }
 
 /// Fails a point of paper_residual that has not reached eq. 6 itself, because its joint
@@ -113,7 +119,7 @@ inline void residual_force_break(const CohesiveParams& p, CohesiveState& s) {
   if (s.status == JointStatus::Broken) return;
   s.status = JointStatus::Broken;
   s.diss_II_at_break += drop_to_cap(s.ss, s.dn < 0 ? p.tan_phi * std::max<Real>(0.0, -s.sn) : 0.0, p.ks);
-  s.ds_plastic = s.ds - s.ss / p.ks;
+  s.start_friction();  // from what the shear kept, along the last slip
 }
 
 }  // namespace dspdem::joint

@@ -75,6 +75,35 @@ void BM_JointForces(benchmark::State& state) {
   state.counters["full_share"] = full / points;
 }
 
+// Every joint broken, its points in full: the crushed zone of an impact, where the kernel runs
+// each point's residual friction (a vector on the face's frame) rather than the lean path.
+// The same box and jumps as above, so about half the points are pressed and slide on their
+// friction, the others are open. Counter: joints_per_s.
+void BM_JointForcesBroken(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  const Setup& base = setup(static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
+  state.SetLabel(kFaceNames[state.range(1)]);
+  joint::JointSet js = base.model.joints;
+  for (Index j = 0; j < js.size(); ++j) {
+    js.status[j] = joint::JointStatus::Broken;
+    for (int g = 0; g < js.npf[j]; ++g)
+      js.full_point(4 * static_cast<std::size_t>(j) + g).status = joint::JointStatus::Broken;
+  }
+  std::vector<Real> x = base.x, f(base.f.size(), 0.0), slots;
+  // Jumps ten times the intact benchmark's: broken faces slide and press well past w_ft.
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = base.model.fem.x0[i] + 10 * (base.x[i] - base.model.fem.x0[i]);
+  joint::add_joint_forces(js, x.data(), f.data(), slots);  // warm-up, gather built
+  int k = 0;
+  for (auto _ : state) {
+    // A small turn of the slip each call, so the friction slides and turns.
+    x[0] += (++k % 2 ? 1e-9 : -1e-9);
+    joint::add_joint_forces(js, x.data(), f.data(), slots);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["joints_per_s"] =
+      benchmark::Counter(static_cast<double>(js.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void BM_JointForcesReference(benchmark::State& state) {
   Setup& s = setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   state.SetLabel(kFaceNames[state.range(0)]);
@@ -92,6 +121,11 @@ void BM_JointForcesReference(benchmark::State& state) {
 
 BENCHMARK(BM_JointForces)
     ->ArgsProduct({{1, 2}, {TriGauss, TriNodal, QuadGauss}, {0, 1}})
+    ->ArgNames({"threads", "faces", "small"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_JointForcesBroken)
+    ->ArgsProduct({{1}, {TriGauss, QuadGauss}, {0, 1}})
     ->ArgNames({"threads", "faces", "small"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

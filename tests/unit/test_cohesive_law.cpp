@@ -155,9 +155,73 @@ TEST(CohesiveLaw, ResidualFrictionResistsReversal) {
   const Real forward = s.dissipated_II(p);
   const Real back = 0.1 * df;
   for (int i = 1; i <= 2000; ++i) cohesive_update(p, dn, 1.2 * df - back * i / 2000, s);
-  EXPECT_NEAR(s.ss, -cap, 1e-6 * cap);
+  // The friction (on the face's frame, the slip along u) has turned round; ss is its size.
+  EXPECT_NEAR(s.fu, -cap, 1e-6 * cap);
+  EXPECT_NEAR(s.ss, cap, 1e-6 * cap);
   // Sliding back by `back` (less the elastic reversal 2 cap / k_s) dissipates cap x that.
   EXPECT_NEAR((s.dissipated_II(p) - forward) / (cap * (back - 2 * cap / p.ks)), 1.0, 1e-3);
+}
+
+namespace {
+// A point broken in shear under compression sigma, sliding along +u to 1.2 times the slip
+// at which the paper's law fails it: the start of the friction tests below.
+CohesiveState broken_sliding_along_u(const CohesiveParams& p, Real sigma, Real& u_end) {
+  const Real dn = sigma / p.kn, fs = p.c - sigma * p.tan_phi, df = fs / p.ks + 2 * p.GfII / fs;
+  CohesiveState s;
+  u_end = 1.2 * df;
+  for (int i = 1; i <= 20000; ++i) cohesive_update(p, dn, Slip(u_end * i / 20000, u_end * i / 20000, 0), s);
+  return s;
+}
+}  // namespace
+
+TEST(CohesiveLaw, ResidualFrictionResistsASlipGoingBackAndForthAcrossWhereItStarted) {
+  // The slip goes back along u to +a, then ten times between +a and -a, a = 3 cap / k_s: its
+  // magnitude falls to 0 and grows again each time. The vector friction resists all the way:
+  // the first pass, on from the way back, dissipates cap 2a; each later one cap (2a - 2 cap
+  // / k_s), the path less the elastic reversal. A friction on the slip's magnitude (dspdem
+  // before session 104) kept its sign through zero, pushed along the motion for cap / k_s and
+  // dissipated about half that. Tolerance 1e-3: a step is 1/3000 of a pass, and the
+  // trapezoid's books are off by at most a step's share at a turn.
+  const CohesiveParams p = disc_params();
+  const Real sigma = -5e6, dn = sigma / p.kn, cap = -sigma * p.tan_phi, l = cap / p.ks, a = 3 * l;
+  Real u0;
+  CohesiveState s = broken_sliding_along_u(p, sigma, u0);
+  ASSERT_EQ(s.status, JointStatus::Broken);
+  auto go = [&](Real from, Real to, int n) {
+    for (int i = 1; i <= n; ++i) {
+      const Real u = from + (to - from) * i / n;
+      cohesive_update(p, dn, Slip(std::abs(u), u, 0), s);
+    }
+  };
+  go(u0, a, 2000);
+  const Real before = s.dissipated_II(p);
+  for (int k = 0; k < 10; ++k) go(k % 2 == 0 ? a : -a, k % 2 == 0 ? -a : a, 3000);
+  EXPECT_NEAR(s.fu, cap, 1e-9 * cap);  // the last pass slid towards +u
+  EXPECT_NEAR((s.dissipated_II(p) - before) / (cap * (2 * a + 9 * (2 * a - 2 * l))), 1.0, 1e-3);
+}
+
+TEST(CohesiveLaw, ResidualFrictionTurnsWithASlipTurnedAcross) {
+  // After sliding along u, the slip goes along v by L with u held. On the cap the friction
+  // f = cap (cos a, sin a) turns as the trial's radial return turns it: cap da = k_s cos a
+  // dv, so sin a = tanh(k_s v / cap), and all the work is dissipated (|f| stays cap):
+  // cap^2 / k_s ln cosh(k_s L / cap). A friction on the slip's magnitude would barely resist
+  // (the magnitude grows by L^2 / 2 u_0 at first). Tolerance 2e-3: a step is 1/1000 of
+  // cap / k_s, and the radial return is first-order in the step.
+  const CohesiveParams p = disc_params();
+  const Real sigma = -5e6, dn = sigma / p.kn, cap = -sigma * p.tan_phi, l = cap / p.ks;
+  Real u0;
+  CohesiveState s = broken_sliding_along_u(p, sigma, u0);
+  const Real before = s.dissipated_II(p), L = 5 * l;
+  const int n = 5000;
+  Real worst = 0;
+  for (int i = 1; i <= n; ++i) {
+    const Real v = L * i / n;
+    cohesive_update(p, dn, Slip(std::hypot(u0, v), u0, v), s);
+    worst = std::max(worst, std::abs(s.fv - cap * std::tanh(v / l)) / cap);
+  }
+  EXPECT_LT(worst, 2e-3);
+  EXPECT_NEAR(s.ss, cap, 1e-9 * cap);
+  EXPECT_NEAR((s.dissipated_II(p) - before) / (cap * l * std::log(std::cosh(L / l))), 1.0, 2e-3);
 }
 
 TEST(CohesiveLaw, ModeIOnlyKeepsTheShearElasticAndBreaksInOpening) {

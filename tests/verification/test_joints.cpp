@@ -128,6 +128,34 @@ TEST(Joints, ShearUnderCompressionThroughTheKernel) {
   EXPECT_NEAR(t.fracture_II / (p.GfII * A + fs * fs / (2 * p.ks) * A + -sigma * p.tan_phi * A * slip_after), 1.0, 0.01);
 }
 
+TEST(Joints, ABrokenFacesFrictionResistsASlipTurnedAcrossAndTurnsWithTheFace) {
+  // Broken in shear along y under 2 MPa, the face then slides along z by 5 cap / k_s. Its
+  // friction is a vector on the face's frame: it turns towards the new slip as
+  // tanh(k_s z / cap) (test_cohesive_law.cpp has the law alone), so the force on B ends
+  // against z at cap A tanh(5). Then the pair turns rigidly by 2 rad at once: the force
+  // turns with it, and the state does not change (no slip, nothing dissipated). Tolerances:
+  // 2e-3 as the law alone's (its steps here are 1/800 of cap / k_s); 1e-9 for the rotation,
+  // rounding.
+  Model m = two_blocks();
+  const joint::CohesiveParams p = m.joints.params[0];
+  const Real A = 0.01, sigma = -2e6, dn = sigma / p.kn, cap = -sigma * p.tan_phi, l = cap / p.ks;
+  const Real fs = p.c - sigma * p.tan_phi, df = fs / p.ks + 2 * p.GfII / fs, y = 1.3 * df;
+  std::vector<Real> slots;
+  for (int i = 1; i <= 4000; ++i) force_on_b(m, place(m, Vec3(dn, y * i / 4000, 0), Mat3::Identity()), slots);
+  ASSERT_EQ(m.joints.status[0], joint::JointStatus::Broken);
+  Vec3 F;
+  const int n = 4000;
+  for (int i = 1; i <= n; ++i) F = force_on_b(m, place(m, Vec3(dn, y, 5 * l * i / n), Mat3::Identity()), slots);
+  EXPECT_NEAR(-F(2) / (cap * A * std::tanh(5.0)), 1.0, 2e-3);
+  EXPECT_NEAR(F(1) / (cap * A), -1.0 / std::cosh(5.0), 2e-3);  // what is left against y
+  EXPECT_NEAR(F(0) / (-sigma * A), 1.0, 1e-6);
+  const joint::JointTotals before = joint::joint_totals(m.joints);
+  const Mat3 Q(Eigen::AngleAxis<Real>(2.0, Vec3(0.3, 1, 0.2).normalized()));
+  const Vec3 G = force_on_b(m, place(m, Vec3(dn, y, 5 * l), Q), slots);
+  EXPECT_LT((G - Q * F).norm() / (cap * A), 1e-9);
+  EXPECT_NEAR(joint::joint_totals(m.joints).fracture_II, before.fracture_II, 1e-12 * before.fracture_II);
+}
+
 TEST(Joints, TheTextsShearSofteningKeepsTheFrictionThroughTheKernel) {
   // joint_law = "paper_residual" (src/joint/residual_law.hpp) on the same two blocks, under
   // 20 MPa of compression: halfway through the softening the face carries the friction and
