@@ -1,5 +1,6 @@
 // Cohesive joint law of the paper (eqs. 1-6; README M2), per integration point,
-// in the joint's local frame: opening dn (> 0 in tension) and slip magnitude ds.
+// in the joint's local frame: opening dn (> 0 in tension) and slip magnitude ds (and, for a
+// broken point's friction, the slip's components on the face's frame: Slip).
 //
 //   mode I : w_ft = f_t / k_n, w_GI = 2 G_fI / f_t
 //            dn <= w_ft           : s_n = k_n dn  (compression too: a penalty, no damage)
@@ -112,20 +113,29 @@ struct CohesiveState {
   bool plastic_shear(const CohesiveParams& p) const {
     return status == JointStatus::Broken || p.law == JointLaw::PaperResidual;
   }
-  /// Ends an update at opening dn, slip ds with tractions sn, ss: the work of the tractions
-  /// over the step (trapezoid rule) and the new last state. Every law ends so.
-  void advance(Real dn_new, const Slip& sl, Real sn_new, Real ss_new) {
+  /// Ends an update at opening dn, slip sl with tractions sn, ss: the work of the tractions
+  /// over the step (trapezoid rule) and the new last state. Every law ends so. A point that
+  /// was broken at the step's start has had its shear work booked by residual_friction (on
+  /// the slip vector: the magnitude's trapezoid would not be the friction's work once the
+  /// slip turns), so shear_booked skips it here.
+  void advance(Real dn_new, const Slip& sl, Real sn_new, Real ss_new, bool shear_booked = false) {
     work_n += 0.5 * (sn + sn_new) * (dn_new - dn);
-    work_s += 0.5 * (ss + ss_new) * (sl.ds - ds);
+    if (!shear_booked) work_s += 0.5 * (ss + ss_new) * (sl.ds - ds);
     dn = dn_new, ds = sl.ds, sn = sn_new, ss = ss_new;
     su = sl.u, sv = sl.v;
   }
   /// A point that breaks starts its friction from the shear traction ss it carries, which
-  /// acts along its last slip (su, sv).
-  void start_friction() {
+  /// acts along its last slip (su, sv). With no slip to give it a direction (a slip back at
+  /// exactly zero) the friction starts from nothing and the traction's stored energy is
+  /// released (dissipated).
+  void start_friction(const CohesiveParams& p) {
     const Real m = std::sqrt(su * su + sv * sv);
-    fu = m > 0 ? ss * su / m : 0.0;
-    fv = m > 0 ? ss * sv / m : 0.0;
+    if (m > 0) {
+      fu = ss * su / m, fv = ss * sv / m;
+    } else {
+      diss_II_at_break += ss * ss / (2.0 * p.ks);
+      fu = fv = ss = 0.0;
+    }
   }
 };
 
@@ -164,7 +174,8 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
   // dissipated here.
   if (s.ss_forced != 0) {
     const Real m = std::sqrt(s.su * s.su + s.sv * s.sv);
-    if (m > 0) s.diss_II_at_break += 0.5 * s.ss_forced * (s.su * du + s.sv * dv) / m;
+    const Real w = m > 0 ? 0.5 * s.ss_forced * (s.su * du + s.sv * dv) / m : 0.0;
+    s.diss_II_at_break += w, s.work_s += w;
     s.ss_forced = 0;
   }
   const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
@@ -187,9 +198,12 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
     const Real r = cap > 0 ? cap / std::sqrt(t2) : 0.0;
     tu *= r, tv *= r;
   }
-  // An elastic step dissipates nothing; it is not computed there, where it is rounding.
+  // The step's work on the slip vector (CohesiveState::advance leaves a broken point's shear
+  // work to this). An elastic step dissipates nothing; it is not computed there, where it is
+  // rounding.
+  const Real work = 0.5 * ((s.fu + tu) * du + (s.fv + tv) * dv);
+  s.work_s += work;
   if (dropped || slid) {
-    const Real work = 0.5 * ((s.fu + tu) * du + (s.fv + tv) * dv);
     const Real stored = (tu * tu + tv * tv - s.fu * s.fu - s.fv * s.fv) / (2.0 * p.ks);
     s.friction += std::max<Real>(0.0, work - stored);
   }
@@ -220,9 +234,10 @@ inline bool eq6_broken(const CohesiveParams& p, Real dn_max, Real b) {
 /// tractions sn, ss (ss acts against the slip), the history and the work integrals.
 inline void cohesive_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
   const Real w_ft = p.ft / p.kn, ds = sl.ds;
+  const bool was_broken = s.status == JointStatus::Broken;
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
-  if (s.status == JointStatus::Broken) {
+  if (was_broken) {
     ss = residual_friction(p, sn, sl, s);
   } else {
     const bool mode_i = p.law == JointLaw::ModeI;
@@ -246,7 +261,7 @@ inline void cohesive_update(const CohesiveParams& p, Real dn, const Slip& sl, Co
       s.status = JointStatus::Softening;
     }
   }
-  s.advance(dn, sl, sn, ss);
+  s.advance(dn, sl, sn, ss, was_broken);
   // s_s dropped to 0 at a break: the friction starts from nothing (fu = fv = 0).
 }
 

@@ -1,5 +1,6 @@
 // Coupled mixed-mode cohesive law (`joint_law = "coupled"`), per integration point, in the
-// joint's local frame: opening dn (> 0 in tension) and slip magnitude ds.
+// joint's local frame: opening dn (> 0 in tension) and slip magnitude ds (a broken point's
+// friction takes the slip's components: Slip, cohesive_law.hpp).
 //
 // Why: the paper's law (cohesive_law.hpp) softens the normal and the shear traction
 // independently and couples them only in its break test (eq. 6). A face inclined to a
@@ -54,7 +55,8 @@
 // a simplification; under compression the cohesive secant then briefly carries less than the
 // friction cap, which the break restores without a jump, since friction starts from zero).
 // Slip is a vector handled by the caller: s_s acts along it, and the law is isotropic in
-// the tangent plane, so a slip that turns without growing neither damages nor dissipates.
+// the tangent plane, so before the break a slip that turns without growing neither damages
+// nor dissipates (a broken point's friction, a vector, resists it).
 #pragma once
 #include "joint/cohesive_law.hpp"
 
@@ -92,8 +94,9 @@ inline Real coupled_shear_strength(const CohesiveParams& p, Real dn) {
 /// coupled law; same state and energy bookkeeping as cohesive_update.
 inline void coupled_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
   const Real ds = sl.ds;
+  const bool was_broken = s.status == JointStatus::Broken;
   Real sn, ss;
-  if (s.status == JointStatus::Broken) {
+  if (was_broken) {
     sn = dn < 0 ? p.kn * dn : 0.0;
     ss = residual_friction(p, sn, sl, s);
   } else {
@@ -126,7 +129,7 @@ inline void coupled_update(const CohesiveParams& p, Real dn, const Slip& sl, Coh
       if (s.damage > 0) s.status = JointStatus::Softening;
     }
   }
-  s.advance(dn, sl, sn, ss);
+  s.advance(dn, sl, sn, ss, was_broken);
 }
 
 }  // namespace dspdem::joint

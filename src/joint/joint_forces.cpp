@@ -114,11 +114,12 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       dx[b][k] = xb - xa;
       xm[k] = 0.5 * (xa + xb);
     }
-    edge[b] = xm[1] - xm[0];  // for the face's frame (FaceFrame), if a point needs it
+    edge[b] = FaceFrame::line(NPF, xm);  // for the face's frame, if a point needs it
     n[b] = NPF == 3 ? Vec3((xm[1] - xm[0]).cross(xm[2] - xm[0])) : Vec3((xm[2] - xm[0]).cross(xm[3] - xm[1]));
     const Real nl = n[b].norm();
     live[b] = nl > 0;  // a collapsed face: nothing sensible to apply (the element check reports it)
     if (live[b]) n[b] /= nl;
+    if (live[b] && !js.offset.empty()) frame[b].emplace(edge[b], n[b]);  // the offsets are on it
   }
   Real dn[B][NPF], ds[B][NPF];
   Vec3 sv[B][NPF];
@@ -133,8 +134,8 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       }
       dn[b][g] = jump.dot(n[b]);
       sv[b][g] = jump - dn[b][g] * n[b];
-      if (!js.offset.empty())
-        apply_offset(&js.offset[16 * static_cast<std::size_t>(j0 + b) + 4 * g], n[b], dn[b][g], sv[b][g]);
+      if (!js.offset.empty() && live[b])  // (a collapsed face's law is not run)
+        apply_offset(&js.offset[16 * static_cast<std::size_t>(j0 + b) + 4 * g], *frame[b], dn[b][g], sv[b][g]);
       ds[b][g] = sv[b][g].norm();
     }
   Real sn[B][NPF], ss[B][NPF];

@@ -26,7 +26,7 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
     double N[4][4], w[4];
     const int ng = face_quadrature(npf, js.rule(j), N, w);
     const CohesiveParams& p = js.params[js.param[j]];
-    const FaceFrame frame(xm[1] - xm[0], n);
+    const FaceFrame frame(FaceFrame::line(npf, xm), n);
     Real out[24] = {};
     int broken = 0, touched = 0;
     for (int g = 0; g < ng; ++g) {
@@ -34,7 +34,7 @@ void add_joint_forces_reference(JointSet& js, const Real* x, Real* f) {
       for (int k = 0; k < npf; ++k) jump += N[g][k] * (xb[k] - xa[k]);
       Real dn = jump.dot(n);
       Vec3 sv = jump - dn * n;
-      if (!js.offset.empty()) apply_offset(&js.offset[4 * (js4 + g)], n, dn, sv);
+      if (!js.offset.empty()) apply_offset(&js.offset[4 * (js4 + g)], frame, dn, sv);
       const Real ds = sv.norm();
       CohesiveState& st = js.full_point(js4 + g);  // the oracle keeps every point in full
       joint_law_update(p, dn, frame.slip(sv, ds), st);

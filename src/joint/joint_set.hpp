@@ -48,9 +48,10 @@ struct JointSet {
   /// material, their node pairs tied, and the joint applies no force. Empty: none closed.
   std::vector<char> closed;
   /// Per point, 4 numbers (16 per joint): where its law started when its joint opened
-  /// (extrinsic insertion), the opening and the slip vector (global axes) of the elastic
-  /// traction the face carried then. The law runs on the face's jump plus this offset, so the
-  /// traction is continuous at insertion (apply_offset). Empty: no extrinsic joints.
+  /// (extrinsic insertion), the opening and the slip's two components on the face's frame
+  /// (FaceFrame; the 4th number unused) of the elastic traction the face carried then. The law
+  /// runs on the face's jump plus this offset, so the traction is continuous at insertion
+  /// (apply_offset). Empty: no extrinsic joints.
   std::vector<Real> offset;
   /// Derived from a and b, built by the first force evaluation (the topology never changes
   /// after insertion): for each node a joint touches, the force slots that add to it, in joint
@@ -87,23 +88,19 @@ struct JointSet {
   Quadrature rule(Index j) const { return quadrature.empty() ? Quadrature::Gauss : quadrature[param[j]]; }
 };
 
-/// The law's opening dn and slip vector sv at a point of an extrinsic joint: the face's own
-/// plus the offset o (JointSet::offset) of its insertion, the slip part taken in the face's
-/// current plane (of unit normal n).
-inline void apply_offset(const Real* o, const Vec3& n, Real& dn, Vec3& sv) {
-  dn += o[0];
-  const Vec3 s0(o[1], o[2], o[3]);
-  sv += s0 - s0.dot(n) * n;
-}
-
 /// An orthonormal frame of a face's plane (unit normal n) that turns with the face: e1 along
-/// the mid-surface's edge from node 0 to node 1 (its part in the plane), e2 = n x e1. A slip's
+/// a line of the mid-surface perpendicular to n (FaceFrame::line), e2 = n x e1. A slip's
 /// components on it do not change under a rigid rotation, and a broken point's friction,
 /// stored on it, turns with its face.
 struct FaceFrame {
   Vec3 e1, e2;
-  FaceFrame(const Vec3& edge01, const Vec3& n) {
-    e1 = edge01 - edge01.dot(n) * n;
+  /// The line e1 follows, from the mid-surface's nodes xm: on a triangle its edge from node 0
+  /// to node 1, on a quadrilateral its diagonal from node 0 to node 2. Either is perpendicular
+  /// to the kernel's normal by construction (the normal is their cross product with another
+  /// edge or diagonal), and not zero on a face that has a normal.
+  static Vec3 line(int npf, const Vec3* xm) { return npf == 3 ? Vec3(xm[1] - xm[0]) : Vec3(xm[2] - xm[0]); }
+  FaceFrame(const Vec3& line, const Vec3& n) {
+    e1 = line - line.dot(n) * n;  // the plane's part: rounding aside, the line itself
     const Real l = e1.norm();
     e1 = l > 0 ? Vec3(e1 * (1.0 / l)) : Vec3(n.unitOrthogonal());  // one division, not three
     e2 = n.cross(e1);
@@ -113,6 +110,14 @@ struct FaceFrame {
   /// A vector of components (u, v) on the frame.
   Vec3 vector(Real u, Real v) const { return u * e1 + v * e2; }
 };
+
+/// The law's opening dn and slip vector sv at a point of an extrinsic joint: the face's own
+/// plus the offset o (JointSet::offset) of its insertion, its slip given on the face's frame
+/// (so it turns with the face, as the face's own slip does).
+inline void apply_offset(const Real* o, const FaceFrame& f, Real& dn, Vec3& sv) {
+  dn += o[0];
+  sv += f.vector(o[1], o[2]);
+}
 
 /// Which faces get joints: interior faces whose two elements are both marked fracturable
 /// and in the same body.

@@ -1,5 +1,5 @@
 // The lean form of an elastic integration point. Almost every joint point of a run stays
-// elastic to the end, and while it does its whole CohesiveState (136 bytes) follows from
+// elastic to the end, and while it does its whole CohesiveState (144 bytes) follows from
 // three numbers: tractions k_n dn and k_s ds, work equal to the stored energy, nothing
 // dissipated, no damage. Streaming the full state of every point twice a step was the
 // joint kernel's largest cost (issue 19: the kernel is bound by memory traffic), so a point

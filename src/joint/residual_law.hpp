@@ -48,7 +48,8 @@ inline void residual_update(const CohesiveParams& p, Real dn, const Slip& sl, Co
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
   bool slid = false, breaks = false;
-  if (s.status == JointStatus::Broken) {
+  const bool was_broken = s.status == JointStatus::Broken;
+  if (was_broken) {
     ss = residual_friction(p, sn, sl, s);
   } else {
     const Real fs = shear_strength(p, sn);
@@ -107,8 +108,8 @@ inline void residual_update(const CohesiveParams& p, Real dn, const Slip& sl, Co
   }
   // The work of the tractions, as the other laws book it; this law's dissipation is booked
   // exactly above (CohesiveState::dissipated_II).
-  s.advance(dn, sl, sn, ss);
-  if (breaks) s.start_friction();  // from what the shear kept, along this slip
+  s.advance(dn, sl, sn, ss, was_broken);
+  if (breaks) s.start_friction(p);  // from what the shear kept, along this slip
 }
 
 /// Fails a point of paper_residual that has not reached eq. 6 itself, because its joint
@@ -119,7 +120,7 @@ inline void residual_force_break(const CohesiveParams& p, CohesiveState& s) {
   if (s.status == JointStatus::Broken) return;
   s.status = JointStatus::Broken;
   s.diss_II_at_break += drop_to_cap(s.ss, s.dn < 0 ? p.tan_phi * std::max<Real>(0.0, -s.sn) : 0.0, p.ks);
-  s.start_friction();  // from what the shear kept, along the last slip
+  s.start_friction(p);  // from what the shear kept, along the last slip
 }
 
 }  // namespace dspdem::joint

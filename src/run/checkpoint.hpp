@@ -20,13 +20,13 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  // 13: a joint point's last slip and friction on its face's frame (the friction a vector); 12: the touches' contact
-  // points and weights in the contacts' history (a successor takes a spring over); 11: the integrator's last step, the
-  // kick's term at the start and the damping's lag (the ledger), a joint point's shear dropped by a forced break; 10:
-  // the touches' cluster shares in the contacts' history; 9: the executable and the wall-time interval (8: the
-  // contacts' pairs first found overlapping; 7: no previous fragment ids in the contacts' state; 6: no largest slip in
-  // the joints' states; 5: the contacts' spring energies; 4: the integrator's step; 3: processes and rank; 2: the
-  // deepest contact)
+  // 13: a joint point's last slip and friction on its face's frame (the friction a vector), the extrinsic offsets' slip
+  // on that frame; 12: the touches' contact points and weights in the contacts' history (a successor takes a spring
+  // over); 11: the integrator's last step, the kick's term at the start and the damping's lag (the ledger), a joint
+  // point's shear dropped by a forced break; 10: the touches' cluster shares in the contacts' history; 9: the
+  // executable and the wall-time interval (8: the contacts' pairs first found overlapping; 7: no previous fragment ids
+  // in the contacts' state; 6: no largest slip in the joints' states; 5: the contacts' spring energies; 4: the
+  // integrator's step; 3: processes and rank; 2: the deepest contact)
   int format = 13;
   std::string build;  ///< dspdem version, commit, compiler and build type
   /// executable_id() of what wrote it: `report --resume` continues a killed run's checkpoint

@@ -20,12 +20,23 @@ Vec3 face_normal(const joint::JointSet& js, const Real* x, Index j) {
   return nl > 0 ? Vec3(n / nl) : Vec3::Zero();
 }
 
+// The frame of closed face j's plane (joint::FaceFrame), as the joint kernel will take it
+// (a closed face's two sides coincide).
+joint::FaceFrame face_frame(const joint::JointSet& js, const Real* x, Index j) {
+  const std::size_t j4 = 4 * static_cast<std::size_t>(j);
+  Vec3 xm[4];
+  for (int k = 0; k < js.npf[j]; ++k) xm[k] = node_pos_ptr(x, js.a[j4 + k]);
+  return joint::FaceFrame(joint::FaceFrame::line(js.npf[j], xm), face_normal(js, x, j));
+}
+
 // Opens closed joint j: every point of the face starts where its law's elastic branch gives
-// the traction t (normal part tn, shear vector ts) the face carries.
-void open_face(joint::JointSet& js, Index j, Real tn, const Vec3& ts) {
+// the traction t (normal part tn, shear vector ts) the face carries. The offset's slip is
+// kept on the face's frame, so that it turns with the face as the face's own slip does.
+void open_face(joint::JointSet& js, const Real* x, Index j, Real tn, const Vec3& ts) {
   js.closed[j] = 0;
   const std::size_t j4 = 4 * static_cast<std::size_t>(j);
   const joint::CohesiveParams& p = js.params[js.param[j]];
+  const joint::FaceFrame f = face_frame(js, x, j);
   joint::CohesiveState s;
   s.dn = tn / p.kn;
   s.ds = ts.norm() / p.ks;
@@ -34,7 +45,7 @@ void open_face(joint::JointSet& js, Index j, Real tn, const Vec3& ts) {
   for (int g = 0; g < js.npf[j]; ++g) {
     Real* o = &js.offset[4 * (j4 + g)];
     o[0] = s.dn;
-    for (int d = 0; d < 3; ++d) o[1 + d] = ts(d) / p.ks;
+    o[1] = ts.dot(f.e1) / p.ks, o[2] = ts.dot(f.e2) / p.ks, o[3] = 0.0;
     js.state[j4 + g] = s;
     js.full[j4 + g] = 1;
   }
@@ -85,7 +96,7 @@ Index ExtrinsicInsertion::check(Model& m, Integrator& it) {
     if (!open_[j]) continue;
     opened.push_back(j);
     const std::size_t j4 = 4 * static_cast<std::size_t>(j);
-    open_face(js, j, traction_[j4], Vec3(traction_[j4 + 1], traction_[j4 + 2], traction_[j4 + 3]));
+    open_face(js, x, j, traction_[j4], Vec3(traction_[j4 + 1], traction_[j4 + 2], traction_[j4 + 3]));
   }
   Index count = static_cast<Index>(opened.size());
   if (front_ == InsertionFront::Cut && count > 0) {
@@ -167,7 +178,7 @@ Index ExtrinsicInsertion::cut_fronts(joint::JointSet& js, const Real* x, const s
       }
       for (int e : joint::min_cut(static_cast<int>(star.size()), edge, cap, 0, tv)) {
         const Real tn = traction[e].dot(normal[e]);
-        open_face(js, edge_joint[e], tn, traction[e] - tn * normal[e]);
+        open_face(js, x, edge_joint[e], tn, traction[e] - tn * normal[e]);
         ++forced;
       }
     }

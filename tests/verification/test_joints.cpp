@@ -156,6 +156,35 @@ TEST(Joints, ABrokenFacesFrictionResistsASlipTurnedAcrossAndTurnsWithTheFace) {
   EXPECT_NEAR(joint::joint_totals(m.joints).fracture_II, before.fracture_II, 1e-12 * before.fracture_II);
 }
 
+TEST(Joints, AFacesFrameAndItsExtrinsicOffsetTurnWithTheFace) {
+  // The face's frame (FaceFrame) is what a broken point's friction and an extrinsic joint's
+  // offset are kept on. Turned rigidly, about any axis (so about its normal too), a
+  // triangle's and a quadrilateral's frame turn with them: the slip plus the offset has the
+  // same components on the turned frame, to rounding. (A slip offset kept on global axes, as
+  // before session 104, changes its components by its size times the turn about the normal.)
+  const Mat3 Q(Eigen::AngleAxis<Real>(2.0, Vec3(0.3, 1, 0.2).normalized()));
+  for (int npf : {3, 4}) {
+    Vec3 xm[4] = {Vec3(0, 0, 0), Vec3(0.1, 0.01, 0), Vec3(0.11, 0.09, 0.002), Vec3(-0.01, 0.1, 0)};
+    const Real o[4] = {1e-7, 3e-6, -2e-6, 0};  // opening, slip on the frame (u, v), unused
+    const Vec3 jump(2e-6, -1e-6, 5e-7);        // the face's own jump
+    auto components = [&](const Vec3* y, const Vec3& jmp) {
+      Vec3 n = npf == 3 ? Vec3((y[1] - y[0]).cross(y[2] - y[0])) : Vec3((y[2] - y[0]).cross(y[3] - y[1]));
+      n.normalize();
+      const joint::FaceFrame f(joint::FaceFrame::line(npf, y), n);
+      Real dn = jmp.dot(n);
+      Vec3 sv = jmp - dn * n;
+      joint::apply_offset(o, f, dn, sv);
+      const joint::Slip sl = f.slip(sv, sv.norm());
+      return Vec3(dn, sl.u, sl.v);
+    };
+    const Vec3 before = components(xm, jump);
+    Vec3 ym[4];
+    for (int k = 0; k < 4; ++k) ym[k] = Q * xm[k] + Vec3(1, 2, 3);
+    const Vec3 after = components(ym, Q * jump);
+    EXPECT_LT((after - before).norm(), 1e-12 * before.norm()) << npf << " nodes";
+  }
+}
+
 TEST(Joints, TheTextsShearSofteningKeepsTheFrictionThroughTheKernel) {
   // joint_law = "paper_residual" (src/joint/residual_law.hpp) on the same two blocks, under
   // 20 MPa of compression: halfway through the softening the face carries the friction and
