@@ -65,7 +65,6 @@ struct CohesiveParams {
 
 enum class JointStatus : int { Intact = 0, Softening = 1, Broken = 2 };
 
-/// History and last state of one integration point.
 /// The slip at a point: its magnitude ds as the joint kernel measures it (what the laws of an
 /// unbroken point follow), and its components (u, v) on an orthonormal frame of the face's
 /// plane that turns with the face (what a broken point's friction follows, as a vector).
@@ -77,6 +76,7 @@ struct Slip {
   Slip(Real ds_, Real u_, Real v_) : ds(ds_), u(u_), v(v_) {}
 };
 
+/// History and last state of one integration point.
 struct CohesiveState {
   Real dn_max = 0;      ///< largest opening reached [m]
   Real ds_plastic = 0;  ///< paper_residual, before its break: the shear's plastic slip [m]
@@ -179,11 +179,12 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
     s.ss_forced = 0;
   }
   const Real cap = p.tan_phi * std::max<Real>(0.0, -sn);
-  // Lengths compared squared, and a square root and a division taken only to scale a vector
-  // down onto a cap above zero: this runs for every broken point at every step, and the
-  // square roots and divisions in one chain were most of its cost (session 104's benchmark,
-  // BM_JointForcesBroken). sqrt(u^2 + v^2), not std::hypot: no slip or traction comes near
-  // its overflow, and hypot is several times slower.
+  // Lengths compared squared, a square root and a division taken only to scale a vector onto
+  // a cap above zero (an open point's cap is zero: its friction is simply gone). sqrt(u^2 +
+  // v^2), not std::hypot: no slip or traction comes near its overflow, and hypot is several
+  // times slower. (With every joint broken the kernel runs at about half the rate of the
+  // scalar friction before session 104, BM_JointForcesBroken; neither this nor the state's
+  // size was found to be why.)
   Real eu = s.fu, ev = s.fv;
   const Real e2 = eu * eu + ev * ev, cap2 = cap * cap;
   const bool dropped = e2 > cap2;

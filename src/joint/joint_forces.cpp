@@ -103,8 +103,9 @@ template <int NPF, bool NODAL, int B>
 void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4], const double (&w)[4], Real* out) {
   Vec3 dx[B][NPF], n[B], edge[B];
   bool live[B];
-  // The face's frame, made at first need: only a point kept in full needs it (a lean point's
-  // law takes the slip's magnitude alone).
+  // The face's frame: for every live joint when there are extrinsic offsets (they are kept on
+  // it), else at first need: only a point kept in full needs it (a lean point's law takes the
+  // slip's magnitude alone).
   std::optional<FaceFrame> frame[B];
   for (int b = 0; b < B; ++b) {
     const std::size_t js4 = 4 * static_cast<std::size_t>(j0 + b);

@@ -119,7 +119,11 @@ inline void residual_update(const CohesiveParams& p, Real dn, const Slip& sl, Co
 inline void residual_force_break(const CohesiveParams& p, CohesiveState& s) {
   if (s.status == JointStatus::Broken) return;
   s.status = JointStatus::Broken;
+  const Real before = s.ss;
   s.diss_II_at_break += drop_to_cap(s.ss, s.dn < 0 ? p.tan_phi * std::max<Real>(0.0, -s.sn) : 0.0, p.ks);
+  // This step's forces carried the shear before the drop: the next update books the work of
+  // what was dropped (as force_break's), the friction's own trapezoid starting from the rest.
+  s.ss_forced = before - s.ss;
   s.start_friction(p);  // from what the shear kept, along the last slip
 }
 

@@ -20,13 +20,13 @@ Vec3 face_normal(const joint::JointSet& js, const Real* x, Index j) {
   return nl > 0 ? Vec3(n / nl) : Vec3::Zero();
 }
 
-// The frame of closed face j's plane (joint::FaceFrame), as the joint kernel will take it
-// (a closed face's two sides coincide).
-joint::FaceFrame face_frame(const joint::JointSet& js, const Real* x, Index j) {
+// The frame of closed face j's plane (joint::FaceFrame) of unit normal n, as the joint kernel
+// will take it (a closed face's two sides coincide).
+joint::FaceFrame face_frame(const joint::JointSet& js, const Real* x, Index j, const Vec3& n) {
   const std::size_t j4 = 4 * static_cast<std::size_t>(j);
   Vec3 xm[4];
   for (int k = 0; k < js.npf[j]; ++k) xm[k] = node_pos_ptr(x, js.a[j4 + k]);
-  return joint::FaceFrame(joint::FaceFrame::line(js.npf[j], xm), face_normal(js, x, j));
+  return joint::FaceFrame(joint::FaceFrame::line(js.npf[j], xm), n);
 }
 
 // Opens closed joint j: every point of the face starts where its law's elastic branch gives
@@ -36,7 +36,14 @@ void open_face(joint::JointSet& js, const Real* x, Index j, Real tn, const Vec3&
   js.closed[j] = 0;
   const std::size_t j4 = 4 * static_cast<std::size_t>(j);
   const joint::CohesiveParams& p = js.params[js.param[j]];
-  const joint::FaceFrame f = face_frame(js, x, j);
+  // The slip offset's components; none on a collapsed face (no plane, no frame: the kernel
+  // runs no law there), which a cut front can open.
+  const Vec3 n = face_normal(js, x, j);
+  Real u0 = 0, v0 = 0;
+  if (!n.isZero()) {
+    const joint::FaceFrame f = face_frame(js, x, j, n);
+    u0 = ts.dot(f.e1) / p.ks, v0 = ts.dot(f.e2) / p.ks;
+  }
   joint::CohesiveState s;
   s.dn = tn / p.kn;
   s.ds = ts.norm() / p.ks;
@@ -45,7 +52,7 @@ void open_face(joint::JointSet& js, const Real* x, Index j, Real tn, const Vec3&
   for (int g = 0; g < js.npf[j]; ++g) {
     Real* o = &js.offset[4 * (j4 + g)];
     o[0] = s.dn;
-    o[1] = ts.dot(f.e1) / p.ks, o[2] = ts.dot(f.e2) / p.ks, o[3] = 0.0;
+    o[1] = u0, o[2] = v0, o[3] = 0.0;
     js.state[j4 + g] = s;
     js.full[j4 + g] = 1;
   }

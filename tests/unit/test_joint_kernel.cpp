@@ -52,7 +52,7 @@ bool same_state(const joint::CohesiveState& a, const joint::CohesiveState& b, Re
 
 enum class Law { Paper, Coupled, ModeI, Residual };
 
-void compare_kernels(CellType type, joint::Quadrature rule, int threads, Law law = Law::Paper) {
+void compare_kernels(CellType type, joint::Quadrature rule, int threads, Law law = Law::Paper, bool offsets = false) {
   CaseConfig c = simple_case(30e9, 0.2, 2400);
   // Mode I fails in opening only: 3 % of the fracture energy (w_GI 2 um), so that the
   // loading below breaks joints under it too.
@@ -66,6 +66,14 @@ void compare_kernels(CellType type, joint::Quadrature rule, int threads, Law law
   ASSERT_GT(m.joints.size(), 4000);
   joint::JointSet ref = m.joints, opt = m.joints;
   for (auto* js : {&ref, &opt}) js->quadrature.assign(js->params.size(), rule);
+  // Extrinsic joints' offsets (an opening and a slip on the face's frame per point, as
+  // open_face leaves them), of the loading's size below: both kernels add them.
+  if (offsets)
+    for (auto* js : {&ref, &opt}) {
+      js->offset.assign(16 * static_cast<std::size_t>(js->size()), 0.0);
+      for (std::size_t i = 0; i < js->offset.size(); ++i)
+        if (i % 4 != 3) js->offset[i] = 2e-6 * std::sin(0.61 * static_cast<double>(i));
+    }
   // Some joints released (contact took over): the kernel takes joints in batches of equal
   // ones and the rest one by one, so both paths run.
   for (auto* js : {&ref, &opt})
@@ -148,4 +156,11 @@ TEST(JointKernel, HexGaussMatchesTheSerialOracleOnTwoThreads) {
 // shear limit in lean_update).
 TEST(JointKernel, HexGaussModeIMatchesTheSerialOracleOnTwoThreads) {
   compare_kernels(CellType::Hex8, joint::Quadrature::Gauss, 2, Law::ModeI);
+}
+// Extrinsic joints: the offsets added on the face's frame, by both kernels alike.
+TEST(JointKernel, TetGaussWithExtrinsicOffsetsMatchesTheSerialOracleOnTwoThreads) {
+  compare_kernels(CellType::Tet4, joint::Quadrature::Gauss, 2, Law::Paper, true);
+}
+TEST(JointKernel, HexNodalWithExtrinsicOffsetsMatchesTheSerialOracleOnTwoThreads) {
+  compare_kernels(CellType::Hex8, joint::Quadrature::Nodal, 2, Law::Paper, true);
 }
