@@ -77,8 +77,10 @@ void BM_JointForces(benchmark::State& state) {
 
 // Every joint broken, its points in full: the crushed zone of an impact, where the kernel runs
 // each point's residual friction (a vector on the face's frame) rather than the lean path.
-// The same box and jumps as above, so about half the points are pressed and slide on their
-// friction, the others are open. Counter: joints_per_s.
+// The same box and jumps as above, ten times larger: about half the points are pressed, the
+// others open. Between calls only one node moves, so almost every point takes an elastic
+// (sticking) step: this times the broken point's path, not its sliding. Counter:
+// joints_per_s.
 void BM_JointForcesBroken(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   const Setup& base = setup(static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
@@ -95,7 +97,7 @@ void BM_JointForcesBroken(benchmark::State& state) {
   joint::add_joint_forces(js, x.data(), f.data(), slots);  // warm-up, gather built
   int k = 0;
   for (auto _ : state) {
-    // A small turn of the slip each call, so the friction slides and turns.
+    // One node moved back and forth, so the state changes between calls.
     x[0] += (++k % 2 ? 1e-9 : -1e-9);
     joint::add_joint_forces(js, x.data(), f.data(), slots);
     benchmark::DoNotOptimize(f.data());
