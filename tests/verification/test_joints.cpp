@@ -1227,7 +1227,8 @@ TEST(Joints, ACutFrontFreesEveryOpenedFaceWithoutAJumpOrEnergy) {
   // neighbours still closed), so they cannot open. Cut (time.insertion_front = "cut"): after
   // the same check no face opened by its onset has a node tied across it; the faces opened to
   // free them are below their onset, freed at one node at least, and start with the normal
-  // traction they carried (the two elements' mean: no jump, to rounding); the check changes
+  // and the shear traction they carried (the two elements' mean: no jump, to rounding; the
+  // shear as a vector, at the joints' first update); the check changes
   // no term of the ledger's balance but the kick's (the skipped elastic energy is booked
   // against dissipation).
   // (The stresses read after the check are evaluated again from the same positions: the
@@ -1270,6 +1271,13 @@ TEST(Joints, ACutFrontFreesEveryOpenedFaceWithoutAJumpOrEnergy) {
     it.stresses(stress);
     const Real* x = it.x().data();
     const joint::JointSet& js = m.joints;
+    // The joints' first update at these positions (on a copy): an opened face's own jump is
+    // zero (its sides still coincide), so its points' slip is the offset alone, measured on the
+    // frame the kernel builds from both sides' nodes.
+    joint::JointSet probe = js;
+    std::vector<Real> fprobe(it.x().size(), 0.0), slots;
+    joint::add_joint_forces(probe, x, fprobe.data(), slots);
+    Real ts_largest = 0;
     Index by_onset = 0, forced = 0;
     for (Index j = 0; j < js.size(); ++j) {
       if (!was[j] || js.closed[j]) continue;
@@ -1291,7 +1299,24 @@ TEST(Joints, ACutFrontFreesEveryOpenedFaceWithoutAJumpOrEnergy) {
       EXPECT_LT(tied_across(m, it, j), js.npf[j]) << "joint " << j;
       EXPECT_NEAR(js.point_state(4 * static_cast<std::size_t>(j)).sn, joint::face_traction(sa, sb, n).tn, 1e-9 * 3e6)
           << "joint " << j;
+      // And the shear traction it carried, as a vector: at its first update each point's law
+      // gives k_s times the slip the kernel measures, which must be the mean traction's shear
+      // part (a frame at insertion other than the kernel's would turn it; a sign slip would
+      // reverse it). Tolerance: rounding of tractions of some MPa.
+      const Vec3 t = joint::face_traction_vector(sa, sb, n), ts = t - t.dot(n) * n;
+      ts_largest = std::max(ts_largest, ts.norm());
+      Vec3 xm[3];
+      for (int k = 0; k < 3; ++k) xm[k] = 0.5 * (node_pos_ptr(x, js.a[4 * j + k]) + node_pos_ptr(x, js.b[4 * j + k]));
+      const joint::FaceFrame frame(joint::FaceFrame::line(3, xm), n);
+      const Real ks = js.params[js.param[j]].ks;
+      for (int g = 0; g < 3; ++g) {
+        const joint::CohesiveState st = probe.point_state(4 * static_cast<std::size_t>(j) + g);
+        ASSERT_NE(st.status, joint::JointStatus::Broken) << "joint " << j;
+        EXPECT_LT((ks * frame.vector(st.su, st.sv) - ts).norm(), 1e-9 * 3e6) << "joint " << j << ", point " << g;
+        EXPECT_NEAR(st.ss, ts.norm(), 1e-9 * 3e6) << "joint " << j << ", point " << g;
+      }
     }
+    EXPECT_GT(ts_largest, 0.1 * 3e6);  // the faces opened carried shear worth testing
     EXPECT_GT(by_onset, 0);
     EXPECT_GT(forced, 0);
     EXPECT_EQ(forced, ins.forced());
