@@ -182,11 +182,12 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
   // Lengths compared squared, a square root and a division taken only to scale a vector onto
   // a cap above zero (an open point's cap is zero: its friction is simply gone). sqrt(u^2 +
   // v^2), not std::hypot: no slip or traction comes near its overflow, and hypot is several
-  // times slower. (With every joint broken the kernel ran at about half the rate of the
+  // times slower. (With every joint broken the kernel runs at about half the rate of the
   // scalar friction before session 104, BM_JointForcesBroken; neither this nor the state's
-  // size was why. Part of it was the law called out of line and the face's frame made lazily
-  // inside the laws' loop, joint_law.hpp: 0.7-1.0 of the scalar rate since session 105; the
-  // rest was not found.)
+  // size was found to be why. Session 105 inlined the law into the kernel and made the frames
+  // in the geometry's phase: 1.2-1.4 times faster there, but the sphere's run at 7.5 m/s, its
+  // joints mostly softening and a tenth broken, was no faster (1.04-1.09 times the wall time
+  // over three pairs each, bits unchanged), so it was not kept.)
   Real eu = s.fu, ev = s.fv;
   const Real e2 = eu * eu + ev * ev, cap2 = cap * cap;
   const bool dropped = e2 > cap2;

@@ -120,11 +120,7 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
     const Real nl = n[b].norm();
     live[b] = nl > 0;  // a collapsed face: nothing sensible to apply (the element check reports it)
     if (live[b]) n[b] /= nl;
-    // The offsets are on the frame; a point kept in full needs it for its law. Made here, in
-    // the geometry's phase, so that the square roots and divisions of the B frames overlap.
-    bool any_full = !js.offset.empty();
-    for (int g = 0; g < NPF; ++g) any_full |= js.full[js4 + g] != 0;
-    if (live[b] && any_full) frame[b].emplace(edge[b], n[b]);
+    if (live[b] && !js.offset.empty()) frame[b].emplace(edge[b], n[b]);  // the offsets are on it
   }
   Real dn[B][NPF], ds[B][NPF];
   Vec3 sv[B][NPF];

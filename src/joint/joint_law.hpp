@@ -19,13 +19,7 @@ inline Real damage_index(const CohesiveParams& p, const CohesiveState& s) {
 }
 
 /// The law a point follows, by its material's choice.
-/// Inlined into the joint kernel by force: called out of line (the compiler's choice, the
-/// three laws being large), a profile put about a fifth of the law's time on reading back the
-/// slip it was passed in memory (a struct, written as two scalars, read as one vector). With every joint broken the
-/// kernel ran 1.2-1.4 times faster inlined and with the frame made in the geometry's phase (the two together,
-/// joint_forces.cpp; BM_JointForcesBroken, session 105).
-[[gnu::always_inline]] inline void joint_law_update(const CohesiveParams& p, Real dn, const Slip& sl,
-                                                    CohesiveState& s) {
+inline void joint_law_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
   if (p.law == JointLaw::Coupled)
     coupled_update(p, dn, sl, s);
   else if (p.law == JointLaw::PaperResidual)
