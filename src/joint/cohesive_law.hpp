@@ -184,10 +184,11 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
   // v^2), not std::hypot: no slip or traction comes near its overflow, and hypot is several
   // times slower. (With every joint broken the kernel runs at about half the rate of the
   // scalar friction before session 104, BM_JointForcesBroken; neither this nor the state's
-  // size was found to be why. Session 105 inlined the law into the kernel and made the frames
-  // in the geometry's phase: 1.2-1.4 times faster there, but the sphere's run at 7.5 m/s, its
-  // joints mostly softening and a tenth broken, was no faster (1.04-1.09 times the wall time
-  // over three pairs each, bits unchanged), so it was not kept.)
+  // size was found to be why. Session 105: most of it was the call of the laws' dispatch out
+  // of line, which passed the slip through memory; the kernel now calls broken_update, inlined,
+  // for a broken point: 1.2-1.4 times faster there, and no change on softening points,
+  // BM_JointForcesSoftening. Inlining the whole dispatch instead ran softening triangles at
+  // 0.93-0.96 of their rate, and the sphere's run no faster.)
   Real eu = s.fu, ev = s.fv;
   const Real e2 = eu * eu + ev * ev, cap2 = cap * cap;
   const bool dropped = e2 > cap2;
@@ -215,6 +216,17 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
   return slid ? cap : std::sqrt(t2);
 }
 
+/// Advances a point that was broken at the step's start, under any law: the normal penalty in
+/// compression only, and the residual friction. (Every law's broken branch; the joint kernel
+/// calls it directly, inlined, for a broken point: called through the laws' dispatch, out of
+/// line, the point's slip went through memory and the broken-joint kernel ran at 0.7-0.8 of
+/// this rate, BM_JointForcesBroken, session 105.)
+inline void broken_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  const Real sn = dn < 0 ? p.kn * dn : 0.0;
+  const Real ss = residual_friction(p, sn, sl, s);
+  s.advance(dn, sl, sn, ss, true);
+}
+
 /// The paper's normal traction (eq. 3) at opening dn, with its history (the largest opening);
 /// a broken point carries compression only.
 inline Real paper_normal_traction(const CohesiveParams& p, Real dn, CohesiveState& s) {
@@ -237,35 +249,31 @@ inline bool eq6_broken(const CohesiveParams& p, Real dn_max, Real b) {
 /// Advances one integration point to opening dn and slip sl (magnitude ds >= 0); updates the
 /// tractions sn, ss (ss acts against the slip), the history and the work integrals.
 inline void cohesive_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  if (s.status == JointStatus::Broken) return broken_update(p, dn, sl, s);
   const Real w_ft = p.ft / p.kn, ds = sl.ds;
-  const bool was_broken = s.status == JointStatus::Broken;
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
-  if (was_broken) {
-    ss = residual_friction(p, sn, sl, s);
-  } else {
-    const bool mode_i = p.law == JointLaw::ModeI;
-    const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
-    const Real w_fs = fs / p.ks, w_GII = mode_i ? 1.0 : 2.0 * p.GfII / fs;
-    // The shear damage b, at the strength of this moment (irreversibility, above).
-    if (!mode_i && ds > w_fs) s.damage = std::max(s.damage, (ds - w_fs) / w_GII);
-    if (s.damage > 0) {
-      const Real D = std::min<Real>(s.damage, 1.0);
-      const Real k = std::max<Real>(0.0, fs * (1.0 - D)) / (w_fs + D * w_GII);
-      s.ks_secant = s.ks_secant < 0 ? std::min(k, p.ks) : std::min(s.ks_secant, k);
-    }
-    ss = (s.ks_secant < 0 ? p.ks : s.ks_secant) * ds;
-    // Mixed-mode failure (eq. 6); mode I only: b = 0.
-    if (eq6_broken(p, s.dn_max, mode_i ? 0.0 : s.damage)) {
-      s.status = JointStatus::Broken;
-      sn = dn < 0 ? p.kn * dn : 0.0;
-      ss = 0.0;
-      s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
-    } else if (s.dn_max > w_ft || s.damage > 0) {
-      s.status = JointStatus::Softening;
-    }
+  const bool mode_i = p.law == JointLaw::ModeI;
+  const Real fs = mode_i ? INFINITY : shear_strength(p, sn);
+  const Real w_fs = fs / p.ks, w_GII = mode_i ? 1.0 : 2.0 * p.GfII / fs;
+  // The shear damage b, at the strength of this moment (irreversibility, above).
+  if (!mode_i && ds > w_fs) s.damage = std::max(s.damage, (ds - w_fs) / w_GII);
+  if (s.damage > 0) {
+    const Real D = std::min<Real>(s.damage, 1.0);
+    const Real k = std::max<Real>(0.0, fs * (1.0 - D)) / (w_fs + D * w_GII);
+    s.ks_secant = s.ks_secant < 0 ? std::min(k, p.ks) : std::min(s.ks_secant, k);
   }
-  s.advance(dn, sl, sn, ss, was_broken);
+  ss = (s.ks_secant < 0 ? p.ks : s.ks_secant) * ds;
+  // Mixed-mode failure (eq. 6); mode I only: b = 0.
+  if (eq6_broken(p, s.dn_max, mode_i ? 0.0 : s.damage)) {
+    s.status = JointStatus::Broken;
+    sn = dn < 0 ? p.kn * dn : 0.0;
+    ss = 0.0;
+    s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
+  } else if (s.dn_max > w_ft || s.damage > 0) {
+    s.status = JointStatus::Softening;
+  }
+  s.advance(dn, sl, sn, ss);
   // s_s dropped to 0 at a break: the friction starts from nothing (fu = fv = 0).
 }
 

@@ -93,43 +93,37 @@ inline Real coupled_shear_strength(const CohesiveParams& p, Real dn) {
 /// Advances one integration point to opening dn and slip sl (magnitude ds >= 0) under the
 /// coupled law; same state and energy bookkeeping as cohesive_update.
 inline void coupled_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  if (s.status == JointStatus::Broken) return broken_update(p, dn, sl, s);
   const Real ds = sl.ds;
-  const bool was_broken = s.status == JointStatus::Broken;
   Real sn, ss;
-  if (was_broken) {
-    sn = dn < 0 ? p.kn * dn : 0.0;
-    ss = residual_friction(p, sn, sl, s);
-  } else {
-    const Real un = std::max<Real>(0.0, dn);
-    const Real fs = coupled_shear_strength(p, dn);
-    // lambda > lambda0 below says (k_n un / f_t)^2 + (k_s ds / f_s)^2 > 1: the elastic
-    // tractions outside the onset ellipse. Well inside it (below 0.98, far beyond rounding)
-    // the damage cannot grow, and the square roots and six divisions of the envelope, the
-    // cost of an intact point, are skipped; the result is the same to the bit.
-    const Real an = p.kn * un * fs, as = p.ks * ds * p.ft, lim = p.ft * fs;
-    const Real lambda = an * an + as * as > 0.98 * lim * lim ? std::hypot(un, ds) : 0.0;
-    if (lambda > 0) {
-      const CoupledEnvelope e = coupled_envelope(p, un / lambda, ds / lambda, fs);
-      if (lambda > e.lambda0) {
-        const Real d =
-            lambda >= e.lambdaf ? 1.0 : e.lambdaf * (lambda - e.lambda0) / (lambda * (e.lambdaf - e.lambda0));
-        s.damage = std::max(s.damage, d);
-      }
-    }
-    s.dn_max = std::max(s.dn_max, dn);
-    if (s.damage >= 1.0) {
-      s.status = JointStatus::Broken;  // the friction starts from nothing (fu = fv = 0)
-      sn = dn < 0 ? p.kn * dn : 0.0;
-      ss = 0.0;
-      s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
-    } else {
-      const Real k = 1.0 - s.damage;
-      sn = dn < 0 ? p.kn * dn : k * p.kn * dn;
-      ss = k * p.ks * ds;
-      if (s.damage > 0) s.status = JointStatus::Softening;
+  const Real un = std::max<Real>(0.0, dn);
+  const Real fs = coupled_shear_strength(p, dn);
+  // lambda > lambda0 below says (k_n un / f_t)^2 + (k_s ds / f_s)^2 > 1: the elastic
+  // tractions outside the onset ellipse. Well inside it (below 0.98, far beyond rounding)
+  // the damage cannot grow, and the square roots and six divisions of the envelope, the
+  // cost of an intact point, are skipped; the result is the same to the bit.
+  const Real an = p.kn * un * fs, as = p.ks * ds * p.ft, lim = p.ft * fs;
+  const Real lambda = an * an + as * as > 0.98 * lim * lim ? std::hypot(un, ds) : 0.0;
+  if (lambda > 0) {
+    const CoupledEnvelope e = coupled_envelope(p, un / lambda, ds / lambda, fs);
+    if (lambda > e.lambda0) {
+      const Real d = lambda >= e.lambdaf ? 1.0 : e.lambdaf * (lambda - e.lambda0) / (lambda * (e.lambdaf - e.lambda0));
+      s.damage = std::max(s.damage, d);
     }
   }
-  s.advance(dn, sl, sn, ss, was_broken);
+  s.dn_max = std::max(s.dn_max, dn);
+  if (s.damage >= 1.0) {
+    s.status = JointStatus::Broken;  // the friction starts from nothing (fu = fv = 0)
+    sn = dn < 0 ? p.kn * dn : 0.0;
+    ss = 0.0;
+    s.diss_II_at_break = s.work_s + 0.5 * s.ss * (ds - s.ds);  // all shear work so far; s_s drops to 0
+  } else {
+    const Real k = 1.0 - s.damage;
+    sn = dn < 0 ? p.kn * dn : k * p.kn * dn;
+    ss = k * p.ks * ds;
+    if (s.damage > 0) s.status = JointStatus::Softening;
+  }
+  s.advance(dn, sl, sn, ss);
 }
 
 }  // namespace dspdem::joint

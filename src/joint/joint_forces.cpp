@@ -153,7 +153,13 @@ void joint_kernel(JointSet& js, Index j0, const Real* x, const double (&N)[4][4]
       if (js.full[js4 + g] || !lean_update(p, dn[b][g], ds[b][g], js.lean[js4 + g], sn[b][g], ss[b][g])) {
         CohesiveState& st = js.full_point(js4 + g);
         if (!frame[b]) frame[b].emplace(edge[b], n[b]);
-        joint_law_update(p, dn[b][g], frame[b]->slip(sv[b][g], ds[b][g]), st);
+        const Slip sl = frame[b]->slip(sv[b][g], ds[b][g]);
+        // A broken point's update is the same under every law, and small: called here, inlined
+        // (the laws' dispatch is not, cohesive_law.hpp).
+        if (st.status == JointStatus::Broken)
+          broken_update(p, dn[b][g], sl, st);
+        else
+          joint_law_update(p, dn[b][g], sl, st);
         broken[b] += st.status == JointStatus::Broken;
         touched[b] += st.status != JointStatus::Intact;
         sn[b][g] = st.sn, ss[b][g] = st.ss;

@@ -44,71 +44,65 @@ namespace dspdem::joint {
 /// Advances one integration point of paper_residual to opening dn and slip sl (magnitude
 /// ds >= 0).
 inline void residual_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
+  if (s.status == JointStatus::Broken) return broken_update(p, dn, sl, s);
   const Real ds = sl.ds;
   Real sn = paper_normal_traction(p, dn, s);
   Real ss;
   bool slid = false, breaks = false;
-  const bool was_broken = s.status == JointStatus::Broken;
-  if (was_broken) {
-    ss = residual_friction(p, sn, sl, s);
+  const Real fs = shear_strength(p, sn);
+  const Real mu = p.tan_phi * std::max<Real>(0.0, -sn);
+  const Real coh = std::max<Real>(fs - mu, 1e-12 * std::max<Real>(p.c, 1.0));
+  const Real w_GII = 2.0 * p.GfII / coh, h = coh / w_GII;
+  const Real D = s.damage;
+  const Real cap = D > 0 ? fs - coh * std::min<Real>(D, 1.0) : fs;
+  const Real el = ds - s.ds_plastic;
+  // Elastic at the end of the step: the same test as the paper's law (ds <= w_fs while
+  // undamaged), so a lean point (lean_point.hpp) is one this law keeps elastic too.
+  if (std::abs(el) <= cap / p.ks) {
+    ss = p.ks * el;
   } else {
-    const Real fs = shear_strength(p, sn);
-    const Real mu = p.tan_phi * std::max<Real>(0.0, -sn);
-    const Real coh = std::max<Real>(fs - mu, 1e-12 * std::max<Real>(p.c, 1.0));
-    const Real w_GII = 2.0 * p.GfII / coh, h = coh / w_GII;
-    const Real D = s.damage;
-    const Real cap = D > 0 ? fs - coh * std::min<Real>(D, 1.0) : fs;
-    const Real el = ds - s.ds_plastic;
-    // Elastic at the end of the step: the same test as the paper's law (ds <= w_fs while
-    // undamaged), so a lean point (lean_point.hpp) is one this law keeps elastic too.
-    if (std::abs(el) <= cap / p.ks) {
-      ss = p.ks * el;
+    slid = true;  // past the strength (perhaps by rounding alone): softening from now on
+    // As residual_friction: first the traction above a cap that fell (compression
+    // released) drops at the old slip, its energy dissipated but no damage done (no slip
+    // has happened: session 54's rule for the paper's law); then the slip's increment goes
+    // elastic and slides on the cap. The dissipation is booked exactly, path by path
+    // (diss_II_at_break, until the break).
+    Real e = s.ss;
+    s.diss_II_at_break += drop_to_cap(e, cap, p.ks);
+    const Real trial = e + p.ks * (ds - s.ds), t = std::abs(trial), sign = trial > 0 ? 1.0 : -1.0;
+    const Real dp_soft = p.ks > h ? (t - cap) / (p.ks - h) : INFINITY;
+    if (t <= cap) {
+      ss = trial;
+    } else if (D + dp_soft / w_GII < 1.0) {
+      // Slides by dp with the cohesion softening along it (modulus h in plastic slip):
+      // k_s (t - dp) = cap - h dp; dissipated, the cap's mean along dp times dp.
+      s.diss_II_at_break += (cap - 0.5 * h * dp_soft) * dp_soft;
+      s.damage = D + dp_soft / w_GII;
+      ss = sign * (t - p.ks * dp_soft);
     } else {
-      slid = true;  // past the strength (perhaps by rounding alone): softening from now on
-      // As residual_friction: first the traction above a cap that fell (compression
-      // released) drops at the old slip, its energy dissipated but no damage done (no slip
-      // has happened: session 54's rule for the paper's law); then the slip's increment goes
-      // elastic and slides on the cap. The dissipation is booked exactly, path by path
-      // (diss_II_at_break, until the break).
-      Real e = s.ss;
-      s.diss_II_at_break += drop_to_cap(e, cap, p.ks);
-      const Real trial = e + p.ks * (ds - s.ds), t = std::abs(trial), sign = trial > 0 ? 1.0 : -1.0;
-      const Real dp_soft = p.ks > h ? (t - cap) / (p.ks - h) : INFINITY;
-      if (t <= cap) {
-        ss = trial;
-      } else if (D + dp_soft / w_GII < 1.0) {
-        // Slides by dp with the cohesion softening along it (modulus h in plastic slip):
-        // k_s (t - dp) = cap - h dp; dissipated, the cap's mean along dp times dp.
-        s.diss_II_at_break += (cap - 0.5 * h * dp_soft) * dp_soft;
-        s.damage = D + dp_soft / w_GII;
-        ss = sign * (t - p.ks * dp_soft);
-      } else {
-        // The cohesion is spent within the step: it softens to the friction over dp1, and the
-        // rest of the slip slides on the friction alone. Where k_s <= h (a softening steeper
-        // than the penalty) it goes at once, the traction above the friction released.
-        const Real dp = (t - mu) / p.ks, dp1 = (1.0 - std::min<Real>(D, 1.0)) * w_GII;
-        s.diss_II_at_break += p.ks > h ? 0.5 * (cap + mu) * dp1 + mu * (dp - dp1) : (t * t - mu * mu) / (2.0 * p.ks);
-        s.damage = p.ks > h ? D + dp / w_GII : std::max<Real>(1.0, D + dp / w_GII);  // >= 1: broken
-        ss = sign * (t - p.ks * dp);                                                 // the friction mu
-      }
-      s.ds_plastic = ds - ss / p.ks;
+      // The cohesion is spent within the step: it softens to the friction over dp1, and the
+      // rest of the slip slides on the friction alone. Where k_s <= h (a softening steeper
+      // than the penalty) it goes at once, the traction above the friction released.
+      const Real dp = (t - mu) / p.ks, dp1 = (1.0 - std::min<Real>(D, 1.0)) * w_GII;
+      s.diss_II_at_break += p.ks > h ? 0.5 * (cap + mu) * dp1 + mu * (dp - dp1) : (t * t - mu * mu) / (2.0 * p.ks);
+      s.damage = p.ks > h ? D + dp / w_GII : std::max<Real>(1.0, D + dp / w_GII);  // >= 1: broken
+      ss = sign * (t - p.ks * dp);                                                 // the friction mu
     }
+    s.ds_plastic = ds - ss / p.ks;
   }
-  if (s.status != JointStatus::Broken) {
-    if (eq6_broken(p, s.dn_max, s.damage)) {
-      // Broken: no tension, no cohesion; the friction keeps what it can carry, and the rest
-      // of the shear traction is released at this slip (dissipated).
-      s.status = JointStatus::Broken;
-      breaks = true;
-      sn = dn < 0 ? p.kn * dn : 0.0;
-      s.diss_II_at_break += drop_to_cap(ss, p.tan_phi * std::max<Real>(0.0, -sn), p.ks);
-    } else if (s.dn_max > p.ft / p.kn || s.damage > 0 || slid) {
-      s.status = JointStatus::Softening;
-    }
+  if (eq6_broken(p, s.dn_max, s.damage)) {
+    // Broken: no tension, no cohesion; the friction keeps what it can carry, and the rest
+    // of the shear traction is released at this slip (dissipated).
+    s.status = JointStatus::Broken;
+    breaks = true;
+    sn = dn < 0 ? p.kn * dn : 0.0;
+    s.diss_II_at_break += drop_to_cap(ss, p.tan_phi * std::max<Real>(0.0, -sn), p.ks);
+  } else if (s.dn_max > p.ft / p.kn || s.damage > 0 || slid) {
+    s.status = JointStatus::Softening;
   }
   // The work of the tractions, as the other laws book it; this law's dissipation is booked
   // exactly above (CohesiveState::dissipated_II).
-  s.advance(dn, sl, sn, ss, was_broken);
+  s.advance(dn, sl, sn, ss);
   if (breaks) s.start_friction(p);  // from what the shear kept, along this slip
 }
 

@@ -5,7 +5,9 @@
 // hexes) with Gauss points (the impact beam's), all under the paper's law (the coupled and
 // mode I laws differ only in lean_update's elastic gate). Two sizes: that large box, whose joints
 // stream from memory, and a small one of ~1e4 joints (the impact beam's count), which stays
-// in cache and shows the arithmetic. Counter: joints_per_s.
+// in cache and shows the arithmetic. Counter: joints_per_s. The same box with every point
+// softening (BM_JointForcesSoftening: most of the sphere's joints once its stress wave has
+// passed) and with every joint broken (BM_JointForcesBroken: a crushed zone).
 //   build/tests/bench/bench_joint_forces --benchmark_min_time=2
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -106,6 +108,42 @@ void BM_JointForcesBroken(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(js.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// Every point kept in full and softening, none broken: a body after its stress wave, most of
+// whose joints have passed their strength somewhere (the sphere at 7.5 m/s: nearly every joint
+// holds a point in full by 0.5 ms, a tenth are broken at the end), where the kernel runs each
+// point's full law on its unbroken branch. Each point is given a history of an opening 1.5
+// w_ft (its secant branch; far below w_ft + w_GI), under the jumps of BM_JointForces. Counters:
+// joints_per_s, softening_share (1 unless a point broke or healed, which cannot happen).
+void BM_JointForcesSoftening(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  const Setup& base = setup(static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
+  state.SetLabel(kFaceNames[state.range(1)]);
+  joint::JointSet js = base.model.joints;
+  for (Index j = 0; j < js.size(); ++j) {
+    const joint::CohesiveParams& p = js.params[js.param[j]];
+    for (int g = 0; g < js.npf[j]; ++g) {
+      joint::CohesiveState& st = js.full_point(4 * static_cast<std::size_t>(j) + g);
+      st.dn_max = 1.5 * p.ft / p.kn;
+      st.status = joint::JointStatus::Softening;
+    }
+  }
+  std::vector<Real> x = base.x, f(base.f.size(), 0.0), slots;
+  joint::add_joint_forces(js, x.data(), f.data(), slots);  // warm-up, gather built
+  int k = 0;
+  for (auto _ : state) {
+    x[0] += (++k % 2 ? 1e-9 : -1e-9);  // the state changes between calls
+    joint::add_joint_forces(js, x.data(), f.data(), slots);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["joints_per_s"] =
+      benchmark::Counter(static_cast<double>(js.size()), benchmark::Counter::kIsIterationInvariantRate);
+  double softening = 0, points = 0;
+  for (Index j = 0; j < js.size(); ++j)
+    for (int g = 0; g < js.npf[j]; ++g)
+      softening += js.state[4 * static_cast<std::size_t>(j) + g].status == joint::JointStatus::Softening, points += 1;
+  state.counters["softening_share"] = softening / points;
+}
+
 void BM_JointForcesReference(benchmark::State& state) {
   Setup& s = setup(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   state.SetLabel(kFaceNames[state.range(0)]);
@@ -127,6 +165,11 @@ BENCHMARK(BM_JointForces)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_JointForcesBroken)
+    ->ArgsProduct({{1}, {TriGauss, QuadGauss}, {0, 1}})
+    ->ArgNames({"threads", "faces", "small"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_JointForcesSoftening)
     ->ArgsProduct({{1}, {TriGauss, QuadGauss}, {0, 1}})
     ->ArgNames({"threads", "faces", "small"})
     ->Unit(benchmark::kMillisecond)
