@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "core/types.hpp"
 
 namespace dspdem::joint {
@@ -113,14 +114,18 @@ struct CohesiveState {
   bool plastic_shear(const CohesiveParams& p) const {
     return status == JointStatus::Broken || p.law == JointLaw::PaperResidual;
   }
-  /// Ends an update at opening dn, slip sl with tractions sn, ss: the work of the tractions
-  /// over the step (trapezoid rule) and the new last state. Every law ends so. A point that
-  /// was broken at the step's start has had its shear work booked by residual_friction (on
-  /// the slip vector: the magnitude's trapezoid would not be the friction's work once the
-  /// slip turns), so shear_booked skips it here.
-  void advance(Real dn_new, const Slip& sl, Real sn_new, Real ss_new, bool shear_booked = false) {
+  /// Ends an update of an unbroken point at opening dn, slip sl with tractions sn, ss: the
+  /// work of the tractions over the step (trapezoid rule) and the new last state. Every law
+  /// ends so.
+  void advance(Real dn_new, const Slip& sl, Real sn_new, Real ss_new) {
+    work_s += 0.5 * (ss + ss_new) * (sl.ds - ds);
+    advance_shear_booked(dn_new, sl, sn_new, ss_new);
+  }
+  /// The same for a point that was broken at the step's start: residual_friction has booked
+  /// its shear work, on the slip vector (the magnitude's trapezoid would not be the friction's
+  /// work once the slip turns).
+  void advance_shear_booked(Real dn_new, const Slip& sl, Real sn_new, Real ss_new) {
     work_n += 0.5 * (sn + sn_new) * (dn_new - dn);
-    if (!shear_booked) work_s += 0.5 * (ss + ss_new) * (sl.ds - ds);
     dn = dn_new, ds = sl.ds, sn = sn_new, ss = ss_new;
     su = sl.u, sv = sl.v;
   }
@@ -224,13 +229,13 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
 inline void broken_update(const CohesiveParams& p, Real dn, const Slip& sl, CohesiveState& s) {
   const Real sn = dn < 0 ? p.kn * dn : 0.0;
   const Real ss = residual_friction(p, sn, sl, s);
-  s.advance(dn, sl, sn, ss, true);
+  s.advance_shear_booked(dn, sl, sn, ss);
 }
 
-/// The paper's normal traction (eq. 3) at opening dn, with its history (the largest opening);
-/// a broken point carries compression only.
+/// The paper's normal traction (eq. 3) at opening dn of an unbroken point, with its history
+/// (the largest opening). (A broken point's, compression only, is broken_update's.)
 inline Real paper_normal_traction(const CohesiveParams& p, Real dn, CohesiveState& s) {
-  if (s.status == JointStatus::Broken) return dn < 0 ? p.kn * dn : 0.0;
+  DSPDEM_ASSERT(s.status != JointStatus::Broken);
   if (dn <= 0) return p.kn * dn;
   const Real w_ft = p.ft / p.kn, w_GI = 2.0 * p.GfI / p.ft;
   s.dn_max = std::max(s.dn_max, dn);

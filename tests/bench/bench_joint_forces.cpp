@@ -59,6 +59,22 @@ Setup& setup(int faces, int small) {
   return *s[faces][small];
 }
 
+// Times the kernel on js at positions x, one node moved back and forth between calls so that
+// the joints' state changes (a benchmark of a state that cannot change would time a kernel
+// that no run has). Counter: joints_per_s.
+void time_with_a_node_moving(benchmark::State& state, joint::JointSet& js, std::vector<Real>& x) {
+  std::vector<Real> f(x.size(), 0.0), slots;
+  joint::add_joint_forces(js, x.data(), f.data(), slots);  // warm-up, gather built
+  int k = 0;
+  for (auto _ : state) {
+    x[0] += (++k % 2 ? 1e-9 : -1e-9);
+    joint::add_joint_forces(js, x.data(), f.data(), slots);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["joints_per_s"] =
+      benchmark::Counter(static_cast<double>(js.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void BM_JointForces(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   Setup& s = setup(static_cast<int>(state.range(1)), static_cast<int>(state.range(2)));
@@ -93,19 +109,10 @@ void BM_JointForcesBroken(benchmark::State& state) {
     for (int g = 0; g < js.npf[j]; ++g)
       js.full_point(4 * static_cast<std::size_t>(j) + g).status = joint::JointStatus::Broken;
   }
-  std::vector<Real> x = base.x, f(base.f.size(), 0.0), slots;
+  std::vector<Real> x = base.x;
   // Jumps ten times the intact benchmark's: broken faces slide and press well past w_ft.
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = base.model.fem.x0[i] + 10 * (base.x[i] - base.model.fem.x0[i]);
-  joint::add_joint_forces(js, x.data(), f.data(), slots);  // warm-up, gather built
-  int k = 0;
-  for (auto _ : state) {
-    // One node moved back and forth, so the state changes between calls.
-    x[0] += (++k % 2 ? 1e-9 : -1e-9);
-    joint::add_joint_forces(js, x.data(), f.data(), slots);
-    benchmark::DoNotOptimize(f.data());
-  }
-  state.counters["joints_per_s"] =
-      benchmark::Counter(static_cast<double>(js.size()), benchmark::Counter::kIsIterationInvariantRate);
+  time_with_a_node_moving(state, js, x);
 }
 
 // Every point kept in full and softening, none broken: a body after its stress wave, most of
@@ -127,16 +134,8 @@ void BM_JointForcesSoftening(benchmark::State& state) {
       st.status = joint::JointStatus::Softening;
     }
   }
-  std::vector<Real> x = base.x, f(base.f.size(), 0.0), slots;
-  joint::add_joint_forces(js, x.data(), f.data(), slots);  // warm-up, gather built
-  int k = 0;
-  for (auto _ : state) {
-    x[0] += (++k % 2 ? 1e-9 : -1e-9);  // the state changes between calls
-    joint::add_joint_forces(js, x.data(), f.data(), slots);
-    benchmark::DoNotOptimize(f.data());
-  }
-  state.counters["joints_per_s"] =
-      benchmark::Counter(static_cast<double>(js.size()), benchmark::Counter::kIsIterationInvariantRate);
+  std::vector<Real> x = base.x;
+  time_with_a_node_moving(state, js, x);
   double softening = 0, points = 0;
   for (Index j = 0; j < js.size(); ++j)
     for (int g = 0; g < js.npf[j]; ++g)
