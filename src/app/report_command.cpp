@@ -14,7 +14,8 @@
 
 namespace dspdem {
 
-int report_command(const report::ReportArgs& a) {
+int report_command(const report::ReportArgs& args) {
+  report::ReportArgs a = args;
   CaseConfig c = read_case(a.case_file, a.sets);
   if (a.from_runs.size() == 1) {
     // Analyse the run as it ran: its resolved case holds the overrides it was run with
@@ -49,6 +50,7 @@ int report_command(const report::ReportArgs& a) {
   // refused here, before it changes anything in it.
   const std::string dir = report::report_folder(c, a);
   const FolderLock lock(dir, report_lock_file, "another report");
+  a.runs.report_dir = dir;
   // A folder a render or another report's run place took from a run: a later render or run
   // into it would empty it, this report with it.
   if (const auto from = derived_from(dir))

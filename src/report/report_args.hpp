@@ -15,6 +15,9 @@ struct RunPolicy {
   bool resume = false;
   /// Their checkpoints by wall time (RunOptions::checkpoint_wall) [s]; 0: never.
   double checkpoint_wall = kCheckpointWallDefault;
+  /// The report's folder, whose earlier report.md a run that replaces one of its finished
+  /// runs marks outdated (report/outdated_report.hpp); empty: none.
+  std::string report_dir;
 };
 
 struct ReportArgs {

@@ -4,6 +4,7 @@
 
 #include "core/log.hpp"
 #include "io/staging.hpp"
+#include "report/outdated_report.hpp"
 #include "report/run_data.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_case.hpp"
@@ -53,7 +54,9 @@ Earlier run_or_resume(const CaseConfig& c, const std::string& dir, const RunPoli
     o.restart_file = e.checkpoint;
     log::info("--resume: continuing the run in {} from its checkpoint {}", dir, o.restart_file);
   }
+  const bool replaces = holds_finished_run(dir);
   run_case(c, o);
+  if (replaces) mark_report_outdated(runs.report_dir, dir);
   return e.state;
 }
 

@@ -38,7 +38,8 @@ EarlierRun earlier_run(const std::string& dir, const std::string& resolved);
 /// Runs `c` into `dir` in this process (run_case, its overrides recorded in its checkpoints so
 /// that `dspdem run --restart DIR` can continue it, checkpoints by wall time as `runs` says);
 /// with `runs.resume`, keeps the same finished run there instead, or continues the same
-/// unfinished one from its checkpoint. Returns which.
+/// unfinished one from its checkpoint. Returns which. A finished run it replaces marks the
+/// report in `runs.report_dir` outdated (mark_report_outdated).
 Earlier run_or_resume(const CaseConfig& c, const std::string& dir, const RunPolicy& runs);
 
 }  // namespace dspdem::report

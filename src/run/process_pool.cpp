@@ -34,7 +34,8 @@ extern "C" void on_stop(int sig) {
 
 }  // namespace
 
-std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
+std::vector<int> run_processes(const std::vector<Job>& list, int jobs,
+                               const std::function<void(std::size_t, int)>& on_end) {
   DSPDEM_CHECK(jobs >= 1, "run_processes: {} jobs", jobs);
   std::vector<int> status(list.size(), -1);
   std::map<pid_t, std::size_t> running;
@@ -75,7 +76,9 @@ std::vector<int> run_processes(const std::vector<Job>& list, int jobs) {
     const auto it = running.find(pid);
     if (it == running.end()) continue;  // a child of someone else's (render workers wait for their own)
     status[it->second] = WIFEXITED(st) ? WEXITSTATUS(st) : WIFSIGNALED(st) ? 128 + WTERMSIG(st) : -1;
+    const std::size_t ended = it->second;
     running.erase(it);
+    if (on_end) on_end(ended, status[ended]);
   }
   // The caller's handlers back before the last look at the flag: a signal that came after
   // the loop's last look still stops the caller (exit 5), rather than being lost.

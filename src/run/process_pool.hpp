@@ -3,6 +3,8 @@
 // one cannot take the others down, and `-t 1` per process uses the cores without OpenMP
 // threads waiting on each other.
 #pragma once
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,7 +26,9 @@ struct Job {
 /// is thrown, saying how many were stopped and how many never started. If this process dies, a
 /// SIGKILL included, each job (not what the job started in turn) gets a SIGTERM
 /// (stop_with_parent). The kernel sends that when the thread that started the job ends: call
-/// this from a thread that outlives the jobs (the main thread does).
-std::vector<int> run_processes(const std::vector<Job>& list, int jobs);
+/// this from a thread that outlives the jobs (the main thread does). `on_end`, if given, is
+/// called with a job's index and status as each one ends, in this process, stopped or not.
+std::vector<int> run_processes(const std::vector<Job>& list, int jobs,
+                               const std::function<void(std::size_t, int)>& on_end = nullptr);
 
 }  // namespace dspdem

@@ -17,6 +17,7 @@
 #include "report/document.hpp"
 #include "report/earlier_reports.hpp"
 #include "report/files_aside.hpp"
+#include "report/outdated_report.hpp"
 #include "report/report_dirs.hpp"
 #include "report/resume.hpp"
 #include "report/run_data.hpp"
@@ -113,8 +114,14 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
     log::info("sphere impact: --resume: {} run(s) kept, {} continued, {} started", kept, continued,
               list.size() - static_cast<std::size_t>(continued));
   if (!list.empty()) log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
+  // A finished run that a job replaces (it ends with status 0) marks the earlier report in
+  // the folder outdated: the runs change one by one, the report.md only at the end.
+  std::vector<bool> replaces(list.size());
+  for (std::size_t k = 0; k < list.size(); ++k) replaces[k] = report::holds_finished_run(plan[listed[k]].dir);
   // Stopped by a signal, Interrupted goes up to report_command, which says how to go on.
-  const std::vector<int> status = run_processes(list, jobs);
+  const std::vector<int> status = run_processes(list, jobs, [&](std::size_t k, int st) {
+    if (st == 0 && replaces[k]) report::mark_report_outdated(runs.report_dir, plan[listed[k]].dir);
+  });
   std::vector<std::string> err(plan.size());
   for (std::size_t k = 0; k < list.size(); ++k)
     if (status[k] != 0) {
@@ -377,7 +384,7 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
     if (a.study) {
       const auto first = plan.begin() + static_cast<long>(n_sweep);
       const auto e = run_planned(c, std::vector<Planned>(first, first + static_cast<long>(n_study)), jobs,
-                                 report::RunPolicy{false, a.runs.checkpoint_wall});
+                                 report::RunPolicy{false, a.runs.checkpoint_wall, a.runs.report_dir});
       std::copy(e.begin(), e.end(), errors.begin() + static_cast<long>(n_sweep));
     }
   }

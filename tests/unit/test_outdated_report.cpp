@@ -1,0 +1,89 @@
+// An earlier report whose runs a new report has begun to replace is marked outdated: under its
+// title, its text otherwise kept, in report.md, report.html and headline.json together; once
+// (the first run replaced is the one named); and nothing is made where there is no report.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/file.hpp"
+#include "io/staging.hpp"
+#include "report/document.hpp"
+#include "report/headline.hpp"
+#include "report/outdated_report.hpp"
+
+namespace fs = std::filesystem;
+using namespace dspdem::report;
+
+namespace {
+
+class OutdatedReport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dspdem_outdated_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "run");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string get(const char* f) const { return dspdem::read_file((dir_ / f).string()); }
+  fs::path dir_;
+};
+
+TEST_F(OutdatedReport, MarksTheEarlierReportUnderItsTitleOnceKeepingItsText) {
+  Document doc(dir_.string(), (dir_ / "run").string());
+  doc.title("A scene").para("The strength is 2.5 MPa.").section("Runs").para("One run.");
+  doc.headline().scene = "scene", doc.headline().title = "A scene", doc.headline().summary = "What was run.";
+  doc.write();
+  const std::string md = get("report.md");
+  ASSERT_EQ(md.rfind("# A scene\n\n", 0), 0U);
+  EXPECT_FALSE(holds_finished_run((dir_ / "run").string()));
+  dspdem::write_file_atomic((dir_ / "run" / "summary.json").string(), "{}");
+  EXPECT_TRUE(holds_finished_run((dir_ / "run").string()));
+
+  mark_report_outdated(dir_.string(), (dir_ / "speeds" / "v5").string());
+  const std::string marked = get("report.md");
+  const std::string head =
+      "# A scene\n\n> **Outdated.** A report started into this folder has replaced a run this text "
+      "describes (`speeds/v5/`, at ";
+  ASSERT_EQ(marked.rfind(head, 0), 0U) << marked;
+  // The mark is one paragraph; below it, the earlier text as it was.
+  const std::size_t end = marked.find("\n\n", head.size());
+  ASSERT_NE(end, std::string::npos);
+  EXPECT_EQ(marked.substr(end + 1), md.substr(std::string("# A scene\n").size()));
+  EXPECT_NE(marked.find("finishes it.\n\n"), std::string::npos) << marked;
+  // report.html is the marked text rendered; the headline's summary begins with the mark.
+  const std::string html = get("report.html");
+  EXPECT_NE(html.find("<strong>Outdated.</strong>"), std::string::npos) << html;
+  EXPECT_LT(html.find("<strong>Outdated.</strong>"), html.find("The strength is 2.5 MPa."));
+  const Headline h = read_headline((dir_ / "headline.json").string());
+  EXPECT_EQ(h.summary.rfind("**Outdated.** A report started", 0), 0U) << h.summary;
+  EXPECT_NE(h.summary.find("What was run."), std::string::npos) << h.summary;
+
+  // A second run replaced: the first one named stays, nothing changes.
+  mark_report_outdated(dir_.string(), (dir_ / "speeds" / "v7.5").string());
+  EXPECT_EQ(get("report.md"), marked);
+  EXPECT_EQ(get("report.html"), html);
+}
+
+TEST_F(OutdatedReport, NoReportNoFolderOrATitlelessOne) {
+  // No report folder given, or none written there: nothing is made.
+  mark_report_outdated("", (dir_ / "run").string());
+  mark_report_outdated(dir_.string(), (dir_ / "run").string());
+  EXPECT_FALSE(fs::exists(dir_ / "report.md"));
+  EXPECT_FALSE(fs::exists(dir_ / "report.html"));
+  // A report.md without a title line is marked at its top; without a headline.json none is made.
+  dspdem::write_file_atomic((dir_ / "report.md").string(), "Some text.\n");
+  mark_report_outdated(dir_.string(), (dir_ / "run").string());
+  const std::string marked = get("report.md");
+  EXPECT_EQ(marked.rfind("> **Outdated.** A report started into this folder has replaced a run this text describes "
+                         "(`run/`, at ",
+                         0),
+            0U)
+      << marked;
+  EXPECT_EQ(marked.substr(marked.size() - std::string("\n\nSome text.\n").size()), "\n\nSome text.\n");
+  EXPECT_FALSE(fs::exists(dir_ / "headline.json"));
+}
+
+}  // namespace
