@@ -6,6 +6,7 @@
 // summary of headline.json that the figures site shows) as outdated, its text otherwise kept;
 // the new report's own files replace all three when it is written.
 #pragma once
+#include <optional>
 #include <string>
 
 namespace dspdem::report {
@@ -13,15 +14,36 @@ namespace dspdem::report {
 /// The first words of the mark, as report.md carries it (a blockquote under the title).
 inline constexpr const char* kOutdatedMark = "> **Outdated.**";
 
-/// Whether run folder `run_dir` holds a finished run, which running into it would replace.
-bool holds_finished_run(const std::string& run_dir);
+/// What a run folder held before a run into it, to tell afterwards whether that run replaced a
+/// finished one: its summary.json as a file (device, inode, modification time), or a run
+/// whose commit was cut short (run.pvd there, no summary.json). Decided by the files, not by
+/// how the run ended: a run stopped or killed after its commit has replaced the earlier one.
+class RunReplacement {
+ public:
+  explicit RunReplacement(std::string run_dir);
+  /// Whether a finished run was there before and another run's summary.json is there now.
+  bool replaced() const;
+  const std::string& dir() const { return dir_; }
+
+ private:
+  struct FileId {
+    unsigned long long dev = 0, ino = 0;
+    long long mtime_ns = 0;
+    bool operator==(const FileId&) const = default;
+  };
+  static std::optional<FileId> summary_id(const std::string& dir);
+  std::string dir_;
+  bool held_ = false;
+  std::optional<FileId> before_;
+};
 
 /// Marks the report in `dir` as outdated, naming `replaced` (the run folder just replaced,
 /// shown relative to `dir`): the mark goes under report.md's title, report.html is rendered
-/// from the marked text, and headline.json's summary begins with it. Does nothing when `dir`
-/// is empty or holds no report.md, or when its report.md is marked already (the first
-/// replacement is named). Each file is rewritten atomically, the three together; one that
-/// cannot be is warned of, not thrown: the runs are what matters, and they are in place.
+/// from the marked text, and headline.json's summary begins with it (skipped, with a warning,
+/// when headline.json cannot be read). Does nothing when `dir` is empty or holds no report.md,
+/// or when its report.md is marked already (the first replacement is named). The files are
+/// rewritten atomically, together. Never throws: what fails is warned of, since the runs are
+/// what matters, and they are in place.
 void mark_report_outdated(const std::string& dir, const std::string& replaced);
 
 }  // namespace dspdem::report

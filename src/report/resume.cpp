@@ -54,9 +54,15 @@ Earlier run_or_resume(const CaseConfig& c, const std::string& dir, const RunPoli
     o.restart_file = e.checkpoint;
     log::info("--resume: continuing the run in {} from its checkpoint {}", dir, o.restart_file);
   }
-  const bool replaces = holds_finished_run(dir);
-  run_case(c, o);
-  if (replaces) mark_report_outdated(runs.report_dir, dir);
+  const RunReplacement earlier(dir);
+  try {
+    run_case(c, o);
+  } catch (...) {
+    // Stopped or failed after its commit (a signal then), it has replaced the earlier run all the same.
+    if (earlier.replaced()) mark_report_outdated(runs.report_dir, dir);
+    throw;
+  }
+  if (earlier.replaced()) mark_report_outdated(runs.report_dir, dir);
   return e.state;
 }
 

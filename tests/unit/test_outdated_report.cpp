@@ -38,9 +38,6 @@ TEST_F(OutdatedReport, MarksTheEarlierReportUnderItsTitleOnceKeepingItsText) {
   doc.write();
   const std::string md = get("report.md");
   ASSERT_EQ(md.rfind("# A scene\n\n", 0), 0U);
-  EXPECT_FALSE(holds_finished_run((dir_ / "run").string()));
-  dspdem::write_file_atomic((dir_ / "run" / "summary.json").string(), "{}");
-  EXPECT_TRUE(holds_finished_run((dir_ / "run").string()));
 
   mark_report_outdated(dir_.string(), (dir_ / "speeds" / "v5").string());
   const std::string marked = get("report.md");
@@ -84,6 +81,38 @@ TEST_F(OutdatedReport, NoReportNoFolderOrATitlelessOne) {
       << marked;
   EXPECT_EQ(marked.substr(marked.size() - std::string("\n\nSome text.\n").size()), "\n\nSome text.\n");
   EXPECT_FALSE(fs::exists(dir_ / "headline.json"));
+}
+
+TEST_F(OutdatedReport, ARunReplacesAFinishedRunOnlyWhenAnotherSummaryTookItsPlace) {
+  const std::string run = (dir_ / "run").string(), summary = (dir_ / "run" / "summary.json").string();
+  // A fresh place: whatever a run leaves there replaces nothing.
+  const RunReplacement fresh(run);
+  dspdem::write_file_atomic(summary, "{\"status\": \"completed\"}");
+  EXPECT_FALSE(fresh.replaced());
+  // A finished run left as it was (kept, or a run that failed or stopped before its commit):
+  // not replaced.
+  const RunReplacement kept(run);
+  EXPECT_FALSE(kept.replaced());
+  // Another summary.json committed in its place (a rename over it, as a run's commit does),
+  // whatever the content: replaced.
+  dspdem::write_file_atomic(summary, "{\"status\": \"completed\"}");
+  EXPECT_TRUE(kept.replaced());
+  // A commit cut short (run.pvd left, its summary.json gone): the next run's replaces it.
+  fs::remove(summary);
+  dspdem::write_file_atomic((dir_ / "run" / "run.pvd").string(), "<VTKFile/>");
+  const RunReplacement cut(run);
+  EXPECT_FALSE(cut.replaced());
+  dspdem::write_file_atomic(summary, "{}");
+  EXPECT_TRUE(cut.replaced());
+}
+
+TEST_F(OutdatedReport, AnUnreadableHeadlineLeavesItButMarksTheReport) {
+  dspdem::write_file_atomic((dir_ / "report.md").string(), "# A scene\n\nText.\n");
+  dspdem::write_file_atomic((dir_ / "headline.json").string(), "{ not json");
+  mark_report_outdated(dir_.string(), (dir_ / "run").string());
+  EXPECT_NE(get("report.md").find("> **Outdated.**"), std::string::npos);
+  EXPECT_NE(get("report.html").find("<strong>Outdated.</strong>"), std::string::npos);
+  EXPECT_EQ(get("headline.json"), "{ not json");
 }
 
 }  // namespace

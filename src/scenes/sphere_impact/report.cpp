@@ -114,13 +114,15 @@ std::vector<std::string> run_planned(const CaseConfig& c, const std::vector<Plan
     log::info("sphere impact: --resume: {} run(s) kept, {} continued, {} started", kept, continued,
               list.size() - static_cast<std::size_t>(continued));
   if (!list.empty()) log::info("sphere impact: {} run(s), {} at a time, logs beside their folders", list.size(), jobs);
-  // A finished run that a job replaces (it ends with status 0) marks the earlier report in
-  // the folder outdated: the runs change one by one, the report.md only at the end.
-  std::vector<bool> replaces(list.size());
-  for (std::size_t k = 0; k < list.size(); ++k) replaces[k] = report::holds_finished_run(plan[listed[k]].dir);
+  // A finished run that a job replaces marks the earlier report in the folder outdated: the
+  // runs change one by one, the report.md only at the end. Told by the files, whatever the
+  // job's exit status (a run stopped after its commit has replaced the earlier one).
+  std::vector<report::RunReplacement> earlier;
+  earlier.reserve(list.size());
+  for (std::size_t k = 0; k < list.size(); ++k) earlier.emplace_back(plan[listed[k]].dir);
   // Stopped by a signal, Interrupted goes up to report_command, which says how to go on.
-  const std::vector<int> status = run_processes(list, jobs, [&](std::size_t k, int st) {
-    if (st == 0 && replaces[k]) report::mark_report_outdated(runs.report_dir, plan[listed[k]].dir);
+  const std::vector<int> status = run_processes(list, jobs, [&](std::size_t k, int) {
+    if (earlier[k].replaced()) report::mark_report_outdated(runs.report_dir, earlier[k].dir());
   });
   std::vector<std::string> err(plan.size());
   for (std::size_t k = 0; k < list.size(); ++k)
