@@ -10,6 +10,7 @@
 
 #include "core/file.hpp"
 #include "core/log.hpp"
+#include "io/run_place.hpp"
 #include "io/staging.hpp"
 #include "report/headline.hpp"
 #include "report/html.hpp"
@@ -25,15 +26,28 @@ std::optional<RunReplacement::FileId> RunReplacement::summary_id(const std::stri
                 static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec};
 }
 
+namespace {
+// Whether `dir` holds what a report derived from another run (an unreadable record counts).
+bool derived(const std::string& dir) {
+  try {
+    return derived_from(dir).has_value();
+  } catch (const std::exception&) {
+    return true;
+  }
+}
+}  // namespace
+
 RunReplacement::RunReplacement(std::string run_dir) : dir_(std::move(run_dir)) {
   before_ = summary_id(dir_);
   std::error_code ec;
   // A commit cut short moves the old summary.json aside before it removes the rest.
-  held_ = before_.has_value() || fs::exists(fs::path(dir_) / "run.pvd", ec);
+  derived_ = derived(dir_);
+  held_ = before_.has_value() || derived_ || fs::exists(fs::path(dir_) / "run.pvd", ec);
 }
 
 bool RunReplacement::replaced() const {
   if (!held_) return false;
+  if (derived_ && !derived(dir_)) return true;
   const auto now = summary_id(dir_);
   return now && (!before_ || !(*now == *before_));
 }

@@ -16,12 +16,15 @@ inline constexpr const char* kOutdatedMark = "> **Outdated.**";
 
 /// What a run folder held before a run into it, to tell afterwards whether that run replaced a
 /// finished one: its summary.json as a file (device, inode, modification time), or a run
-/// whose commit was cut short (run.pvd there, no summary.json). Decided by the files, not by
-/// how the run ended: a run stopped or killed after its commit has replaced the earlier one.
+/// whose commit was cut short (run.pvd there, no summary.json), or what an earlier report
+/// derived there from another run (--from-run: its derived_from, io/run_place.hpp), which a
+/// run empties (clear_derived_place) before it starts. Decided by the files, not by how the
+/// run ended: a run stopped or killed after its commit has replaced the earlier one.
 class RunReplacement {
  public:
   explicit RunReplacement(std::string run_dir);
-  /// Whether a finished run was there before and another run's summary.json is there now.
+  /// Whether a finished run was there before and another run's summary.json is there now, or
+  /// the derived files that were there are gone.
   bool replaced() const;
   const std::string& dir() const { return dir_; }
 
@@ -33,7 +36,7 @@ class RunReplacement {
   };
   static std::optional<FileId> summary_id(const std::string& dir);
   std::string dir_;
-  bool held_ = false;
+  bool held_ = false, derived_ = false;
   std::optional<FileId> before_;
 };
 

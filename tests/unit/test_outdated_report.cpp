@@ -1,6 +1,7 @@
 // An earlier report whose runs a new report has begun to replace is marked outdated: under its
 // title, its text otherwise kept, in report.md, report.html and headline.json together; once
-// (the first run replaced is the one named); and nothing is made where there is no report.
+// (the first run replaced is the one named); and nothing is made where there is no report. A
+// run has replaced what was in its folder when another summary.json or no derived files are there.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -83,7 +84,7 @@ TEST_F(OutdatedReport, NoReportNoFolderOrATitlelessOne) {
   EXPECT_FALSE(fs::exists(dir_ / "headline.json"));
 }
 
-TEST_F(OutdatedReport, ARunReplacesAFinishedRunOnlyWhenAnotherSummaryTookItsPlace) {
+TEST_F(OutdatedReport, ARunReplacesAFinishedRunOrDerivedFilesOnlyWhenTheirFilesChange) {
   const std::string run = (dir_ / "run").string(), summary = (dir_ / "run" / "summary.json").string();
   // A fresh place: whatever a run leaves there replaces nothing.
   const RunReplacement fresh(run);
@@ -104,6 +105,15 @@ TEST_F(OutdatedReport, ARunReplacesAFinishedRunOnlyWhenAnotherSummaryTookItsPlac
   EXPECT_FALSE(cut.replaced());
   dspdem::write_file_atomic(summary, "{}");
   EXPECT_TRUE(cut.replaced());
+  // What an earlier report derived there from another run (--from-run), emptied by the run
+  // before it starts: replaced as soon as it is gone, before any summary.
+  const std::string place = (dir_ / "place").string();
+  fs::create_directories(place);
+  dspdem::write_file_atomic((dir_ / "place" / "derived_from").string(), "/elsewhere/run\n");
+  const RunReplacement derived(place);
+  EXPECT_FALSE(derived.replaced());
+  fs::remove(dir_ / "place" / "derived_from");
+  EXPECT_TRUE(derived.replaced());
 }
 
 TEST_F(OutdatedReport, AnUnreadableHeadlineLeavesItButMarksTheReport) {

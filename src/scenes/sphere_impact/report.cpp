@@ -346,7 +346,12 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
   if (a.from_runs.empty()) {
     // Runs to be made there: a run empties such a place itself, but only once its set-up has
     // succeeded; a row failing before must not show another run's files either.
-    for (const Planned& p : plan) clear_derived_place(p.dir);
+    // What an earlier report derived there from another run goes now: its report is outdated.
+    for (const Planned& p : plan) {
+      const report::RunReplacement earlier_place(p.dir);
+      clear_derived_place(p.dir);
+      if (earlier_place.replaced()) report::mark_report_outdated(a.runs.report_dir, p.dir);
+    }
     errors = run_planned(c, plan, jobs, a.runs);
   } else {
     for (std::size_t i = 0; i < plan.size(); ++i) {
