@@ -35,13 +35,15 @@ long frames_of_run(const CaseConfig& c, Real dt, long n_steps) {
 }
 
 void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, bool stops, bool falls,
-                  const std::function<void(const Integrator&)>& check, double seconds) {
+                  const std::function<void(const Integrator&)>& check,
+                  const std::function<void(Integrator&)>& after_step, double seconds) {
   Integrator it(model, dt);
   check(it);
   Timer wall;
   long k = 0;
   while (k < n_steps && (k == 0 || wall.seconds() < seconds)) {
     it.step();
+    after_step(it);
     ++k;
   }
   const double spent = wall.seconds(), per_step = k > 0 ? spent / static_cast<double>(k) : 0;

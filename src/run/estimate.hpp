@@ -25,9 +25,11 @@ long frames_of_run(const CaseConfig& c, Real dt, long n_steps);
 /// and the wall time its steps take at that rate. `stops`: the run ends on a load drop, so it
 /// takes at most n_steps; `falls`: its step falls as joints open (extrinsic insertion), so it
 /// takes at least n_steps. `check` sees the integrator before the first step (what the run
-/// checks only then: its stop_series column).
+/// checks only then: its stop_series column); `after_step` does after each step what the run
+/// does then besides its frames (its extrinsic checks and series rows), and is timed with it.
 void estimate_run(const CaseConfig& c, Model& model, Real dt, long n_steps, bool stops, bool falls,
-                  const std::function<void(const Integrator&)>& check, double seconds = kEstimateSeconds);
+                  const std::function<void(const Integrator&)>& check,
+                  const std::function<void(Integrator&)>& after_step, double seconds = kEstimateSeconds);
 
 /// "42s", "3m05s", "2h10m" ("?" when not finite).
 std::string format_duration(double seconds);

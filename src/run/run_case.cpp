@@ -319,13 +319,54 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     return c.max_steps > 0 ? std::min(n, c.max_steps) : n;
   };
 
+  // After a step with extrinsic insertion: the check, and when joints opened the step lowered
+  // to what the tied state allows (their springs act from the next step, at their points'
+  // masses). The tied state is the every-joint-open model held to equal copies: its step is
+  // never below that one's, though the estimate at the state can be (joint/joint_dt.hpp).
+  // Returns whether the step changed.
+  auto insert_joints = [&](ExtrinsicInsertion& ext, Integrator& i) {
+    if (ext.check(model, i) == 0 || !adaptive_dt) return false;
+    StableStep now = stable_step(model, per_element, &i.ties());
+    if (now.dt < crit_all_open.dt) now = crit_all_open;
+    if (!(c.safety * now.dt < i.dt())) return false;
+    crit = now;
+    i.set_dt(c.safety * crit.dt);
+    return true;
+  };
+  auto make_extrinsic = [&]() {
+    std::optional<ExtrinsicInsertion> ext;
+    if (!model.joints.closed.empty())
+      ext.emplace(c.insertion_interval, c.insertion_stress,
+                  c.insertion_cut_front ? InsertionFront::Cut : InsertionFront::Tied);
+    return ext;
+  };
+
   if (opt.estimate) {
     // A step count capped by [time] max_steps is the run's, whatever the step would do after.
     const long n = last_step(0, 0.0, dt);
     const bool stops = !c.stop_series.empty(), capped = c.max_steps > 0 && n == c.max_steps;
-    estimate_run(c, model, dt, n, stops, adaptive_dt && !capped, [&](const Integrator& i) {
-      if (stops) series_column(c, model, i);
-    });
+    // The steps as the run takes them, frames aside: with its extrinsic checks (a third of the
+    // step's time on the disc's extrinsic row, session 106) and its series rows (the energy
+    // check and a row, written nowhere).
+    std::optional<ExtrinsicInsertion> ext = make_extrinsic();
+    Series rows("/dev/null", model, false);
+    Real next_series = 0, dt_now = dt;
+    estimate_run(
+        c, model, dt, n, stops, adaptive_dt && !capped,
+        [&](const Integrator& i) {
+          if (stops) series_column(c, model, i);
+        },
+        [&](Integrator& i) {
+          if (ext && insert_joints(*ext, i)) dt_now = i.dt();
+          if (i.time() >= next_series - 1e-12 * c.t_end) {
+            i.check_energy(c.energy_blowup_factor);
+            rows.row(i, model);
+            next_series = next_output_time(next_series, i.time(), c.series_interval, 1e-12 * c.t_end);
+          }
+        });
+    if (ext && ext->opened() > 0)
+      fmt::print("extrinsic insertion opened {} joint(s) during those steps; the step fell from {:.4g} s to {:.4g} s\n",
+                 ext->opened(), dt, dt_now);
     return 0;
   }
 
@@ -401,10 +442,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
 
   Integrator it(model, dt, dist);
   it.watch_flag(&g_interrupted);
-  std::optional<ExtrinsicInsertion> extrinsic;
-  if (!model.joints.closed.empty()) {
-    extrinsic.emplace(c.insertion_interval, c.insertion_stress,
-                      c.insertion_cut_front ? InsertionFront::Cut : InsertionFront::Tied);
+  std::optional<ExtrinsicInsertion> extrinsic = make_extrinsic();
+  if (extrinsic) {
     log::info(
         "  extrinsic insertion: {} joint(s) closed until their faces reach the strength (traction from the {} "
         "stress), checked every {} step(s)",
@@ -620,18 +659,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     double last_report = 0, next_wall_checkpoint = opt.checkpoint_wall;
     for (long s = s0; s < ls.n_steps; ++s) {
       it.step();
-      if (extrinsic && extrinsic->check(model, it) > 0 && adaptive_dt) {
-        // Joints opened: their springs act from the next step, at their points' masses.
-        // The tied state is the every-joint-open model held to equal copies: its step is never
-        // below that one's, though the estimate at the state can be (joint/joint_dt.hpp).
-        StableStep now = stable_step(model, per_element, &it.ties());
-        if (now.dt < crit_all_open.dt) now = crit_all_open;
-        if (c.safety * now.dt < it.dt()) {
-          crit = now;
-          it.set_dt(c.safety * crit.dt);
-          ls.n_steps = last_step(s + 1, it.time(), it.dt());
-        }
-      }
+      if (extrinsic && insert_joints(*extrinsic, it)) ls.n_steps = last_step(s + 1, it.time(), it.dt());
       bool last = s + 1 == ls.n_steps;
       const Real t = it.time();
       if (t >= ls.next_series - 1e-12 * c.t_end || last) {

@@ -218,6 +218,37 @@ TEST_F(Cli, GoodRunWritesCompleteOutputs) {
   EXPECT_EQ(run("run --restart " + out.string() + " --estimate").code, 1);
 }
 
+TEST_F(Cli, AnEstimateTakesTheStepsAsTheRunDoesWithItsExtrinsicChecks) {
+  // The notched bar pulled apart with extrinsic insertion (tests/verification/test_restart.cpp:
+  // its first faces open at steps 1000-1100, and its step falls over the next 900): the
+  // estimate runs the run's checks with its steps, so it opens those faces and lowers its step
+  // as the run does, and says so; the step it reaches is one the run passes through, down to
+  // the run's last.
+  const std::string bar = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
+  const std::string sets =
+      " --set contact.enabled=true --set time.end=3e-4 --set boundary.1.value=[0.25,0.0,0.0] --set "
+      "boundary.1.ramp=2e-5 --set 'bodies.0.fracture_insertion=\"extrinsic\"'";
+  const Result e = run("-q -t 1 run " + bar + sets + " --estimate");
+  ASSERT_EQ(e.code, 0) << e.out;
+  std::smatch m, took;
+  ASSERT_TRUE(std::regex_search(e.out, took, std::regex("the first ([0-9]+) steps took")) && took.size() == 2) << e.out;
+  if (std::stol(took[1]) < 1100) GTEST_SKIP() << "the box gave the estimate under 1100 steps: " << e.out;
+  ASSERT_TRUE(std::regex_search(e.out, m,
+                                std::regex("extrinsic insertion opened ([0-9]+) joint\\(s\\) during those steps; the "
+                                           "step fell from ([0-9.e+-]+) s to ([0-9.e+-]+) s")))
+      << e.out;
+  EXPECT_GT(std::stol(m[1]), 0);
+  const double from = std::stod(m[2]), to = std::stod(m[3]);
+  EXPECT_NE(e.out.find(fmt::format("steps of {:.4g} s", from)), std::string::npos) << e.out;
+  EXPECT_LT(to, from);
+  const fs::path out = dir_ / "bar";
+  const Result r = run("-q -t 1 run " + bar + sets + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_NEAR(j["dt_start"].get<double>(), from, 1e-4 * from);
+  EXPECT_GE(to, j["dt"].get<double>() * (1 - 1e-4));
+}
+
 TEST_F(Cli, Msh4FileWrittenByGmshReadsEndToEnd) {
   {
     dspdem::GmshSession s;
