@@ -350,7 +350,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     // check and a row, written nowhere).
     std::optional<ExtrinsicInsertion> ext = make_extrinsic();
     Series rows("/dev/null", model, false);
-    Real next_series = 0, dt_now = dt;
+    Real next_series = 0, dt_now = dt, t_now = 0;
+    long steps_now = 0;
     estimate_run(
         c, model, dt, n, stops, adaptive_dt && !capped,
         [&](const Integrator& i) {
@@ -358,15 +359,20 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
         },
         [&](Integrator& i) {
           if (ext && insert_joints(*ext, i)) dt_now = i.dt();
+          t_now = i.time(), steps_now = i.steps();
           if (i.time() >= next_series - 1e-12 * c.t_end) {
             i.check_energy(c.energy_blowup_factor);
             rows.row(i, model);
             next_series = next_output_time(next_series, i.time(), c.series_interval, 1e-12 * c.t_end);
           }
         });
+    // The steps still to go at the step reached: the run's count from there on, as its loop
+    // works it out again at each fall (an upper bound on the step, so at least that many).
     if (ext && ext->opened() > 0)
-      fmt::print("extrinsic insertion opened {} joint(s) during those steps; the step fell from {:.4g} s to {:.4g} s\n",
-                 ext->opened(), dt, dt_now);
+      fmt::print(
+          "extrinsic insertion opened {} joint(s) during those steps; the step fell from {:.4g} s to {:.4g} s, at "
+          "which the run takes at least {} steps\n",
+          ext->opened(), dt, dt_now, last_step(steps_now, t_now, dt_now));
     return 0;
   }
 

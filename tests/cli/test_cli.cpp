@@ -223,7 +223,7 @@ TEST_F(Cli, AnEstimateTakesTheStepsAsTheRunDoesWithItsExtrinsicChecks) {
   // its first faces open at steps 1000-1100, and its step falls over the next 900): the
   // estimate runs the run's checks with its steps, so it opens those faces and lowers its step
   // as the run does, and says so; the step it reaches is one the run passes through, down to
-  // the run's last.
+  // the run's last, and the steps it then counts at least as many as the run takes.
   const std::string bar = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/notched_bar.toml";
   const std::string sets =
       " --set contact.enabled=true --set time.end=3e-4 --set boundary.1.value=[0.25,0.0,0.0] --set "
@@ -233,9 +233,10 @@ TEST_F(Cli, AnEstimateTakesTheStepsAsTheRunDoesWithItsExtrinsicChecks) {
   std::smatch m, took;
   ASSERT_TRUE(std::regex_search(e.out, took, std::regex("the first ([0-9]+) steps took")) && took.size() == 2) << e.out;
   if (std::stol(took[1]) < 1100) GTEST_SKIP() << "the box gave the estimate under 1100 steps: " << e.out;
-  ASSERT_TRUE(std::regex_search(e.out, m,
-                                std::regex("extrinsic insertion opened ([0-9]+) joint\\(s\\) during those steps; the "
-                                           "step fell from ([0-9.e+-]+) s to ([0-9.e+-]+) s")))
+  ASSERT_TRUE(std::regex_search(
+      e.out, m,
+      std::regex("extrinsic insertion opened ([0-9]+) joint\\(s\\) during those steps; the "
+                 "step fell from ([0-9.e+-]+) s to ([0-9.e+-]+) s, at which the run takes at least ([0-9]+) steps")))
       << e.out;
   EXPECT_GT(std::stol(m[1]), 0);
   const double from = std::stod(m[2]), to = std::stod(m[3]);
@@ -247,6 +248,10 @@ TEST_F(Cli, AnEstimateTakesTheStepsAsTheRunDoesWithItsExtrinsicChecks) {
   const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_NEAR(j["dt_start"].get<double>(), from, 1e-4 * from);
   EXPECT_GE(to, j["dt"].get<double>() * (1 - 1e-4));
+  // At least the steps the run takes from the estimate's end at the step reached (all of them
+  // here when the step has reached its last value by then).
+  EXPECT_LE(std::stol(m[4]), j["steps"].get<long>());
+  EXPECT_GT(std::stol(m[4]), std::stol(took[1]));
 }
 
 TEST_F(Cli, Msh4FileWrittenByGmshReadsEndToEnd) {
