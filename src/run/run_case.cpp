@@ -345,12 +345,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     // A step count capped by [time] max_steps is the run's, whatever the step would do after.
     const long n = last_step(0, 0.0, dt);
     const bool stops = !c.stop_series.empty(), capped = c.max_steps > 0 && n == c.max_steps;
-    // The steps as the run takes them, frames aside: with its extrinsic checks (a third of the
-    // step's time on the disc's extrinsic row, session 106) and its series rows (the energy
-    // check and a row, written nowhere).
+    // The steps as the run takes them, frames aside: with its extrinsic checks (about a sixth
+    // of the step's time on the disc's extrinsic row, session 106) and its series rows (the
+    // energy check and a row, written nowhere, on the run's schedule: its row at t = 0, before
+    // its loop, is not checked).
     std::optional<ExtrinsicInsertion> ext = make_extrinsic();
     Series rows("/dev/null", model, false);
-    Real next_series = 0, dt_now = dt, t_now = 0;
+    Real next_series = c.series_interval, dt_now = dt, t_now = 0;
     long steps_now = 0;
     estimate_run(
         c, model, dt, n, stops, adaptive_dt && !capped,
@@ -367,12 +368,15 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
           }
         });
     // The steps still to go at the step reached: the run's count from there on, as its loop
-    // works it out again at each fall (an upper bound on the step, so at least that many).
-    if (ext && ext->opened() > 0)
-      fmt::print(
-          "extrinsic insertion opened {} joint(s) during those steps; the step fell from {:.4g} s to {:.4g} s, at "
-          "which the run takes at least {} steps\n",
-          ext->opened(), dt, dt_now, last_step(steps_now, t_now, dt_now));
+    // works it out again at each fall (the step may fall further: at least that many; the run
+    // may also stop on a load drop: about).
+    if (ext && ext->opened() > 0) {
+      fmt::print("extrinsic insertion opened {} joint(s) during those steps", ext->opened());
+      if (dt_now < dt)
+        fmt::print("; the step fell from {:.6g} s to {:.6g} s, at which the run takes {} {} steps", dt, dt_now,
+                   stops ? "about" : "at least", last_step(steps_now, t_now, dt_now));
+      fmt::print("\n");
+    }
     return 0;
   }
 

@@ -232,7 +232,8 @@ TEST_F(Cli, AnEstimateTakesTheStepsAsTheRunDoesWithItsExtrinsicChecks) {
   ASSERT_EQ(e.code, 0) << e.out;
   std::smatch m, took;
   ASSERT_TRUE(std::regex_search(e.out, took, std::regex("the first ([0-9]+) steps took")) && took.size() == 2) << e.out;
-  if (std::stol(took[1]) < 1100) GTEST_SKIP() << "the box gave the estimate under 1100 steps: " << e.out;
+  // Margin above the 1100 steps by which the first faces have opened.
+  if (std::stol(took[1]) < 1300) GTEST_SKIP() << "the box gave the estimate under 1300 steps: " << e.out;
   ASSERT_TRUE(std::regex_search(
       e.out, m,
       std::regex("extrinsic insertion opened ([0-9]+) joint\\(s\\) during those steps; the "
@@ -246,8 +247,9 @@ TEST_F(Cli, AnEstimateTakesTheStepsAsTheRunDoesWithItsExtrinsicChecks) {
   const Result r = run("-q -t 1 run " + bar + sets + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
-  EXPECT_NEAR(j["dt_start"].get<double>(), from, 1e-4 * from);
-  EXPECT_GE(to, j["dt"].get<double>() * (1 - 1e-4));
+  // The steps as printed, to 6 significant digits: within 5e-6 of them.
+  EXPECT_NEAR(j["dt_start"].get<double>(), from, 5e-6 * from);
+  EXPECT_GE(to, j["dt"].get<double>() * (1 - 5e-6));
   // At least the steps the run takes from the estimate's end at the step reached (all of them
   // here when the step has reached its last value by then).
   EXPECT_LE(std::stol(m[4]), j["steps"].get<long>());
