@@ -39,9 +39,10 @@ bool derived(const std::string& dir) {
 
 RunReplacement::RunReplacement(std::string run_dir) : dir_(std::move(run_dir)) {
   before_ = summary_id(dir_);
-  std::error_code ec;
-  // A commit cut short moves the old summary.json aside before it removes the rest.
   derived_ = derived(dir_);
+  // run.pvd without summary.json: a commit cut short, which moves the old summary.json aside
+  // before it removes the rest.
+  std::error_code ec;
   held_ = before_.has_value() || derived_ || fs::exists(fs::path(dir_) / "run.pvd", ec);
 }
 
