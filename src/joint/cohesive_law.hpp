@@ -187,13 +187,8 @@ inline Real residual_friction(const CohesiveParams& p, Real sn, const Slip& sl, 
   // Lengths compared squared, a square root and a division taken only to scale a vector onto
   // a cap above zero (an open point's cap is zero: its friction is simply gone). sqrt(u^2 +
   // v^2), not std::hypot: no slip or traction comes near its overflow, and hypot is several
-  // times slower. (With every joint broken the kernel runs at about half the rate of the
-  // scalar friction before session 104, BM_JointForcesBroken; neither this nor the state's
-  // size was found to be why. Session 105: most of it was the call of the laws' dispatch out
-  // of line, which passed the slip through memory; the kernel now calls broken_update, inlined,
-  // for a broken point: 1.2-1.4 times faster there, and no change on softening points,
-  // BM_JointForcesSoftening. Inlining the whole dispatch instead ran softening triangles at
-  // 0.93-0.96 of their rate, and the sphere's run no faster.)
+  // times slower. (Neither this nor the state's size was what slowed the broken-joint kernel
+  // after session 104; the laws' dispatch out of line was: broken_update says how.)
   Real eu = s.fu, ev = s.fv;
   const Real e2 = eu * eu + ev * ev, cap2 = cap * cap;
   const bool dropped = e2 > cap2;
