@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -61,15 +62,35 @@ const Scene kPacking{"packing",
                               "--set mesh.packing.count=200 --set time.end=1.6 --set output.frame_interval=0.8"),
                      2};
 
+fs::path work_path() { return fs::temp_directory_path() / ("dspdem_mpi_" + std::to_string(getpid())); }
+
 fs::path work() {
   static const fs::path d = [] {
-    const fs::path p = fs::temp_directory_path() / ("dspdem_mpi_" + std::to_string(getpid()));
+    const fs::path p = work_path();
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
   }();
   return d;
 }
+
+// ctest runs each test in a process of its own, so each leaves a folder of its own: removed
+// when the process's tests passed (every CI run left one per test in /tmp before), kept for a
+// look when one failed.
+class RemoveWorkFolder : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    const fs::path p = work_path();
+    if (!fs::exists(p)) return;
+    if (::testing::UnitTest::GetInstance()->Passed()) {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    } else {
+      std::cerr << "test_mpi_run: the runs are kept in " << p.string() << "\n";
+    }
+  }
+};
+const auto* const kRemoveWorkFolder = ::testing::AddGlobalTestEnvironment(new RemoveWorkFolder);
 
 std::string mpirun(int n) {
   // Root in containers and CI; more processes than cores is fine for correctness. A waiting
