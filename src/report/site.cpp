@@ -58,9 +58,9 @@ SiteWritten write_site(const std::vector<std::string>& report_dirs, const std::s
     }
   }
   const std::string intro = fmt::format(
-      "Each benchmark scene of the paper (Gao et al., the deformable spheropolyhedral DEM) run by dspdem: what the "
-      "paper or its experiment reports, and what dspdem gets, side by side. Set: {}. Made by `{}` in {:.0f} s. "
-      "Every figure links to its scene's full report (method, plots, energy ledger, speed).",
+      "Each benchmark scene of the paper (Zhang et al. 2024, CJGE 46(9): the 3D deformable spheropolyhedral DEM) run "
+      "by dspdem: what the paper or its experiment reports, and what dspdem gets, side by side. Set: {}. Made by `{}` "
+      "in {:.0f} s. Every figure links to its scene's full report (method, plots, energy ledger, speed).",
       info.set, info.made_by, info.wall_s);
 
   // index.html
