@@ -134,7 +134,7 @@ struct FrameRenderer::Impl {
   vtkNew<vtkFeatureEdges> wall_edges;
   vtkNew<vtkLookupTable> lut;
   vtkNew<vtkScalarBarActor> bar;
-  vtkNew<vtkTextActor> time_text, scale_text, bar_title, key_cracks, key_bodies;
+  vtkNew<vtkTextActor> time_text, magnify_text, scale_text, bar_title, key_cracks, key_bodies;
   vtkNew<vtkActor2D> scale_actor;
   vtkNew<vtkPolyDataMapper2D> scale_mapper;
   FieldDisplay display;
@@ -189,6 +189,13 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
   s.time_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
   s.time_text->SetPosition(10, o.height - 10 - std::max(12, o.height / 30));
   s.ren->AddViewProp(s.time_text);
+  // A magnified drawing says so on a line of its own below the time: the scale bar holds for
+  // the bodies' places, not for their displacements.
+  s.magnify_text->GetTextProperty()->SetFontSize(std::max(12, o.height / 30));
+  s.magnify_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+  s.magnify_text->SetPosition(10, o.height - 14 - 2 * std::max(12, o.height / 30));
+  s.magnify_text->SetVisibility(false);
+  s.ren->AddViewProp(s.magnify_text);
   if (o.view == "stress") {
     s.mapper->SetLookupTable(s.lut);
     s.mapper->SetScalarRange(lo, hi);
@@ -314,14 +321,33 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     s.wall_mapper->SetInputData(walls);
     s.wall_edges->SetInputData(walls);
   }
+  // The magnification drawn: the cracks view moves its joints with the bodies, by their
+  // displacement, which runs written before the joints' files had it lack; such a run's cracks
+  // view is drawn unmagnified rather than with its cracks beside the gaps they opened.
+  double magnify = o.magnify;
   if (o.view == "cracks") {
     if (!joints || !joints->GetCellData()->GetArray("state"))
       fail("the cracks view needs the joints dataset, which frame '{}' does not have (the run has no joints)", file);
+    vtkDataArray* ju = joints->GetPointData()->GetArray("displacement");
+    if (!ju) magnify = 1.0;
     // Broken joints (state 2), drawn red over the translucent bodies.
     vtkDataArray* state = joints->GetCellData()->GetArray("state");
     vtkNew<vtkPolyData> cracks;
     vtkNew<vtkCellArray> polys;
-    cracks->SetPoints(joints->GetPoints());
+    if (magnify != 1.0) {
+      vtkNew<vtkPoints> pts;
+      pts->DeepCopy(joints->GetPoints());
+      for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
+        double p[3], d[3];
+        pts->GetPoint(i, p);
+        ju->GetTuple(i, d);
+        for (int k = 0; k < 3; ++k) p[k] += (magnify - 1.0) * d[k];
+        pts->SetPoint(i, p);
+      }
+      cracks->SetPoints(pts);
+    } else {
+      cracks->SetPoints(joints->GetPoints());
+    }
     for (vtkIdType c = 0; c < joints->GetNumberOfCells(); ++c)
       if (state->GetComponent(c, 0) > 1.5) {
         vtkIdList* ids = joints->GetCell(c)->GetPointIds();
@@ -334,16 +360,16 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
   vtkNew<vtkUnstructuredGrid> g;
   g->ShallowCopy(frame);
   // Magnified displacement: x_draw = x - u + m u.
-  if (o.magnify != 1.0) {
+  if (magnify != 1.0) {
     vtkDataArray* u = g->GetPointData()->GetArray("displacement");
-    if (!u) fail("frame '{}' has no displacement array, needed for magnify = {}", file, o.magnify);
+    if (!u) fail("frame '{}' has no displacement array, needed for magnify = {}", file, magnify);
     vtkNew<vtkPoints> pts;
     pts->DeepCopy(frame->GetPoints());
     for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
       double p[3], d[3];
       pts->GetPoint(i, p);
       u->GetTuple(i, d);
-      for (int k = 0; k < 3; ++k) p[k] += (o.magnify - 1.0) * d[k];
+      for (int k = 0; k < 3; ++k) p[k] += (magnify - 1.0) * d[k];
       pts->SetPoint(i, p);
     }
     g->SetPoints(pts);
@@ -438,6 +464,8 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
   // merged points close.
   s.mapper->SetInputData(unmatched_faces(surf->GetOutput(), 1e-4));
   const std::string t = fmt::format("t = {:.4g} ms", time * 1e3);
+  s.magnify_text->SetVisibility(magnify != 1.0);
+  if (magnify != 1.0) s.magnify_text->SetInput(fmt::format("displacement x{:g}", magnify).c_str());
   const std::string& who = o.label.empty() ? o.title : o.label;
   s.time_text->SetInput((who.empty() ? t : who + "   " + t).c_str());
   return s.win.capture();

@@ -8,8 +8,9 @@
 //               unless a piece it touches has that colour: then the first colour none of
 //               its neighbours has;
 //   cracks    - broken joint faces over a translucent body (needs joint data in the run).
-// Every view has the case name (or a montage panel's label) and the simulated time in the
-// top-left corner and a scale bar in mm in the top-right (true for lengths in the view plane:
+// Every view has the case name (or a montage panel's label), the simulated time and, when the
+// displacement is magnified, by how much in the top-left corner and a scale bar in mm in the
+// top-right (true for lengths in the view plane:
 // front, back, top, side). Camera presets look at the first frame's bounds, so every frame
 // of a series is framed the same and images can be compared pixel by pixel.
 #pragma once

@@ -206,7 +206,7 @@ void write_vtu(const std::string& path, const FrameData& f) {
   write_grid(grid, path, f.compress, f.piece, f.pieces);
 }
 
-void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress,
+void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, const Real* x0, bool compress,
                       const std::vector<char>& owned, int piece, int pieces) {
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> pts;
@@ -215,6 +215,9 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
   state->SetName("state");
   vtkNew<vtkDoubleArray> damage, opening, slip;
   damage->SetName("damage"), opening->SetName("opening"), slip->SetName("slip");
+  vtkNew<vtkDoubleArray> disp;
+  disp->SetName("displacement");
+  disp->SetNumberOfComponents(3);
   for (Index j = 0; j < js.size(); ++j) {
     if (!owned.empty() && !owned[j]) continue;
     const int npf = js.npf[j];
@@ -223,6 +226,11 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
       const Index a = js.a[4 * static_cast<std::size_t>(j) + k], b = js.b[4 * static_cast<std::size_t>(j) + k];
       ids[k] = pts->InsertNextPoint(0.5 * (x[3 * a] + x[3 * b]), 0.5 * (x[3 * a + 1] + x[3 * b + 1]),
                                     0.5 * (x[3 * a + 2] + x[3 * b + 2]));
+      if (x0) {
+        double u[3];
+        for (int d = 0; d < 3; ++d) u[d] = 0.5 * ((x[3 * a + d] - x0[3 * a + d]) + (x[3 * b + d] - x0[3 * b + d]));
+        disp->InsertNextTuple(u);
+      }
     }
     grid->InsertNextCell(npf == 3 ? 5 /*VTK_TRIANGLE*/ : 9 /*VTK_QUAD*/, npf, ids);
     const joint::CohesiveParams& p = js.params[js.param[j]];
@@ -244,6 +252,7 @@ void write_joints_vtu(const std::string& path, const joint::JointSet& js, const 
   grid->GetCellData()->AddArray(damage);
   grid->GetCellData()->AddArray(opening);
   grid->GetCellData()->AddArray(slip);
+  if (x0) grid->GetPointData()->AddArray(disp);
   write_grid(grid, path, compress, piece, pieces);
 }
 

@@ -42,9 +42,11 @@ struct JointSet;
 }
 /// Writes the joints as their own dataset: one polygon per joint on its mid-surface with
 /// cell data state (0 intact, 1 softening, 2 broken), damage (0-1, the eq. 6 measure),
-/// opening and slip (means over the points) [m].
+/// opening and slip (means over the points) [m]; with `x0` (the nodes' first positions) also
+/// the point field displacement, the mid-surface's [m], so that a drawing that magnifies the
+/// bodies' displacement can move the joints with them.
 /// `owned` (one flag per joint) and pieces > 1: a distributed run's piece, as write_vtu's.
-void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, bool compress,
+void write_joints_vtu(const std::string& path, const joint::JointSet& js, const Real* x, const Real* x0, bool compress,
                       const std::vector<char>& owned = {}, int piece = 0, int pieces = 1);
 
 /// Writes a .pvd collection: (time, relative file) pairs.

@@ -600,8 +600,10 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (my_rank == 0) write_pvd(pvd, frames);
     if (whole_joints > 0) {
       const std::string jname = fmt::format("joints_{:04d}.{}", joint_frames.size(), ext);
-      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(), c.compress,
-                       model.joint_owned, my_rank, n_ranks);
+      // The mid-surface's displacement where the frame has the nodes' (the renderer's magnify).
+      const bool disp = std::find(c.fields.begin(), c.fields.end(), "displacement") != c.fields.end();
+      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(),
+                       disp ? fem.x0.data() : nullptr, c.compress, model.joint_owned, my_rank, n_ranks);
       joint_frames.emplace_back(it.time(), "frames/" + jname);
       if (my_rank == 0) write_pvd(joints_pvd, joint_frames);
     }

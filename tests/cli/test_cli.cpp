@@ -16,11 +16,14 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -598,6 +601,44 @@ TEST_F(Cli, NotchedBarBreaksAtTheNotchIntoTwoPieces) {
   EXPECT_LT(sum.energy.balance_error, 1e-3) << s;
   EXPECT_TRUE(fs::exists(out / "joints.pvd"));
   EXPECT_NE(slurp(out / "series.csv").find("broken_joints,crack_area"), std::string::npos);
+  {
+    // The joints' file has the mid-surface's displacement, by which a magnified drawing moves
+    // the cracks with the bodies: a joint's point less it is where its two nodes started, a
+    // point of the frame less the frame's displacement (both nodes of a joint start there).
+    auto read = [](const fs::path& f) {
+      vtkNew<vtkXMLUnstructuredGridReader> rd;
+      rd->SetFileName(f.c_str());
+      rd->Update();
+      vtkSmartPointer<vtkUnstructuredGrid> g = rd->GetOutput();
+      return g;
+    };
+    const auto frame = read(out / "frames/frame_0010.vtu"), joints = read(out / "frames/joints_0010.vtu");
+    vtkDataArray *uf = frame->GetPointData()->GetArray("displacement"),
+                 *uj = joints->GetPointData()->GetArray("displacement");
+    ASSERT_NE(uf, nullptr);
+    ASSERT_NE(uj, nullptr);
+    // Start positions rounded to 1e-9 m (the bar's nodes are 1e-3 m apart and more).
+    auto start = [](vtkUnstructuredGrid* g, vtkDataArray* u, vtkIdType i) {
+      double p[3], d[3];
+      g->GetPoint(i, p);
+      u->GetTuple(i, d);
+      return std::array<long, 3>{std::lround(1e9 * (p[0] - d[0])), std::lround(1e9 * (p[1] - d[1])),
+                                 std::lround(1e9 * (p[2] - d[2]))};
+    };
+    std::set<std::array<long, 3>> starts;
+    for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i) starts.insert(start(frame, uf, i));
+    double largest = 0;
+    int off = 0;
+    for (vtkIdType i = 0; i < joints->GetNumberOfPoints(); ++i) {
+      off += starts.count(start(joints, uj, i)) == 0;
+      double d[3];
+      uj->GetTuple(i, d);
+      largest = std::max(largest, std::hypot(d[0], d[1], d[2]));
+    }
+    EXPECT_GT(joints->GetNumberOfPoints(), 0);
+    EXPECT_EQ(off, 0) << "joint points whose start is no node's";
+    EXPECT_GT(largest, 1e-6) << "the bar is pulled apart: its joints have moved";
+  }
   // The cracks view draws the broken joints from the joints dataset.
   const Result rr = run("-q render " + out.string() +
                         " --view cracks --view fragments --frames last --size 320x240 "
