@@ -1,13 +1,14 @@
 #include "render/image_compare.hpp"
 
+#include <png.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkImageDifference.h>
 #include <vtkNew.h>
-#include <vtkPNGReader.h>
 #include <vtkPointData.h>
 
 #include <filesystem>
+#include <vector>
 
 #include "core/error.hpp"
 #include "render/offscreen.hpp"
@@ -15,19 +16,52 @@
 namespace dspdem::render {
 
 namespace {
+namespace fs = std::filesystem;
+// The largest side read, as `render --size` draws at most.
+constexpr png_uint_32 kLargestSide = 16384;
+
+// Reads with libpng's simplified API, which reports a damaged file as an error (VTK 9.1's
+// reader crashed on a truncated or corrupt one: a double free in its error path), and gives
+// every kind of PNG (grey, grey and alpha, RGB, RGBA, 16 bits) as 8-bit RGB, the one kind
+// vtkImageDifference compares (on others it reported an error and the count was made up).
+// Alpha is composited onto black. Rows bottom-up, as VTK's images and its PNG writer have them.
 vtkSmartPointer<vtkImageData> load(const std::string& path) {
-  DSPDEM_CHECK(std::filesystem::exists(path), "image '{}' does not exist", path);
-  vtkNew<vtkPNGReader> r;
-  DSPDEM_CHECK(r->CanReadFile(path.c_str()), "image '{}' is not a readable PNG", path);
-  r->SetFileName(path.c_str());
-  r->Update();
+  DSPDEM_CHECK(fs::exists(path), "image '{}' does not exist", path);
+  DSPDEM_CHECK(!fs::is_directory(path), "image '{}' is a folder", path);
+  png_image im{};
+  im.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&im, path.c_str()))  // frees `im` itself on failure
+    fail("image '{}' is not a readable PNG: {}", path, im.message);
+  if (im.width > kLargestSide || im.height > kLargestSide) {
+    const png_uint_32 w = im.width, h = im.height;
+    png_image_free(&im);
+    fail("image '{}' is {}x{} pixels, larger than dspdem compares (at most {} a side, as it draws)", path, w, h,
+         kLargestSide);
+  }
+  im.format = PNG_FORMAT_RGB;
+  const int w = static_cast<int>(im.width), h = static_cast<int>(im.height);
   auto img = vtkSmartPointer<vtkImageData>::New();
-  img->DeepCopy(r->GetOutput());
+  img->SetDimensions(w, h, 1);
+  img->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  // A negative row stride: the buffer holds the bottom row first (the file's last row is VTK's first).
+  if (!png_image_finish_read(&im, nullptr, img->GetScalarPointer(), -3 * w, nullptr))  // frees `im` on failure too
+    fail("image '{}' is damaged or cut short: {}", path, im.message);
   return img;
 }
 }  // namespace
 
 ImageDiff compare_png(const std::string& a, const std::string& b, const std::string& diff_png, int tol) {
+  // The difference never replaces what it compares.
+  if (!diff_png.empty()) {
+    for (const std::string& in : {a, b})
+      DSPDEM_CHECK(!fs::exists(in) || !fs::exists(diff_png) || !fs::equivalent(in, diff_png),
+                   "the difference image '{}' would replace the image '{}' it compares; give --diff another file",
+                   diff_png, in);
+    DSPDEM_CHECK(!fs::is_directory(diff_png), "the difference image '{}' is a folder; give --diff a file's name",
+                 diff_png);
+    const fs::path parent = fs::absolute(diff_png).parent_path();
+    DSPDEM_CHECK(fs::is_directory(parent), "the difference image's folder '{}' does not exist", parent.string());
+  }
   auto ia = load(a), ib = load(b);
   int da[3], db[3];
   ia->GetDimensions(da);

@@ -2,9 +2,13 @@
 // Baselines live in tests/regression/images; regenerate them only on purpose with
 // DSPDEM_REGEN_IMAGES=1 and review the diff. A failing comparison leaves the new image and
 // the difference image in <build>/tests/image_failures/ (CI keeps that folder).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
+#include <zlib.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -174,6 +178,88 @@ TEST(ImgDiff, IdenticalPassesAndChangedSceneFails) {
   r = sh(bin() + " imgdiff " + a.string() + " " + src("tests/regression/images/split_block_fragments.png").string());
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("differ in size"), std::string::npos) << r.out;
+}
+
+// A PNG's bytes, and one chunk appended (its length, type, data and CRC).
+std::string slurp_bytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+void put_u32(std::string& s, std::size_t at, std::uint32_t v) {
+  for (int k = 0; k < 4; ++k) s[at + k] = static_cast<char>((v >> (24 - 8 * k)) & 0xff);
+}
+void add_chunk(std::string& png, const char* type, const std::string& data) {
+  std::string c(4, '\0');
+  put_u32(c, 0, static_cast<std::uint32_t>(data.size()));
+  const std::string body = std::string(type, 4) + data;
+  c += body + std::string(4, '\0');
+  put_u32(c, c.size() - 4,
+          static_cast<std::uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(body.data()), body.size())));
+  png += c;
+}
+
+TEST(ImgDiff, DamagedOrOddImagesAreNamedAndADifferenceNeverReplacesItsInput) {
+  // VTK 9.1's PNG reader crashed (SIGSEGV in libpng's clean-up) on a truncated or corrupt file,
+  // and a grey image against a colour one gave a made-up result.
+  const fs::path out = fs::temp_directory_path() / fmt::format("dspdem_imgdiff_bad_{}", getpid());
+  fs::remove_all(out);
+  fs::create_directories(out);
+  const fs::path a = out / "a.png";
+  fs::copy_file(src("tests/regression/images/bar_tension_stress.png"), a);  // 320x240, RGB
+  const std::string bytes = slurp_bytes(a);
+  auto spit = [&](const std::string& name, const std::string& b) {
+    std::ofstream(out / name, std::ios::binary) << b;
+    return out / name;
+  };
+  // Cut short; a byte of the pixel data changed (its chunk's CRC then fails, or its filter).
+  const fs::path cut = spit("cut.png", bytes.substr(0, bytes.size() / 2));
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x5a);
+  const fs::path flip = spit("flip.png", flipped);
+  // A header that claims 100000 x 100000 pixels (its CRC made right).
+  std::string huge = bytes;
+  put_u32(huge, 16, 100000), put_u32(huge, 20, 100000);
+  put_u32(huge, 29, static_cast<std::uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(huge.data() + 12), 17)));
+  const fs::path big = spit("big.png", huge);
+  // A grey image of a's size.
+  std::string grey = bytes.substr(0, 8), ihdr(13, '\0');
+  put_u32(ihdr, 0, 320), put_u32(ihdr, 4, 240);
+  ihdr[8] = 8, ihdr[9] = 0;  // 8 bits, grey
+  add_chunk(grey, "IHDR", ihdr);
+  std::string rows;
+  for (int y = 0; y < 240; ++y) rows += '\0' + std::string(320, static_cast<char>(y));
+  uLongf n = compressBound(rows.size());
+  std::string z(n, '\0');
+  ASSERT_EQ(compress(reinterpret_cast<Bytef*>(z.data()), &n, reinterpret_cast<const Bytef*>(rows.data()), rows.size()),
+            Z_OK);
+  add_chunk(grey, "IDAT", z.substr(0, n));
+  add_chunk(grey, "IEND", "");
+  const fs::path g = spit("grey.png", grey);
+  struct Bad {
+    fs::path b;
+    std::string expect;
+  };
+  for (const Bad& t : {Bad{cut, "cut.png' is damaged or cut short"}, Bad{flip, "flip.png' is"},
+                       Bad{big, "big.png' is 100000x100000 pixels"}}) {
+    const Result r = sh(bin() + " imgdiff " + a.string() + " " + t.b.string() + " --diff " + (out / "d.png").string());
+    EXPECT_EQ(r.code, 2) << t.b << "\n" << r.out;
+    EXPECT_NE(r.out.find(t.expect), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out / "d.png")) << t.b;
+  }
+  // A grey image reads as RGB: the same as itself, different from a colour one, with no error
+  // from VTK's comparison (which takes RGB only).
+  EXPECT_EQ(sh(bin() + " imgdiff " + g.string() + " " + g.string() + " --diff " + (out / "g.png").string()).code, 0);
+  const Result rg = sh(bin() + " imgdiff " + a.string() + " " + g.string() + " --diff " + (out / "g.png").string());
+  EXPECT_EQ(rg.code, 1) << rg.out;
+  EXPECT_EQ(rg.out.find("ERR"), std::string::npos) << rg.out;
+  // --diff naming an input, a folder or a place in no folder: refused, the input unchanged.
+  for (const std::string& d : {a.string(), out.string(), (out / "none" / "d.png").string()}) {
+    const Result r = sh(bin() + " imgdiff " + a.string() + " " + a.string() + " --diff " + d);
+    EXPECT_EQ(r.code, 2) << d << "\n" << r.out;
+    EXPECT_NE(r.out.find("the difference image"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(slurp_bytes(a), bytes);
+  fs::remove_all(out);
 }
 
 TEST(Render, BadInputIsNamedAndWritesNothing) {
