@@ -308,6 +308,9 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
       {"set_huge", good_, "--set time.end=1e400", {"1e400 is not a number TOML reads", "could not be interpreted"}},
       {"set_bare_point", good_, "--set time.end=.5", {".5 is not a number TOML reads", "expected decimal digit"}},
       {"string_for_number", good_, "--set time.end=soon", {"'end' must be a number, got the string \"soon\""}},
+      // A step count past any run's (past 2^63 it turned negative and the run "completed" in 0 steps).
+      {"steps_end", good_, "--set time.end=1e300", {"[time] end = 1e+300 s", "more than 1e+10", "max_steps"}},
+      {"steps_stiff", replace(good_, "E = 30.0e9", "E = 1.0e300"), "", {"steps, more than 1e+10", "limited by"}},
       {"unknown_group",
        replace(good_, "group = \"tip\"\ntype = \"force\"", "group = \"top\"\ntype = \"force\""),
        "",
@@ -323,6 +326,12 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
     EXPECT_EQ(slurp(out / "summary.json"), before) << b.name << " changed earlier results";
     EXPECT_EQ(slurp(out / "run.pvd"), pvd_before) << b.name << " changed earlier results";
   }
+  // An end nearer than one step: that one step, said (it took none and "completed").
+  const fs::path one = dir_ / "one_step";
+  const Result r = run("run " + write("one.toml", good_).string() + " --out " + one.string() + " --set time.end=1e-12");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("shorter than one step"), std::string::npos) << r.out;
+  EXPECT_EQ(dspdem::read_run_summary((one / "summary.json").string()).steps, 1);
 }
 
 TEST_F(Cli, NumericalFailureNamesStepAndElementAndKeepsEarlierResults) {
