@@ -4,6 +4,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -68,19 +69,28 @@ std::string checkpoint_piece(const std::string& path, int rank) {
 
 std::string checkpoint_build_id() { return DSPDEM_BUILD_INFO " " DSPDEM_COMMIT " " DSPDEM_BUILD_TOOLS; }
 
+FileCrc file_crc(const std::string& path, std::uint64_t bytes) {
+  // In blocks: the executable is some megabytes, a long run's series some more.
+  std::ifstream f(path, std::ios::binary);
+  std::vector<char> block(1 << 16);
+  uLong c = crc32(0L, Z_NULL, 0);
+  std::uint64_t n = 0;
+  while (n < bytes && f) {
+    const std::uint64_t want = std::min<std::uint64_t>(block.size(), bytes - n);
+    f.read(block.data(), static_cast<std::streamsize>(want));
+    const auto got = static_cast<std::uint64_t>(f.gcount());
+    if (got == 0) break;
+    c = crc32(c, reinterpret_cast<const Bytef*>(block.data()), static_cast<uInt>(got));
+    n += got;
+  }
+  return {f.bad() ? 0 : static_cast<std::uint32_t>(c), f.bad() ? 0 : n};
+}
+
 std::string executable_id() {
   static const std::string id = [] {
-    // In blocks: the executable is some megabytes.
-    std::ifstream f("/proc/self/exe", std::ios::binary);
-    std::vector<char> block(1 << 16);
-    uLong c = crc32(0L, Z_NULL, 0);
-    std::size_t n = 0;
-    while (f.read(block.data(), static_cast<std::streamsize>(block.size())) || f.gcount() > 0) {
-      c = crc32(c, reinterpret_cast<const Bytef*>(block.data()), static_cast<uInt>(f.gcount()));
-      n += static_cast<std::size_t>(f.gcount());
-    }
-    return n == 0 || f.bad() ? checkpoint_build_id() + " exe unknown"
-                             : fmt::format("{} exe {:08x}", checkpoint_build_id(), static_cast<std::uint32_t>(c));
+    const FileCrc exe = file_crc("/proc/self/exe");
+    return exe.bytes == 0 ? checkpoint_build_id() + " exe unknown"
+                          : fmt::format("{} exe {:08x}", checkpoint_build_id(), exe.crc);
   }();
   return id;
 }

@@ -11,6 +11,7 @@
 // checkpoint.bin, process r checkpoint.<r>.bin beside it, each with its share's state; a
 // restart needs the same N (the partition is the same: METIS with a fixed seed).
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,14 +21,15 @@
 namespace dspdem {
 
 struct CheckpointHeader {
-  // 13: a joint point's last slip and friction on its face's frame (the friction a vector), the extrinsic offsets' slip
+  // 14: the CRC-32s of series.csv and fragments.csv as far as the checkpoint's run had written them; 13: a joint
+  // point's last slip and friction on its face's frame (the friction a vector), the extrinsic offsets' slip
   // on that frame; 12: the touches' contact points and weights in the contacts' history (a successor takes a spring
   // over); 11: the integrator's last step, the kick's term at the start and the damping's lag (the ledger), a joint
   // point's shear dropped by a forced break; 10: the touches' cluster shares in the contacts' history; 9: the
   // executable and the wall-time interval (8: the contacts' pairs first found overlapping; 7: no previous fragment ids
   // in the contacts' state; 6: no largest slip in the joints' states; 5: the contacts' spring energies; 4: the
   // integrator's step; 3: processes and rank; 2: the deepest contact)
-  int format = 13;
+  int format = 14;
   std::string build;  ///< dspdem version, commit, compiler and build type
   /// executable_id() of what wrote it: `report --resume` continues a killed run's checkpoint
   /// only if this executable wrote it, as it keeps a finished run only if its summary says so.
@@ -52,6 +54,14 @@ struct CheckpointHeader {
 
 /// Process `rank`'s file of the checkpoint whose process-0 file is `path`.
 std::string checkpoint_piece(const std::string& path, int rank);
+
+/// CRC-32 of the first `bytes` bytes of file `path` (all of it with bytes = -1), and how many
+/// it read: fewer than asked when the file is shorter (or missing: 0).
+struct FileCrc {
+  std::uint32_t crc = 0;
+  std::uint64_t bytes = 0;
+};
+FileCrc file_crc(const std::string& path, std::uint64_t bytes = static_cast<std::uint64_t>(-1));
 
 /// This build's identity, as written into checkpoints.
 std::string checkpoint_build_id();

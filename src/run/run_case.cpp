@@ -100,11 +100,14 @@ struct LoopState {
   long n_steps = 0;  ///< the step the run ends at, unless a stop rule ends it first
   std::string stop_message;
   std::uint64_t series_bytes = 0, fragments_bytes = 0;
+  /// CRC-32s of those bytes: a restart takes its series from the folder only if they are the
+  /// ones its run wrote (a checkpoint copied into another run's folder spliced two runs' rows).
+  std::uint32_t series_crc = 0, fragments_crc = 0;
   double wall_before = 0;  ///< wall time of the run before its last restart [s]
   template <class Ar>
   void persist(Ar& ar) {
     ar(frames, joint_frames, next_frame, next_series, next_checkpoint, stop_at, n_steps, stop_message, series_bytes,
-       fragments_bytes, wall_before);
+       fragments_bytes, series_crc, fragments_crc, wall_before);
   }
 };
 
@@ -131,12 +134,26 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
     for (const std::string& p : pieces)
       if (p.rfind(stem, 0) == 0) link((fs::path("frames") / p).string());
   };
-  for (const auto& [t, rel] : ls.frames) link_frame(rel);
-  for (const auto& [t, rel] : ls.joint_frames) link_frame(rel);
-  auto cut = [&](const char* name, std::uint64_t bytes) {
+  // The checkpoint's run's files, checked before anything is linked or copied: its series as
+  // far as it had written them (their CRC-32s) and every frame it lists.
+  auto check = [&](const char* name, std::uint64_t bytes, std::uint32_t crc) {
     DSPDEM_CHECK(fs::exists(from / name) && fs::file_size(from / name) >= bytes,
                  "restart: '{}' is shorter than when the checkpoint was written ({} bytes)", (from / name).string(),
                  bytes);
+    DSPDEM_CHECK(file_crc((from / name).string(), bytes).crc == crc,
+                 "restart: '{}' is not the file the checkpoint's run wrote (its first {} bytes differ): the folder "
+                 "holds another run's outputs; restart from a checkpoint in the folder of the run that wrote it",
+                 (from / name).string(), bytes);
+  };
+  check("series.csv", ls.series_bytes, ls.series_crc);
+  check("fragments.csv", ls.fragments_bytes, ls.fragments_crc);
+  for (const auto* list : {&ls.frames, &ls.joint_frames})
+    for (const auto& [t, rel] : *list)
+      DSPDEM_CHECK(fs::exists(from / rel), "restart: frame '{}' of the checkpoint's run is missing",
+                   (from / rel).string());
+  for (const auto& [t, rel] : ls.frames) link_frame(rel);
+  for (const auto& [t, rel] : ls.joint_frames) link_frame(rel);
+  auto cut = [&](const char* name, std::uint64_t bytes) {
     fs::copy_file(from / name, to / name, fs::copy_options::overwrite_existing);
     fs::resize_file(to / name, bytes);
   };
@@ -191,7 +208,11 @@ class Series {
     f_ << '\n';
     f_.flush();
   }
-  std::uint64_t bytes() { return static_cast<std::uint64_t>(f_.tellp()); }
+  /// What is on disk (flushed first): a checkpoint records it and its CRC-32.
+  std::uint64_t bytes() {
+    f_.flush();
+    return static_cast<std::uint64_t>(f_.tellp());
+  }
 
  private:
   std::ofstream f_;
@@ -625,7 +646,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   };
   auto write_ckpt = [&]() {
     ls.series_bytes = series.bytes();
+    frag_csv.flush();
     ls.fragments_bytes = static_cast<std::uint64_t>(frag_csv.tellp());
+    if (my_rank == 0) {
+      ls.series_crc = file_crc((sdir / "series.csv").string(), ls.series_bytes).crc;
+      ls.fragments_crc = file_crc((sdir / "fragments.csv").string(), ls.fragments_bytes).crc;
+    }
     const double before = ls.wall_before;
     ls.wall_before += wall.seconds();
     StateArchive body;

@@ -249,6 +249,40 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
     EXPECT_NE(std::string(e.what()).find("tensile_strength"), std::string::npos) << e.what();
   }
 
+  // The checkpoint's folder holding another run's series (a checkpoint copied into another
+  // run's folder spliced the two runs' rows), or missing a frame it lists: refused before
+  // anything is written, the folder as it was.
+  for (const std::string what : {"series", "frame"}) {
+    const fs::path copy = root_ / ("refuse_" + what);
+    fs::remove_all(copy);
+    fs::copy(dir, copy, fs::copy_options::recursive);
+    const fs::path series = copy / "interrupted_run" / "series.csv";
+    if (what == "series") {
+      std::string text = slurp(series);
+      const std::size_t row = text.find('\n') + 1;  // the row at t = 0, within what the checkpoint's run wrote
+      text[text.find(',', row) + 1] = text[text.find(',', row) + 1] == '1' ? '2' : '1';  // its step's first digit
+      std::ofstream(series, std::ios::binary) << text;
+    } else {
+      fs::remove(copy / "interrupted_run" / "frames" / "frame_0000.vtu");
+    }
+    const std::string before = slurp(series);
+    RunOptions o = opt;
+    o.out_dir = copy.string();
+    o.restart_file = find_checkpoint(copy.string()).path;
+    try {
+      run_case(read_case(kCase, kSets), o);
+      FAIL() << what << ": the restart went on";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what == "series" ? "is not the file the checkpoint's run wrote"
+                                                            : "frame_0000.vtu' of the checkpoint's run is missing"),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(slurp(series), before) << what;
+    EXPECT_TRUE(fs::exists(copy / "interrupted_run" / "checkpoint.bin")) << what;
+    EXPECT_FALSE(fs::exists(copy / "summary.json")) << what;
+  }
+
   // A flipped byte and a cut file: refused by the CRC; find_checkpoint then finds none.
   const std::string good = slurp(ck);
   for (const std::string& bad : {good.substr(0, good.size() / 2), [&] {
