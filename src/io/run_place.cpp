@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -174,6 +175,22 @@ void clear_derived_place(const std::string& place) {
   // Not under a render drawing there now: refused by its lock (Error) rather than emptied under it.
   const FolderLock drawing(place, render_lock_file, "a render");
   empty_place(place);
+}
+
+void check_run_frames(const std::string& run_dir) {
+  const fs::path frames = fs::path(run_dir) / "frames";
+  std::error_code ec;
+  if (!fs::is_directory(frames, ec)) return;
+  // frame_0012.vtu, joints_0012.pvtu, frame_0012_3.vtu (process 3's piece).
+  static const std::regex written(R"((frame|joints)_[0-9]{4,}(_[0-9]+)?\.p?vtu)");
+  for (const auto& e : fs::directory_iterator(frames, ec)) {
+    const std::string name = e.path().filename().string();
+    DSPDEM_CHECK(e.is_regular_file() && std::regex_match(name, written),
+                 "{}: '{}' is not a run's frame, and a run replaces frames/ whole as it ends: move it out, or give "
+                 "--out another folder",
+                 frames.string(), name);
+  }
+  DSPDEM_CHECK(!ec, "cannot read '{}': {}", frames.string(), ec.message());
 }
 
 ReplacedImages remove_replaced_images(const std::string& run_dir) {

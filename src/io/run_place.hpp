@@ -49,6 +49,12 @@ void take_derived_place(const std::string& place, const std::string& run_dir);
 /// run stays beside the new one; Error when a render is drawing into it or below it now.
 void clear_derived_place(const std::string& place);
 
+/// Error, naming the first such entry, when `run_dir`/frames holds anything a run does not
+/// write there (frame_NNNN and joints_NNNN files, .vtu or .pvtu, and a distributed run's pieces
+/// of them): a run's commit replaces frames/ whole, so a file or a folder put there by hand
+/// (another run made inside it, too) went with it. Checked before the run starts.
+void check_run_frames(const std::string& run_dir);
+
 /// What became of the images/ of a run a new run replaced (remove_replaced_images).
 struct ReplacedImages {
   enum class Fate {

@@ -468,6 +468,7 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     DSPDEM_CHECK(!FolderLock::held(opt.out_dir, render_lock_file),
                  "{}: a render is drawing into this folder now; wait for it to end, or give --out another folder",
                  opt.out_dir);
+    check_run_frames(opt.out_dir);  // before anything is emptied: a refusal changes nothing
     clear_derived_place(opt.out_dir);
   }
   // Process 0 makes the staging folder and commits it; the others write their pieces into it.

@@ -326,6 +326,13 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
     EXPECT_EQ(slurp(out / "summary.json"), before) << b.name << " changed earlier results";
     EXPECT_EQ(slurp(out / "run.pvd"), pvd_before) << b.name << " changed earlier results";
   }
+  // A file of the user's in the run's frames/, which a run replaces whole: refused, kept.
+  std::ofstream(out / "frames" / "mine.txt") << "mine";
+  const Result rf = run("run " + write("good.toml", good_).string() + " --out " + out.string());
+  EXPECT_EQ(rf.code, 2) << rf.out;
+  EXPECT_NE(rf.out.find("'mine.txt' is not a run's frame"), std::string::npos) << rf.out;
+  EXPECT_EQ(slurp(out / "frames" / "mine.txt"), "mine");
+  EXPECT_EQ(slurp(out / "summary.json"), before);
   // An end nearer than one step: that one step, said (it took none and "completed").
   const fs::path one = dir_ / "one_step";
   const Result r = run("run " + write("one.toml", good_).string() + " --out " + one.string() + " --set time.end=1e-12");

@@ -239,3 +239,31 @@ TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThemOrARenderDrawsThem
     EXPECT_NE(std::string(e.what()).find("cannot open the lock file"), std::string::npos) << e.what();
   }
 }
+
+TEST_F(RunPlace, ARunsFramesFolderHoldingAnythingARunDoesNotWriteIsRefusedUnchanged) {
+  const fs::path frames = dir_ / "a" / "frames";
+  fs::create_directories(frames);
+  check_run_frames((dir_ / "none").string());  // no folder: nothing to check
+  check_run_frames((dir_ / "a").string());     // empty
+  for (const char* f : {"frame_0000.vtu", "joints_0000.vtu", "frame_12345.pvtu", "frame_0003_1.vtu", "joints_0003.pvtu",
+                        "joints_0003_12.vtu"})
+    std::ofstream(frames / f) << "x";
+  check_run_frames((dir_ / "a").string());
+  // A file of the user's, a near miss, and another run made inside frames/.
+  for (const char* f : {"mine.txt", "frame_0000.vtu.bak", "frame_01.vtu"}) {
+    std::ofstream(frames / f) << "mine";
+    try {
+      check_run_frames((dir_ / "a").string());
+      ADD_FAILURE() << f << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("'") + f + "' is not a run's frame"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_TRUE(fs::exists(frames / f));
+    fs::remove(frames / f);
+  }
+  fs::create_directories(frames / "inner");
+  std::ofstream(frames / "inner" / "summary.json") << "{}";
+  EXPECT_THROW(check_run_frames((dir_ / "a").string()), Error);
+  EXPECT_TRUE(fs::exists(frames / "inner" / "summary.json"));
+}
