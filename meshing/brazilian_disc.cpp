@@ -20,6 +20,8 @@ void build_brazilian_disc(const Params& p) {
   if (pw > D) param_error(p, "plate_width", "wider than the disc diameter");
   if (ph > pt * 2 && ph > pw) param_error(p, "plate_size", "larger than the plate");
   const bool plates = p["plates"] != 0, split = p["split_plane"] != 0;
+  check_tet_count(p, "size", 0.25 * M_PI * D * D * L, h);
+  if (plates) check_tet_count(p, "plate_size", 2 * pw * pt * L, ph);
   const double band = p["band_width"];
   if (band >= D) param_error(p, "band_width", "not narrower than the disc diameter");
   const double cap = p["cap_height"];

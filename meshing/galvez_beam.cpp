@@ -17,6 +17,7 @@ void build_galvez_beam(const Params& p) {
   const double xs[4] = {p["support_left_x"], p["support_right_x"], p["load_inner_x"], p["load_outer_x"]};
   const char* names[4] = {"support_left_x", "support_right_x", "load_inner_x", "load_outer_x"};
   if (a >= D) param_error(p, "notch_depth", "the notch must be shallower than the beam depth");
+  check_tet_count(p, "size", L * D * B, h);
   if (w >= L / 4) param_error(p, "notch_width", "too wide for the beam");
   if (h > D / 3) param_error(p, "size", "larger than a third of the beam depth");
   for (int i = 0; i < 4; ++i) {

@@ -56,6 +56,17 @@ void param_error(const Params& p, const std::string& key, const std::string& why
   fail("mesh.{}.{} = {}: {}", p.generator, key, val, why);
 }
 
+void check_count(const Params& p, const std::string& key, double count, const std::string& how) {
+  if (!(count <= kMostElements))
+    param_error(p, key,
+                fmt::format("about {:.2g} elements ({}), more than dspdem meshes ({:.0e}); a mistyped size or count?",
+                            count, how, kMostElements));
+}
+
+void check_tet_count(const Params& p, const std::string& key, double volume, double h) {
+  check_count(p, key, 5 * volume / (h * h * h), fmt::format("5 tetrahedra a size cubed over {:.3g} m^3", volume));
+}
+
 const std::vector<Generator>& registry() {
   static const std::vector<Generator> r = {
       {"brazilian_disc",

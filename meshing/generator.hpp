@@ -29,6 +29,17 @@ struct Params {
 /// Throws Error "mesh.<generator>.<key> = <value>: <why>".
 [[noreturn]] void param_error(const Params& p, const std::string& key, const std::string& why);
 
+/// The most elements a generator is let make: a count past it comes from a mistyped size or
+/// count (gmsh went on filling the machine's memory, then aborted).
+inline constexpr double kMostElements = 1e8;
+/// Before meshing: param_error naming `key` when a uniform size `h` over `volume` [m^3] would
+/// give more than kMostElements tetrahedra, at 5 a size cubed (gmsh's count for the Brazilian
+/// disc's default size is 4.7). Local refinements (a contact or a notch size) are not counted:
+/// a guard against a mistyped size, not an estimate of the mesh.
+void check_tet_count(const Params& p, const std::string& key, double volume, double h);
+/// param_error naming `key` when `count` elements, counted as `how`, exceed kMostElements.
+void check_count(const Params& p, const std::string& key, double count, const std::string& how);
+
 struct Generator {
   const char* name;
   const char* doc;                            ///< geometry, groups, and where defaults come from

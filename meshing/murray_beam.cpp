@@ -17,6 +17,8 @@ void build_murray_beam(const Params& p) {
   const double L = p["length"], H = p["depth"], W = p["width"];
   const double span = p["span"], gap = p["impactor_spacing"], r = p["cylinder_radius"];
   const int nx = static_cast<int>(p["nx"]), ny = static_cast<int>(p["ny"]), nz = static_cast<int>(p["nz"]);
+  check_count(p, "nx", static_cast<double>(nx) * ny * nz, "nx x ny x nz hexahedra");
+  if (p["cylinders"] != 0) check_tet_count(p, "cylinder_size", 4 * M_PI * r * r * W, p["cylinder_size"]);
   if (span >= L) param_error(p, "span", "must be shorter than the beam length");
   if (gap >= span) param_error(p, "impactor_spacing", "must be smaller than the span");
   if (r >= span / 4) param_error(p, "cylinder_radius", "too large for the span");

@@ -40,6 +40,10 @@ void build_packing(const Params& p) {
   const double amin = p["size_min"], amax = p["size_max"], irr = p["irregularity"], top = p["fill_height"];
   const long n = static_cast<long>(p["count"]);
   if (amin > amax) param_error(p, "size_min", "larger than size_max");
+  check_count(p, "count", static_cast<double>(n) * std::pow(8.0, p["refine"]), "count x 8^refine tetrahedra");
+  if (p["container"] != 0)
+    check_tet_count(p, "wall_size", t * ((lx + 2 * t) * (lz + 2 * t) + 2 * ly * (lz + 2 * t) + 2 * lx * ly),
+                    p["wall_size"]);
   const double rmax = (0.6124 + irr) * amax;
   const double s = 2.02 * rmax;
   const long nx = static_cast<long>(std::floor(lx / s)), nz = static_cast<long>(std::floor(lz / s));

@@ -86,6 +86,8 @@ void build_sphere_plate(const Params& p) {
   const double pw = p["plate_width"], pt = p["plate_thickness"], ph = p["plate_size"];
   if (h > 0.25 * D) param_error(p, "size", "larger than a quarter of the diameter: the sphere cannot be meshed");
   if (pw < D) param_error(p, "plate_width", "narrower than the sphere");
+  check_tet_count(p, "size", M_PI / 6 * D * D * D, h);
+  if (p["plate"] != 0) check_tet_count(p, "plate_size", pw * pw * p["plate_thickness"], ph);
   const double ytop = -D / 2 - gap;
   // The plate is meshed only when asked for: the paper's plate is rigid, a [[walls]] plane.
   const bool meshed_plate = p["plate"] != 0;
