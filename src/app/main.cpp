@@ -119,7 +119,8 @@ int run_main(int argc, char** argv) {
   rend->add_option("--montage", ma.out,
                    "Write one PNG image OUT of the given runs side by side (a column per run, a row per --rows "
                    "entry) at --time; .png is added to a name that does not end in it");
-  rend->add_option("--time", ma.time, "--montage: simulated time of the frames [s] (default: each run's last frame)");
+  rend->add_option("--time", ma.time, "--montage: simulated time of the frames [s] (default: each run's last frame)")
+      ->check(kFiniteNonNegative);  // a negative one read as "the last frame", an infinite one as the first
   rend->add_option("--label", ma.labels, "--montage: a label per run, in order (default: the folders' names)");
   rend->add_option("--rows", ma.rows,
                    "--montage: rows as view or view:cut, e.g. fragments:z fragments cracks (default: fragments)")
@@ -134,7 +135,8 @@ int run_main(int argc, char** argv) {
   rend->add_option("--size", ra.size, "Image size WIDTHxHEIGHT (with --montage: of one panel)");
   rend->add_option("-j,--jobs", ra.jobs,
                    "Render processes, then views whose animations are encoded at once (default: -t's count, else "
-                   "OMP_NUM_THREADS, else one per core)");
+                   "OMP_NUM_THREADS, else one per core)")
+      ->check(CLI::Range(1, 256));  // as report's -j
   rend->add_option("--out", ra.out_dir,
                    "Write OUT/images/ instead of the run's images/ (the run's folder is then only read)");
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");

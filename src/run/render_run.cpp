@@ -42,15 +42,18 @@ std::vector<std::size_t> select_frames(const std::string& spec, std::size_t n) {
   } else if (spec == "last") {
     out.push_back(n - 1);
   } else if (spec.rfind("every:", 0) == 0) {
-    const long k = std::stol(spec.substr(6));
-    DSPDEM_CHECK(k > 0, "--frames {}: the stride must be positive", spec);
+    const std::string stride = spec.substr(6);
+    char* end = nullptr;
+    const long k = std::strtol(stride.c_str(), &end, 10);
+    DSPDEM_CHECK(!stride.empty() && *end == '\0' && k > 0,
+                 "--frames {}: the stride '{}' is not a positive whole number", spec, stride);
     for (std::size_t i = 0; i < n; i += static_cast<std::size_t>(k)) out.push_back(i);
   } else {
     std::stringstream ss(spec);
     for (std::string t; std::getline(ss, t, ',');) {
       char* end = nullptr;
       const long i = std::strtol(t.c_str(), &end, 10);
-      DSPDEM_CHECK(*end == '\0' && i >= 0 && static_cast<std::size_t>(i) < n,
+      DSPDEM_CHECK(!t.empty() && *end == '\0' && i >= 0 && static_cast<std::size_t>(i) < n,
                    "--frames {}: '{}' is not a frame index (the run has {} frames)", spec, t, n);
       out.push_back(static_cast<std::size_t>(i));
     }

@@ -274,11 +274,22 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
       {"--view cracks", "cracks view needs the joints dataset"},
       {"--view wireframe", "unknown view 'wireframe'"},
       {"--frames 7", "not a frame index"},
+      {"--frames 1,,2", "'' is not a frame index"},                             // it read 0
+      {"--frames every:3x", "the stride '3x' is not a positive whole number"},  // it read 3
+      {"--frames every:", "the stride '' is not a positive whole number"},      // "unexpected failure: stol"
   };
   for (const auto& b : cases) {
     const Result r = sh(bin() + " render " + out.string() + " " + b.args);
     EXPECT_EQ(r.code, 2) << b.args << ": " << r.out;
     EXPECT_NE(r.out.find(b.expect), std::string::npos) << b.args << ": " << r.out;
+  }
+  // Command-line errors (exit 1): a montage's time that is not a time (a negative one read as
+  // the last frame, an infinite one as the first), no render processes.
+  for (const std::string& a : {"--montage " + (out / "m.png").string() + " --time -1",
+                               "--montage " + (out / "m.png").string() + " --time inf", std::string("-j 0")}) {
+    const Result r = sh(bin() + " render " + out.string() + " " + a);
+    EXPECT_EQ(r.code, 1) << a << ": " << r.out;
+    EXPECT_FALSE(fs::exists(out / "m.png")) << a;
   }
   EXPECT_FALSE(fs::exists(out / "images/stress")) << "a failed render wrote images";
   // Not a run folder.
