@@ -254,6 +254,11 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.actor->GetProperty()->SetOpacity(0.2);
     s.context_actor->SetMapper(s.context_mapper);
     s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
+    // Their outlines too, in the same red: a crack seen edge-on (the impact beam's cracks
+    // across the section, seen along the width) has no area in the image and was not drawn.
+    s.context_actor->GetProperty()->EdgeVisibilityOn();
+    s.context_actor->GetProperty()->SetEdgeColor(0.8, 0.05, 0.05);
+    s.context_actor->GetProperty()->SetLineWidth(std::max(1.0f, static_cast<float>(o.height) / 360.0f));
     s.ren->AddActor(s.context_actor);
     // The key, bottom left, each line in the colour it names, the grey darker than the
     // translucent bodies look, to be read (a panel of a montage too: a figure is cut from it
