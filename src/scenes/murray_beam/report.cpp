@@ -221,7 +221,12 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
        fmt::format("{} main pieces (at least {:.0f} % of the mass each), {} fragments in all", r.main_pieces,
                    100 * MurrayResult::main_piece_fraction, r.fragments),
        yes(r.main_pieces == 5), ""},
-      {"largest deflection", "not given", fmt::format("{:.2f} mm", 1e3 * r.max_deflection), "", ""},
+      // When: past the break it follows the pieces and grows to the run's end (the middle piece
+      // in free flight), so the time says which it is.
+      {"largest deflection", "not given",
+       fmt::format("{:.2f} mm at t = {:.2f} ms (once broken, the pieces')", 1e3 * r.max_deflection,
+                   1e3 * r.t_max_deflection),
+       "", ""},
       report::balance_row(r.balance_max, "MurrayBeam.CracksUnderTheImpactorsFirstAndBreaksSymmetrically")};
   if (!a.no_render) {
     doc.thumbnail("fragments at the end", fmt::format("images/fragments/frame_{:04d}.png", r.last_frame));
