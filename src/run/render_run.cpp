@@ -301,7 +301,14 @@ int render_command(const RenderArgs& in) {
     // Monitors follow the balance_error column.
     const std::size_t first_monitor =
         static_cast<std::size_t>(std::find(names.begin(), names.end(), "balance_error") - names.begin() + 1);
+    // A column that is zero on every row (a wall nothing touched, a support the beam left) is
+    // not drawn: a flat line on a +-1e-7 axis tells nothing; the log names them.
+    std::vector<std::string> zero;
     for (std::size_t i = first_monitor; i < names.size(); ++i) {
+      if (std::all_of(cols[i].begin(), cols[i].end(), [](double v) { return v == 0.0; })) {
+        zero.push_back(names[i]);
+        continue;
+      }
       render::PlotSpec m{"time", {names[i]}, "", names[i]};
       m.y_title = series_axis_title(c, names[i]);
       render::plot_csv(csv.string(), m, (pdir / (names[i] + ".png")).string());
@@ -326,6 +333,7 @@ int render_command(const RenderArgs& in) {
       render::plot_csv(csv.string(), s, (pdir / (name + ".png")).string());
     }
     log::info("  plots in {}", pdir.string());
+    if (!zero.empty()) log::info("  not plotted, zero throughout: {}", fmt::join(zero, ", "));
   }
   log::info("  images in {}/images/ ({:.2f} s in all)", a.out_dir, wall.seconds());
   return 0;
