@@ -17,14 +17,15 @@ namespace dspdem::render {
 
 namespace {
 namespace fs = std::filesystem;
-// The largest side read, as `render --size` draws at most.
-constexpr png_uint_32 kLargestSide = 16384;
+// The most pixels read: 16384 x 16384, what `render --size` draws at most (a montage of many
+// panels is wider than that, but has fewer pixels).
+constexpr double kMostPixels = 16384.0 * 16384.0;
 
 // Reads with libpng's simplified API, which reports a damaged file as an error (VTK 9.1's
 // reader crashed on a truncated or corrupt one: a double free in its error path), and gives
 // every kind of PNG (grey, grey and alpha, RGB, RGBA, 16 bits) as 8-bit RGB, the one kind
 // vtkImageDifference compares (on others it reported an error and the count was made up).
-// Alpha is composited onto black. Rows bottom-up, as VTK's images and its PNG writer have them.
+// Rows bottom-up, as VTK's images and its PNG writer have them.
 vtkSmartPointer<vtkImageData> load(const std::string& path) {
   DSPDEM_CHECK(fs::exists(path), "image '{}' does not exist", path);
   DSPDEM_CHECK(!fs::is_directory(path), "image '{}' is a folder", path);
@@ -32,19 +33,21 @@ vtkSmartPointer<vtkImageData> load(const std::string& path) {
   im.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&im, path.c_str()))  // frees `im` itself on failure
     fail("image '{}' is not a readable PNG: {}", path, im.message);
-  if (im.width > kLargestSide || im.height > kLargestSide) {
+  if (static_cast<double>(im.width) * im.height > kMostPixels) {
     const png_uint_32 w = im.width, h = im.height;
     png_image_free(&im);
-    fail("image '{}' is {}x{} pixels, larger than dspdem compares (at most {} a side, as it draws)", path, w, h,
-         kLargestSide);
+    fail("image '{}' is {}x{} pixels, more than dspdem compares (16384 x 16384, as it draws at most)", path, w, h);
   }
   im.format = PNG_FORMAT_RGB;
   const int w = static_cast<int>(im.width), h = static_cast<int>(im.height);
   auto img = vtkSmartPointer<vtkImageData>::New();
   img->SetDimensions(w, h, 1);
   img->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  // A negative row stride: the buffer holds the bottom row first (the file's last row is VTK's first).
-  if (!png_image_finish_read(&im, nullptr, img->GetScalarPointer(), -3 * w, nullptr))  // frees `im` on failure too
+  // Alpha composited onto black: without a background libpng composites onto what the buffer
+  // held, which VTK does not clear. A negative row stride: the buffer holds the bottom row
+  // first (the file's last row is VTK's first).
+  const png_color black{0, 0, 0};
+  if (!png_image_finish_read(&im, &black, img->GetScalarPointer(), -3 * w, nullptr))  // frees `im` on failure too
     fail("image '{}' is damaged or cut short: {}", path, im.message);
   return img;
 }

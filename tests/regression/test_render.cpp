@@ -252,6 +252,32 @@ TEST(ImgDiff, DamagedOrOddImagesAreNamedAndADifferenceNeverReplacesItsInput) {
   const Result rg = sh(bin() + " imgdiff " + a.string() + " " + g.string() + " --diff " + (out / "g.png").string());
   EXPECT_EQ(rg.code, 1) << rg.out;
   EXPECT_EQ(rg.out.find("ERR"), std::string::npos) << rg.out;
+  // An RGBA image reads composited onto black: white pixels left fully transparent are the
+  // black pixels of an RGB image.
+  auto png_of = [&](int colour_type, int channels, char value, char alpha) {
+    std::string png = bytes.substr(0, 8), head(13, '\0');
+    put_u32(head, 0, 320), put_u32(head, 4, 240);
+    head[8] = 8, head[9] = static_cast<char>(colour_type);
+    add_chunk(png, "IHDR", head);
+    std::string px(static_cast<std::size_t>(channels), value);
+    if (channels == 4) px[3] = alpha;
+    std::string rows;
+    for (int y = 0; y < 240; ++y) {
+      rows += '\0';
+      for (int x = 0; x < 320; ++x) rows += px;
+    }
+    uLongf len = compressBound(rows.size());
+    std::string zz(len, '\0');
+    compress(reinterpret_cast<Bytef*>(zz.data()), &len, reinterpret_cast<const Bytef*>(rows.data()), rows.size());
+    add_chunk(png, "IDAT", zz.substr(0, len));
+    add_chunk(png, "IEND", "");
+    return png;
+  };
+  const fs::path clear = spit("clear.png", png_of(6, 4, static_cast<char>(255), 0)),
+                 black = spit("black.png", png_of(2, 3, 0, 0));
+  const Result ra = sh(bin() + " imgdiff " + clear.string() + " " + black.string() + " --tolerance 0 --diff " +
+                       (out / "c.png").string());
+  EXPECT_EQ(ra.code, 0) << ra.out;
   // --diff naming an input, a folder or a place in no folder: refused, the input unchanged.
   for (const std::string& d : {a.string(), out.string(), (out / "none" / "d.png").string()}) {
     const Result r = sh(bin() + " imgdiff " + a.string() + " " + a.string() + " --diff " + d);
