@@ -335,21 +335,24 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   }
   // Steps from step s0 at time t0 to [time] end at step h (or max_steps): the loop's end,
   // worked out again when the step changes.
-  // A run whose end lies more than kMostSteps steps away is refused unless max_steps bounds
-  // it: such a count comes from a mistyped end, step or material (E = 1e300 gave a step of
-  // 1e-150 s), and past 2^63 it turned negative and the run "completed" in 0 steps. A run
-  // whose end is nearer than one step takes that one step (it took none).
+  // At the start (s0 = 0), a run whose end lies more than kMostSteps steps away is refused
+  // unless max_steps bounds it: such a count comes from a mistyped end, step or material
+  // (E = 1e300 gave a step of 1e-150 s), and past 2^63 it turned negative and the run
+  // "completed" in 0 steps; and a run whose end is nearer than one step takes that one step
+  // (below 1e-9 of a step it took none). Worked out again when the step falls, the count is as
+  // it always was (the step within 1e-9 of a step of the end is the last), only clamped.
   constexpr double kMostSteps = 1e10;
   auto last_step = [&](long s0, Real t0, Real h) {
     const double q = (c.t_end - t0) / h;
-    if (!(q <= kMostSteps) && c.max_steps <= 0)
+    if (s0 == 0 && !(q <= kMostSteps) && c.max_steps <= 0)
       fail(
           "{}: [time] end = {:.6g} s from t = {:.6g} s at a step of {:.4g} s ({}) is {:.3g} steps, more than "
           "{:.0e}: check the end, the step and the materials that set it (E, density), or bound the run by [time] "
           "max_steps",
           c.path, c.t_end, t0, h, c.dt > 0 && h == c.dt ? "[time] dt" : "limited by " + limiter_text(crit), q,
           kMostSteps);
-    const long n = q > 0 ? s0 + std::max(1L, static_cast<long>(std::ceil(std::min(q, kMostSteps) - 1e-9))) : s0;
+    const long rest = static_cast<long>(std::ceil(std::min(q, kMostSteps) - 1e-9));
+    const long n = s0 + (s0 == 0 && q > 0 ? std::max(1L, rest) : std::max(0L, rest));
     return c.max_steps > 0 ? std::min(n, c.max_steps) : n;
   };
   if (c.t_end < dt)

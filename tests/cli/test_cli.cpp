@@ -333,9 +333,10 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
   EXPECT_NE(rf.out.find("'mine.txt' is not a run's frame"), std::string::npos) << rf.out;
   EXPECT_EQ(slurp(out / "frames" / "mine.txt"), "mine");
   EXPECT_EQ(slurp(out / "summary.json"), before);
-  // An end nearer than one step: that one step, said (it took none and "completed").
+  // An end nearer than 1e-9 of a step (the cantilever's is about 3e-6 s): that one step, said
+  // (it took none and "completed").
   const fs::path one = dir_ / "one_step";
-  const Result r = run("run " + write("one.toml", good_).string() + " --out " + one.string() + " --set time.end=1e-12");
+  const Result r = run("run " + write("one.toml", good_).string() + " --out " + one.string() + " --set time.end=1e-18");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("shorter than one step"), std::string::npos) << r.out;
   EXPECT_EQ(dspdem::read_run_summary((one / "summary.json").string()).steps, 1);
@@ -463,15 +464,17 @@ TEST_F(Cli, MeshCommandWritesMshAndQuality) {
 }
 
 TEST_F(Cli, AMeshSizeGmshCannotMeshIsAnErrorNamingTheKeyNotAnAbort) {
-  // gmsh throws this one inside its own OpenMP region, where nothing catches it: the process
-  // used to abort (134) with "terminate called after throwing an instance of 'std::string'".
+  // gmsh threw ("identical points in triangulation") inside its own OpenMP region, where nothing
+  // catches it: the process aborted (134) with "terminate called after throwing an instance of
+  // 'std::string'", until a terminate handler named the mesh. Since session 107 the generator
+  // refuses such a size before gmsh meshes anything (meshing/generator.hpp, check_tet_count);
+  // the handler stays for gmsh's other throws, with no input left that reaches one quickly.
   // stdin from /dev/null: gmsh must not wait there for an answer to its large-mesh question.
   const Result r = run("mesh " + std::string(DSPDEM_SOURCE_DIR) +
                        "/cases/sphere_impact.toml --set mesh.sphere_plate.size=1e-6 --out " + (dir_ / "m").string() +
                        " < /dev/null");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("error: gmsh:"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("mesh.sphere_plate.size = 1e-06 m"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("error: mesh.sphere_plate.size = 1e-06: about"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "m" / "sphere_impact.msh"));
 }
 
