@@ -18,6 +18,8 @@ void build_galvez_beam(const Params& p) {
   const char* names[4] = {"support_left_x", "support_right_x", "load_inner_x", "load_outer_x"};
   if (a >= D) param_error(p, "notch_depth", "the notch must be shallower than the beam depth");
   check_tet_count(p, "size", L * D * B, h);
+  if (p["band_size"] > 0 && p["band_max_x"] > p["band_min_x"])
+    check_tet_count(p, "band_size", (p["band_max_x"] - p["band_min_x"]) * D * B, p["band_size"]);
   if (w >= L / 4) param_error(p, "notch_width", "too wide for the beam");
   if (h > D / 3) param_error(p, "size", "larger than a third of the beam depth");
   for (int i = 0; i < 4; ++i) {

@@ -64,7 +64,7 @@ void check_count(const Params& p, const std::string& key, double count, const st
 }
 
 void check_tet_count(const Params& p, const std::string& key, double volume, double h) {
-  check_count(p, key, 5 * volume / (h * h * h), fmt::format("5 tetrahedra a size cubed over {:.3g} m^3", volume));
+  check_count(p, key, 4 * volume / (h * h * h), fmt::format("4 tetrahedra a size cubed over {:.3g} m^3", volume));
 }
 
 const std::vector<Generator>& registry() {

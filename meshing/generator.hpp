@@ -33,9 +33,10 @@ struct Params {
 /// count (gmsh went on filling the machine's memory, then aborted).
 inline constexpr double kMostElements = 1e8;
 /// Before meshing: param_error naming `key` when a uniform size `h` over `volume` [m^3] would
-/// give more than kMostElements tetrahedra, at 5 a size cubed (gmsh's count for the Brazilian
-/// disc's default size is 4.7). Local refinements (a contact or a notch size) are not counted:
-/// a guard against a mistyped size, not an estimate of the mesh.
+/// give more than kMostElements tetrahedra, at 4 a size cubed (gmsh's count for the Brazilian
+/// disc's default size is 4.7: a target_elements within its range is not refused as its size is
+/// rescaled). Graded refinements (a contact, a notch or a load size) are not counted: a guard
+/// against a mistyped size, not an estimate of the mesh.
 void check_tet_count(const Params& p, const std::string& key, double volume, double h);
 /// param_error naming `key` when `count` elements, counted as `how`, exceed kMostElements.
 void check_count(const Params& p, const std::string& key, double count, const std::string& how);
