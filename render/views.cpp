@@ -95,6 +95,20 @@ const unsigned char kPalette[20][3] = {{31, 119, 180},  {255, 127, 14},  {44, 16
                                        {152, 223, 138}, {255, 152, 150}, {197, 176, 213}, {196, 156, 148},
                                        {247, 182, 210}, {199, 199, 199}, {219, 219, 141}, {158, 218, 229}};
 
+// Points drawn with their displacement u magnified m times: x - u + m u.
+vtkSmartPointer<vtkPoints> magnified(vtkPoints* x, vtkDataArray* u, double m) {
+  auto pts = vtkSmartPointer<vtkPoints>::New();
+  pts->DeepCopy(x);
+  for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
+    double p[3], d[3];
+    pts->GetPoint(i, p);
+    u->GetTuple(i, d);
+    for (int k = 0; k < 3; ++k) p[k] += (m - 1.0) * d[k];
+    pts->SetPoint(i, p);
+  }
+  return pts;
+}
+
 void place_camera(vtkRenderer* r, const ViewOptions& o) {
   const double* b = o.bounds;
   const double c[3] = {0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])};
@@ -129,7 +143,7 @@ struct FrameRenderer::Impl {
   ViewOptions opt;
   OffscreenWindow win;
   vtkNew<vtkRenderer> ren;
-  vtkNew<vtkActor> actor, context_actor, wall_actor, wall_edge_actor;
+  vtkNew<vtkActor> actor, context_actor, crack_lines, wall_actor, wall_edge_actor;
   vtkNew<vtkPolyDataMapper> mapper, context_mapper, wall_mapper, wall_edge_mapper;
   vtkNew<vtkFeatureEdges> wall_edges;
   vtkNew<vtkLookupTable> lut;
@@ -254,12 +268,17 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.actor->GetProperty()->SetOpacity(0.2);
     s.context_actor->SetMapper(s.context_mapper);
     s.context_actor->GetProperty()->SetColor(0.8, 0.05, 0.05);
-    // Their outlines too, in the same red: a crack seen edge-on (the impact beam's cracks
-    // across the section, seen along the width) has no area in the image and was not drawn.
-    s.context_actor->GetProperty()->EdgeVisibilityOn();
-    s.context_actor->GetProperty()->SetEdgeColor(0.8, 0.05, 0.05);
-    s.context_actor->GetProperty()->SetLineWidth(std::max(1.0f, static_cast<float>(o.height) / 360.0f));
     s.ren->AddActor(s.context_actor);
+    // Their edges too, as lines of their own in the same red: a crack seen edge-on (the impact
+    // beam's cracks across the section, seen along the width) has no area in the image and was
+    // not drawn; the surface's own edges are drawn by a shader that emits nothing for a
+    // triangle seen exactly edge-on.
+    s.crack_lines->SetMapper(s.context_mapper);
+    s.crack_lines->GetProperty()->SetRepresentationToWireframe();
+    s.crack_lines->GetProperty()->SetColor(0.8, 0.05, 0.05);
+    s.crack_lines->GetProperty()->SetLineWidth(std::max(1.0f, static_cast<float>(o.height) / 360.0f));
+    s.crack_lines->GetProperty()->LightingOff();
+    s.ren->AddActor(s.crack_lines);
     // The key, bottom left, each line in the colour it names, the grey darker than the
     // translucent bodies look, to be read (a panel of a montage too: a figure is cut from it
     // on its own).
@@ -339,20 +358,7 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
     vtkDataArray* state = joints->GetCellData()->GetArray("state");
     vtkNew<vtkPolyData> cracks;
     vtkNew<vtkCellArray> polys;
-    if (magnify != 1.0) {
-      vtkNew<vtkPoints> pts;
-      pts->DeepCopy(joints->GetPoints());
-      for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
-        double p[3], d[3];
-        pts->GetPoint(i, p);
-        ju->GetTuple(i, d);
-        for (int k = 0; k < 3; ++k) p[k] += (magnify - 1.0) * d[k];
-        pts->SetPoint(i, p);
-      }
-      cracks->SetPoints(pts);
-    } else {
-      cracks->SetPoints(joints->GetPoints());
-    }
+    cracks->SetPoints(magnify != 1.0 ? magnified(joints->GetPoints(), ju, magnify).GetPointer() : joints->GetPoints());
     for (vtkIdType c = 0; c < joints->GetNumberOfCells(); ++c)
       if (state->GetComponent(c, 0) > 1.5) {
         vtkIdList* ids = joints->GetCell(c)->GetPointIds();
@@ -368,16 +374,7 @@ vtkSmartPointer<vtkImageData> FrameRenderer::render(vtkUnstructuredGrid* frame, 
   if (magnify != 1.0) {
     vtkDataArray* u = g->GetPointData()->GetArray("displacement");
     if (!u) fail("frame '{}' has no displacement array, needed for magnify = {}", file, magnify);
-    vtkNew<vtkPoints> pts;
-    pts->DeepCopy(frame->GetPoints());
-    for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
-      double p[3], d[3];
-      pts->GetPoint(i, p);
-      u->GetTuple(i, d);
-      for (int k = 0; k < 3; ++k) p[k] += (magnify - 1.0) * d[k];
-      pts->SetPoint(i, p);
-    }
-    g->SetPoints(pts);
+    g->SetPoints(magnified(frame->GetPoints(), u, magnify));
   }
   if (o.view == "stress") {
     const std::vector<double> v = field_values(g, o.field, file);
