@@ -205,9 +205,8 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
   s.ren->AddViewProp(s.time_text);
   // A magnified drawing says so on a line of its own below the time: the scale bar holds for
   // the bodies' places, not for their displacements.
-  s.magnify_text->GetTextProperty()->SetFontSize(std::max(12, o.height / 30));
-  s.magnify_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
-  s.magnify_text->SetPosition(10, o.height - 14 - 2 * std::max(12, o.height / 30));
+  s.magnify_text->GetTextProperty()->ShallowCopy(s.time_text->GetTextProperty());
+  s.magnify_text->SetPosition(10, o.height - 14 - 2 * s.time_text->GetTextProperty()->GetFontSize());
   s.magnify_text->SetVisibility(false);
   s.ren->AddViewProp(s.magnify_text);
   if (o.view == "stress") {

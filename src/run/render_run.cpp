@@ -35,6 +35,13 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 
+// Whether `t` is all of a whole number (strtol alone takes "3x" as 3 and "" as 0).
+bool whole_number(const std::string& t, long& v) {
+  char* end = nullptr;
+  v = std::strtol(t.c_str(), &end, 10);
+  return !t.empty() && *end == '\0';
+}
+
 std::vector<std::size_t> select_frames(const std::string& spec, std::size_t n) {
   std::vector<std::size_t> out;
   if (spec == "all") {
@@ -43,17 +50,15 @@ std::vector<std::size_t> select_frames(const std::string& spec, std::size_t n) {
     out.push_back(n - 1);
   } else if (spec.rfind("every:", 0) == 0) {
     const std::string stride = spec.substr(6);
-    char* end = nullptr;
-    const long k = std::strtol(stride.c_str(), &end, 10);
-    DSPDEM_CHECK(!stride.empty() && *end == '\0' && k > 0,
-                 "--frames {}: the stride '{}' is not a positive whole number", spec, stride);
+    long k = 0;
+    DSPDEM_CHECK(whole_number(stride, k) && k > 0, "--frames {}: the stride '{}' is not a positive whole number", spec,
+                 stride);
     for (std::size_t i = 0; i < n; i += static_cast<std::size_t>(k)) out.push_back(i);
   } else {
     std::stringstream ss(spec);
     for (std::string t; std::getline(ss, t, ',');) {
-      char* end = nullptr;
-      const long i = std::strtol(t.c_str(), &end, 10);
-      DSPDEM_CHECK(!t.empty() && *end == '\0' && i >= 0 && static_cast<std::size_t>(i) < n,
+      long i = 0;
+      DSPDEM_CHECK(whole_number(t, i) && i >= 0 && static_cast<std::size_t>(i) < n,
                    "--frames {}: '{}' is not a frame index (the run has {} frames)", spec, t, n);
       out.push_back(static_cast<std::size_t>(i));
     }

@@ -593,6 +593,9 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   constexpr std::size_t kFragmentRows = 20;
   auto& frames = ls.frames;
   auto& joint_frames = ls.joint_frames;
+  // The joints' mid-surface displacement where the frames have the nodes' (the renderer's magnify).
+  const Real* const joints_x0 =
+      std::find(c.fields.begin(), c.fields.end(), "displacement") != c.fields.end() ? fem.x0.data() : nullptr;
   auto write_frame = [&]() {
     // Distributed: the ghosts of the pieces' points at their owners' end-of-step velocities
     // (the step leaves them at mid-step: only own nodes take the last half kick).
@@ -640,10 +643,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (my_rank == 0) write_pvd(pvd, frames);
     if (whole_joints > 0) {
       const std::string jname = fmt::format("joints_{:04d}.{}", joint_frames.size(), ext);
-      // The mid-surface's displacement where the frame has the nodes' (the renderer's magnify).
-      const bool disp = std::find(c.fields.begin(), c.fields.end(), "displacement") != c.fields.end();
-      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(),
-                       disp ? fem.x0.data() : nullptr, c.compress, model.joint_owned, my_rank, n_ranks);
+      write_joints_vtu((fs::path(frames_dir) / jname).string(), model.joints, it.x().data(), joints_x0, c.compress,
+                       model.joint_owned, my_rank, n_ranks);
       joint_frames.emplace_back(it.time(), "frames/" + jname);
       if (my_rank == 0) write_pvd(joints_pvd, joint_frames);
     }

@@ -174,11 +174,11 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   for (std::size_t i = 0; i < std::min<std::size_t>(3, r.mass_fractions.size()); ++i)
     fr += fmt::format("{} {:.3f}", i ? "," : "", r.mass_fractions[i]);
   doc.para(fmt::format("{} fragments; largest mass fractions{}.", r.fragments, fr));
+  // The case's magnification (the paper's Fig. 14 draws x100), said beside the images as on them.
+  const std::string drawn = c.render.magnify != 1 ? fmt::format(" (displacement x{:g})", c.render.magnify) : "";
   if (!a.no_render)
     for (const std::string view : {"cracks", "fragments", "stress"}) {
-      // The case's magnification (the paper's Fig. 14 draws x100) is said here as on the image.
-      doc.para(c.render.magnify != 1 ? fmt::format("{}, last frame (displacement drawn x{:g}):", view, c.render.magnify)
-                                     : view + ", last frame:");
+      doc.para(view + ", last frame" + drawn + ":");
       doc.figure("", fmt::format("images/{}/frame_{:04d}.png", view, r.last_frame));
       doc.animation(view + ", every frame", "images/" + view, "images/" + view + "/frame_0000.png");
     }
@@ -231,7 +231,6 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
              yes(r.ke_ratio_peak < 0.05), test},
             report::balance_row(r.balance_max, test)};
   if (!a.no_render) {
-    const std::string drawn = c.render.magnify != 1 ? fmt::format(" (displacement x{:g})", c.render.magnify) : "";
     doc.thumbnail("cracks at the end" + drawn, fmt::format("images/cracks/frame_{:04d}.png", r.last_frame));
     doc.thumbnail("stress at the end" + drawn, fmt::format("images/stress/frame_{:04d}.png", r.last_frame));
   }
