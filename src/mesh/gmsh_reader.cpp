@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/file.hpp"
 #include "core/log.hpp"
+#include "mesh/geo_check.hpp"
 #include "mesh/msh_check.hpp"
 
 namespace dspdem {
@@ -213,6 +214,8 @@ Mesh read_gmsh(const std::string& path, const std::string& save_as) {
     // gmsh trusts the file (a missing node crashes it): the text is checked first, and
     // its faults are named by line.
     check_msh_text(path, read_file(path, "mesh file"));
+  } else {
+    check_geo_script(path, read_file(path, "mesh file"));
   }
   GmshSession session;
   try {

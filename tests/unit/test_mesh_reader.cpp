@@ -142,3 +142,36 @@ TEST(MeshReader, AnUnreadableFileDoesNotBreakLaterReads) {
   expect_error("bad.geo", "Point(1) = {0, 0, 0, ;\n", {"line 1", "syntax error"});
   expect_tet(read_gmsh(write_file("after_bad.msh", kTetV2)));
 }
+
+// A .geo's commands that act outside the model are refused by line before gmsh runs anything:
+// a case file is often someone else's, run in batch on a shared server.
+TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
+  const fs::path marker = fs::temp_directory_path() / "dspdem_mesh_reader" / "system_call_ran";
+  fs::remove(marker);
+  const std::string box = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nMesh.MeshSizeMax = 0.6;\n";
+  expect_error("system_call.geo", box + "SystemCall \"touch " + marker.string() + "\";\n",
+               {"line 4", "SystemCall", "does not run it"});
+  EXPECT_FALSE(fs::exists(marker)) << "the script's command ran";
+  for (const char* cmd : {"NonBlockingSystemCall \"true\";", "Exit;", "CreateDir \"made\";", "Save \"copy.msh\";",
+                          "Print \"view.png\";", "OnelabRun(\"x\", \"true\");"})
+    expect_error("refused.geo", box + "  " + cmd + "\n", {"line 4", std::string(cmd).substr(0, 4)});
+  // Printf writes into a file only past its parenthesis: "a > b" inside is a comparison.
+  expect_error("printf.geo", box + "Printf(\"%g\", 2 > 1) >> \"out.txt\";\n", {"line 4", "Printf into a file"});
+  // Include and Merge: a name the script makes is not checked, so it is refused; a file
+  // included is checked as its kind is read.
+  expect_error("include_made.geo", box + "Include StrCat(\"a\", \".geo\");\n", {"line 4", "in quotes"});
+  write_file("inner_bad.geo", "// an included script\n\nExit;\n");
+  expect_error("include_bad.geo", box + "Include \"inner_bad.geo\";\n", {"inner_bad.geo", "line 3", "Exit"});
+  expect_error("merge_py.geo", box + "Merge \"solver.py\";\n", {"line 4", "solver.py"});
+  expect_error("include_self.geo", box + "Include \"include_self.geo\";\n", {"nested more than 16"});
+  expect_error("open_comment.geo", box + "/* never closed\n", {"line 4", "never closed"});
+
+  // What a meshing script uses is read: comments and strings naming the commands, option
+  // categories of the same names, Printf to the terminal, an included script.
+  write_file("inner_ok.geo", "Physical Volume(\"solid\") = {1};\n");
+  const Mesh m = read_gmsh(write_file("fine.geo", box + "// SystemCall \"rm -rf /\"; in a comment\n"
+                                                        "/* Exit; */ Printf(\"Exit; SystemCall > x\");\n"
+                                                        "Print.Width = 800;\nInclude \"inner_ok.geo\";\n"));
+  EXPECT_GT(m.n_elements(), 0);
+  EXPECT_NE(m.find_group("solid"), nullptr);
+}
