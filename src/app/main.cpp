@@ -5,6 +5,7 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -22,6 +23,7 @@
 #include "render/image_compare.hpp"
 #include "run/checkpoint.hpp"
 #include "run/montage.hpp"
+#include "run/render_args.hpp"
 #include "run/render_run.hpp"
 #include "run/run_case.hpp"
 #include "scenes/registry.hpp"
@@ -42,6 +44,31 @@ const CLI::Validator kFiniteNonNegative = number_check(
     "NONNEGATIVE", [](double x) { return x >= 0; }, "a finite number >= 0");
 const CLI::Validator kFinitePositive = number_check(
     "POSITIVE", [](double x) { return x > 0; }, "a finite number > 0");
+// Speeds given as comma lists, once or repeated: every entry a finite number > 0, none empty.
+std::vector<double> speed_list(const std::vector<std::string>& texts, const std::string& option) {
+  std::vector<double> out;
+  for (const auto& text : texts) {
+    std::size_t from = 0;
+    while (true) {
+      const std::size_t comma = std::min(text.find(',', from), text.size());
+      const std::string entry = text.substr(from, comma - from);
+      char* end = nullptr;
+      const double v = std::strtod(entry.c_str(), &end);
+      DSPDEM_CHECK(!entry.empty() && *end == '\0' && std::isfinite(v) && v > 0,
+                   "{} {}: '{}' is not a speed (a finite number > 0, in m/s)", option, text, entry);
+      out.push_back(v);
+      if (comma == text.size()) break;
+      from = comma + 1;
+    }
+  }
+  return out;
+}
+
+// An empty --out would mean the default folder, not the one the user meant to name.
+const CLI::Validator kNotEmpty(
+    [](std::string& v) { return v.empty() ? std::string("must name a path, got an empty text") : std::string(); },
+    "PATH");
+
 const CLI::Validator kFraction = number_check(
     "FRACTION", [](double x) { return x >= 0 && x <= 1; }, "a number in [0, 1]");
 
@@ -65,7 +92,7 @@ int run_main(int argc, char** argv) {
   double checkpoint_every = 0;
   double checkpoint_wall = kCheckpointWallDefault;
   auto* run_case_opt = run->add_option("case", case_file, "Case file (TOML); none with --restart");
-  run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)");
+  run->add_option("-o,--out", out_dir, "Output directory (default: results/<case name>)")->check(kNotEmpty);
   auto* run_set_opt =
       run->add_option("--set", sets, "Override a case key: section.key=value (repeatable; value in TOML syntax)");
   auto* restart_opt =
@@ -105,7 +132,7 @@ int run_main(int argc, char** argv) {
   std::string mesh_case_file, mesh_out;
   std::vector<std::string> mesh_sets;
   mesh->add_option("case", mesh_case_file, "Case file (TOML)")->required();
-  mesh->add_option("-o,--out", mesh_out, "Output directory (default: results/<case name>/mesh)");
+  mesh->add_option("-o,--out", mesh_out, "Output directory (default: results/<case name>/mesh)")->check(kNotEmpty);
   mesh->add_option("--set", mesh_sets, "Override a case key: section.key=value (repeatable)");
 
   auto* rend = app.add_subcommand(
@@ -118,10 +145,13 @@ int run_main(int argc, char** argv) {
       ->expected(1, -1);
   rend->add_option("--montage", ma.out,
                    "Write one PNG image OUT of the given runs side by side (a column per run, a row per --rows "
-                   "entry) at --time; .png is added to a name that does not end in it");
+                   "entry) at --time; .png is added to a name that does not end in it")
+      ->check(kNotEmpty);
   rend->add_option("--time", ma.time, "--montage: simulated time of the frames [s] (default: each run's last frame)")
       ->check(kFiniteNonNegative);  // a negative one read as "the last frame", an infinite one as the first
-  rend->add_option("--label", ma.labels, "--montage: a label per run, in order (default: the folders' names)");
+  rend->add_option("--label", ma.labels,
+                   "Text in the corner in place of the case's name; with --montage a label per run, in order "
+                   "(default: the folders' names)");
   rend->add_option("--rows", ma.rows,
                    "--montage: rows as view or view:cut, e.g. fragments:z fragments cracks (default: fragments)")
       ->delimiter(',');
@@ -138,7 +168,8 @@ int run_main(int argc, char** argv) {
                    "OMP_NUM_THREADS, else one per core)")
       ->check(CLI::Range(1, 256));  // as report's -j
   rend->add_option("--out", ra.out_dir,
-                   "Write OUT/images/ instead of the run's images/ (the run's folder is then only read)");
+                   "Write OUT/images/ instead of the run's images/ (the run's folder is then only read)")
+      ->check(kNotEmpty);
   rend->add_flag("--no-animation", ra.no_animation, "Skip the animations");
   rend->add_flag("--edges", ra.edges, "Draw the element edges (stress and fragments views)");
   rend->add_option("--worker", ra.worker, "internal: render a share of the frames")->group("");
@@ -150,7 +181,7 @@ int run_main(int argc, char** argv) {
   auto* scn = app.add_subcommand("scenes", "List the benchmark scenes dspdem report knows ([case] scene = \"...\")");
   report::ReportArgs rpa;
   rep->add_option("case", rpa.case_file, "Case file (TOML)")->required();
-  rep->add_option("-o,--out", rpa.out_dir, "Output directory (default: results/<case name>_report)");
+  rep->add_option("-o,--out", rpa.out_dir, "Output directory (default: results/<case name>_report)")->check(kNotEmpty);
   rep->add_option("--set", rpa.sets, "Override a case key: section.key=value (repeatable)");
   rep->add_flag("--study", rpa.study, "Also run the sweep over mesh sizes and accuracy knobs");
   rep->add_flag("--no-render", rpa.no_render, "Skip the frame images and animations");
@@ -159,13 +190,12 @@ int run_main(int argc, char** argv) {
                   "report's folder, repeatable to merge several reports' runs of the same case (each run taken from "
                   "the first folder that has it)")
       ->allow_extra_args(false);
-  rep->add_option("--speeds", rpa.speeds, "Impact speeds of a scene's velocity sweep [m/s] (the sphere impact)")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber);
-  rep->add_option("--study-speeds", rpa.study_speeds,
-                  "Impact speeds of the sphere impact's study [m/s] (default 7.5,20; each costs a mesh x2 and x4 run)")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+  // Read as text and split here: CLI11's delimiter drops an empty entry ("5,,7" ran two speeds).
+  std::vector<std::string> speeds_text, study_speeds_text;
+  rep->add_option("--speeds", speeds_text,
+                  "Impact speeds of a scene's velocity sweep [m/s] (the sphere impact), comma-separated");
+  rep->add_option("--study-speeds", study_speeds_text,
+                  "Impact speeds of the sphere impact's study [m/s] (default 7.5,20; each costs a mesh x2 and x4 run)");
   rep->add_option("--realisations", rpa.realisations,
                   "Runs per speed of a velocity sweep, the first the case itself, the others with the mesh turned "
                   "another way (mesh.<generator>.orientation): how often each speed gives the pattern")
@@ -197,7 +227,7 @@ int run_main(int argc, char** argv) {
       "figures against the paper, thumbnails linking to its report page, its animation");
   FiguresArgs fga;
   fig->add_option("cases", fga.cases, "Case files, one per scene (default: every scene's shipped case)");
-  fig->add_option("-o,--out", fga.out, "Output directory of the site (default: results/figures)");
+  fig->add_option("-o,--out", fga.out, "Output directory of the site (default: results/figures)")->check(kNotEmpty);
   fig->add_flag("--quick", fga.quick, "CI-sized meshes and runs, no studies (the whole set in minutes on 2 cores)");
   bool fig_no_study = false;
   fig->add_flag("--no-study", fig_no_study, "Full set without the speed-against-error studies (hours less)");
@@ -263,20 +293,25 @@ int run_main(int argc, char** argv) {
         DSPDEM_CHECK(ra.out_dir.empty(), "render: --out and --montage: the montage is written to --montage's file");
         ma.run_dirs = render_dirs;
         ma.camera = ra.camera, ma.field = ra.field, ma.range = ra.range;
-        if (!ra.size.empty())
-          DSPDEM_CHECK(std::sscanf(ra.size.c_str(), "%dx%d", &ma.width, &ma.height) == 2,
-                       "--size {}: expected WIDTHxHEIGHT", ra.size);
+        if (!ra.size.empty()) parse_image_size(ra.size, "--size", ma.width, ma.height);
         write_montage(ma);
         return 0;
       }
       DSPDEM_CHECK(render_dirs.size() == 1,
                    "render: {} run folders given; several are drawn together only with --montage OUT.png",
                    render_dirs.size());
-      DSPDEM_CHECK(ma.labels.empty() && ma.time < 0, "render: --time and --label go with --montage");
+      DSPDEM_CHECK(ma.time < 0, "render: --time goes with --montage");
+      DSPDEM_CHECK(ma.labels.size() <= 1, "render: {} labels for one run folder (several go with --montage)",
+                   ma.labels.size());
+      if (!ma.labels.empty()) ra.label = ma.labels.front();
       ra.run_dir = render_dirs[0];
       return render_command(ra);
     }
-    if (*rep) return report_command(rpa);
+    if (*rep) {
+      rpa.speeds = speed_list(speeds_text, "--speeds");
+      rpa.study_speeds = speed_list(study_speeds_text, "--study-speeds");
+      return report_command(rpa);
+    }
     if (*fig) {
       fga.threads = threads;
       fga.study = !fig_no_study;
@@ -335,6 +370,8 @@ int run_main(int argc, char** argv) {
       DSPDEM_CHECK(!estimate || par::size() == 1,
                    "run --estimate: the case is set up and timed on one process (without mpirun)");
       const CaseConfig c = read_case(case_file, sets);
+      // A misspelt scene would surface only at the report, after the run's hours.
+      if (!c.scene.empty()) (void)scenes::of_case(c);
       opt.sets = sets;
       opt.out_dir = out_dir.empty() ? (std::filesystem::path("results") / c.name).string() : out_dir;
       // A finished run supersedes an interrupted or killed one in its folder, checkpoint and all

@@ -18,6 +18,7 @@
 #include "render/offscreen.hpp"
 #include "render/series.hpp"
 #include "render/views.hpp"
+#include "run/render_args.hpp"
 #include "run/wall_shapes.hpp"
 
 namespace dspdem {
@@ -111,6 +112,15 @@ MontageFrames write_montage(const MontageArgs& a) {
       const CaseConfig cr = r == 0 || !fs::exists(rc) ? c : read_case(rc.string());
       walls.push_back(wall_surfaces(cr.walls, grids.back(), base.bounds));
     }
+    if (r == 0 && a.frame_walls && walls.back() && walls.back()->GetNumberOfPoints() > 0) {
+      // The drawn frame's bodies and the walls: a heap in its box, not the cloud it fell from.
+      double b[6], w[6];
+      grids.back()->GetBounds(b);
+      walls.back()->GetBounds(w);
+      for (int k = 0; k < 3; ++k)
+        base.bounds[2 * k] = std::min(b[2 * k], w[2 * k]),
+                        base.bounds[2 * k + 1] = std::max(b[2 * k + 1], w[2 * k + 1]);
+    }
     if (cracks) {
       DSPDEM_CHECK(fs::exists(fs::path(a.run_dirs[r]) / "joints.pvd"),
                    "--montage: a cracks row needs the joints dataset, which run '{}' does not have", a.run_dirs[r]);
@@ -126,9 +136,7 @@ MontageFrames write_montage(const MontageArgs& a) {
   }
   if (std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.view == "stress"; })) {
     if (!a.range.empty()) {
-      DSPDEM_CHECK(
-          std::sscanf(a.range.c_str(), "%lf:%lf", &base.range[0], &base.range[1]) == 2 && base.range[1] > base.range[0],
-          "--range {}: expected MIN:MAX with MIN < MAX", a.range);
+      parse_range(a.range, "--range", base.range[0], base.range[1]);
     } else {  // one colour range over every panel, 0.5th to 99.5th percentile
       std::vector<double> v;
       for (std::size_t r = 0; r < grids.size(); ++r) {

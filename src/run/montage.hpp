@@ -18,7 +18,10 @@ struct MontageArgs {
   std::string field;              ///< stress rows: default the first run's case
   std::string range;              ///< stress rows: MIN:MAX (default: 0.5-99.5 percentiles over the panels)
   int width = 640, height = 480;  ///< of one panel
-  std::string out;                ///< PNG to write, through a temporary name; ".png" is added to a name without it
+  /// Frame the panels on the first run's drawn frame and its walls (a heap in its box) instead
+  /// of on its first frame's bodies (what moves stays in view).
+  bool frame_walls = false;
+  std::string out;  ///< PNG to write, through a temporary name; ".png" is added to a name without it
 };
 
 /// What a montage drew: per run, the frame used and its time.

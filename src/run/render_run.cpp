@@ -27,6 +27,7 @@
 #include "render/plot.hpp"
 #include "render/series.hpp"
 #include "render/views.hpp"
+#include "run/render_args.hpp"
 #include "run/series_units.hpp"
 #include "run/wall_shapes.hpp"
 
@@ -119,6 +120,7 @@ void spawn_workers(const RenderArgs& a, const render::ViewOptions& o, int jobs, 
                                      "--size",
                                      fmt::format("{}x{}", o.width, o.height)};
     if (o.edges) args.push_back("--edges");
+    if (!a.label.empty()) args.push_back("--label"), args.push_back(a.label);
     for (const auto& v : a.views) args.push_back("--view"), args.push_back(v);
     // Its messages on our stderr. In a group of its own, so that it is stopped when this render
     // dies, however it dies (stop_with_parent): none draws on into a folder whose lock is gone.
@@ -163,12 +165,10 @@ int render_command(const RenderArgs& in) {
   o.cut = a.cut.empty() ? rc.cut : a.cut;
   o.magnify = a.magnify > 0 ? a.magnify : rc.magnify;
   o.width = rc.width, o.height = rc.height;
-  if (!a.size.empty()) {
-    DSPDEM_CHECK(std::sscanf(a.size.c_str(), "%dx%d", &o.width, &o.height) == 2, "--size {}: expected WIDTHxHEIGHT",
-                 a.size);
-  }
+  if (!a.size.empty()) parse_image_size(a.size, "--size", o.width, o.height);
   o.background = {rc.background(0), rc.background(1), rc.background(2)};
   o.title = c.name;
+  o.label = a.label;
   o.edges = a.edges || rc.edges;
 
   const std::vector<render::FrameRef> frames = render::read_series(a.run_dir);
@@ -194,8 +194,7 @@ int render_command(const RenderArgs& in) {
     }
   }
   if (!a.range.empty()) {
-    DSPDEM_CHECK(std::sscanf(a.range.c_str(), "%lf:%lf", &o.range[0], &o.range[1]) == 2 && o.range[1] > o.range[0],
-                 "--range {}: expected MIN:MAX with MIN < MAX", a.range);
+    parse_range(a.range, "--range", o.range[0], o.range[1]);
   } else if (std::find(a.views.begin(), a.views.end(), "stress") != a.views.end()) {
     auto_range(frames, sel, o, rc);
   }

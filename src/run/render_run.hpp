@@ -19,6 +19,7 @@ struct RenderArgs {
   bool no_animation = false;
   bool edges = false;  ///< element edges (or the case's [render] edges)
   std::string worker;  ///< "k/N": render only frames i with i % N == k (internal)
+  std::string label;   ///< written in the corner in place of the case's name (a sweep's speed)
 };
 
 int render_command(const RenderArgs& a);

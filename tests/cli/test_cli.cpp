@@ -904,9 +904,36 @@ TEST_F(Cli, ReportRefusesACaseWithoutASceneAndListsTheScenes) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("scene = \"galvez\" is not a scene"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "report.md"));
+  // A run refuses the unknown scene too, before it runs: it would surface only at the report.
+  r = run("run " + c.string() + " --out " + (dir_ / "run").string() + " --set case.scene=galvez");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("scene = \"galvez\" is not a scene"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "run" / "summary.json"));
   r = run("scenes");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.out.find("brazilian_disc"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, SpeedListsAndOutputFoldersAreReadWhole) {
+  // CLI11's delimiter dropped an empty entry: "5,,7" ran two speeds. And an empty --out meant
+  // the default folder, not the one the user meant to name.
+  const std::string sphere = (fs::path(DSPDEM_SOURCE_DIR) / "cases/sphere_impact.toml").string();
+  const std::string out = " --out " + (dir_ / "rep").string();
+  for (const std::string& bad :
+       {std::string("--speeds 5,,7"), std::string("--speeds 5,"), std::string("--speeds 0"),
+        std::string("--speeds nan"), std::string("--speeds 5x"), std::string("--study-speeds 7.5,,20")}) {
+    const Result r = run("report " + sphere + out + " --no-render " + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.out;
+    EXPECT_NE(r.out.find("is not a speed"), std::string::npos) << bad << ": " << r.out;
+    EXPECT_FALSE(fs::exists(dir_ / "rep")) << bad;
+  }
+  const fs::path c = write("cantilever.toml", good_);
+  for (const std::string& cmd : {"run " + c.string(), "mesh " + c.string(), "report " + sphere})
+    for (const char* opt : {" --out ''", " -o ''"}) {
+      const Result r = run(cmd + opt);
+      EXPECT_EQ(r.code, 1) << cmd << opt << ": " << r.out;  // a command-line error, as CLI11's own
+      EXPECT_NE(r.out.find("must name a path"), std::string::npos) << r.out;
+    }
 }
 
 TEST_F(Cli, WallsNeedContactAndNameTheirKey) {

@@ -74,6 +74,16 @@ TEST(Render, SameInputGivesIdenticalImages) {
   const std::string first = slurp(a);
   ASSERT_EQ(sh(bin() + " -q render " + out.string() + " --frames last").code, 0);
   EXPECT_EQ(slurp(a), first) << "two renders of the same frame differ";
+  // A label in place of the case's name (a sweep's speed), drawn by the render's workers too
+  // (-j 2 splits the frames between two processes): every frame differs from its unlabelled self.
+  const std::string all = bin() + " -q render " + out.string() + " --no-animation -j 2";
+  ASSERT_EQ(sh(all).code, 0);
+  std::map<fs::path, std::string> plain;
+  for (const auto& e : fs::directory_iterator(out / "images" / "fragments"))
+    if (e.path().extension() == ".png") plain[e.path()] = slurp(e.path());
+  ASSERT_GE(plain.size(), 2u);
+  ASSERT_EQ(sh(all + " --label '7.5 m/s'").code, 0);
+  for (const auto& [p, bytes] : plain) EXPECT_NE(slurp(p), bytes) << p << " was drawn without its label";
 }
 
 // The cracks view's envelope merges the elements' coincident nodes; VTK's threaded merge
@@ -303,6 +313,12 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
       {"--frames 1,,2", "'' is not a frame index"},                             // it read 0
       {"--frames every:3x", "the stride '3x' is not a positive whole number"},  // it read 3
       {"--frames every:", "the stride '' is not a positive whole number"},      // "unexpected failure: stol"
+      {"--size 100x100x5", "expected WIDTHxHEIGHT"},                            // it drew 100x100
+      {"--size 16384x100", "each side must be 16 to 8192"},                     // [render] width's bound
+      {"--range 1:2:3", "expected MIN:MAX"},                                    // it drew 1:2
+      {"--range 2:1", "MIN must be below MAX"},
+      {"--label a --label b", "2 labels for one run folder"},
+      {"--montage " + (out / "m.png").string() + " --size 64x48y", "expected WIDTHxHEIGHT"},
   };
   for (const auto& b : cases) {
     const Result r = sh(bin() + " render " + out.string() + " " + b.args);
@@ -311,8 +327,9 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
   }
   // Command-line errors (exit 1): a montage's time that is not a time (a negative one read as
   // the last frame, an infinite one as the first), no render processes.
-  for (const std::string& a : {"--montage " + (out / "m.png").string() + " --time -1",
-                               "--montage " + (out / "m.png").string() + " --time inf", std::string("-j 0")}) {
+  for (const std::string& a :
+       {"--montage " + (out / "m.png").string() + " --time -1", "--montage " + (out / "m.png").string() + " --time inf",
+        std::string("-j 0"), std::string("--out ''"), std::string("--montage ''")}) {
     const Result r = sh(bin() + " render " + out.string() + " " + a);
     EXPECT_EQ(r.code, 1) << a << ": " << r.out;
     EXPECT_FALSE(fs::exists(out / "m.png")) << a;

@@ -49,6 +49,7 @@ int packing_report(const CaseConfig& c, const report::ReportArgs& a) {
       MontageArgs m;
       m.run_dirs = {run_dir}, m.labels = {fmt::format("final heap, {} view", cam)};
       m.rows = {"fragments"}, m.camera = cam, m.width = 1000, m.height = 600;
+      m.frame_walls = true;  // the first frame is the column of particles, twice the box's height
       m.out = (img / fmt::format("heap_{}.png", cam)).string();
       write_montage(m);
     }

@@ -486,6 +486,8 @@ int sphere_impact_report(const CaseConfig& c, const report::ReportArgs& a) {
       RenderArgs ra;
       ra.run_dir = r.run_dir, ra.out_dir = r.files_dir;
       ra.range = range;
+      // Every speed's run has the case's name: the frames say which speed they show.
+      ra.label = fmt::format("{:g} m/s", r.speed);
       render_command(ra);
     }
   }
