@@ -15,6 +15,8 @@
 
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "core/error.hpp"
 #include "render/offscreen.hpp"
@@ -91,8 +93,38 @@ void show_legend_beside(vtkChartXY* chart) {
   l->SetVerticalAlignment(vtkChartLegend::TOP);
 }
 
-// An axis title with its unit where the column is known to have one.
-std::string axis_title(const std::string& column) { return column == "time" ? "time [s]" : column; }
+// A column's unit where its name says it: series.csv's "time", or a report table's suffix
+// ("time_ms", "load_kN", "error_pct"); "" where the name gives none.
+std::string column_unit(const std::string& column) {
+  if (column == "time") return "s";
+  static const std::pair<const char*, const char*> suffixes[] = {
+      {"_ms", "ms"},   {"_s", "s"}, {"_mm", "mm"}, {"_m", "m"},   {"_kN", "kN"},  {"_N", "N"},
+      {"_MPa", "MPa"}, {"_J", "J"}, {"_kg", "kg"}, {"_pct", "%"}, {"_deg", "deg"}};
+  for (const auto& [suffix, unit] : suffixes) {
+    const std::string_view s(suffix);
+    if (column.size() > s.size() && column.compare(column.size() - s.size(), s.size(), s) == 0) return unit;
+  }
+  return "";
+}
+
+// An axis title with its unit where the column's name gives one: "time_ms" reads "time [ms]".
+std::string axis_title(const std::string& column) {
+  const std::string u = column_unit(column);
+  if (u.empty()) return column;
+  if (column == "time") return "time [s]";
+  const std::size_t cut = column.rfind('_');
+  return column.substr(0, cut) + " [" + u + "]";
+}
+
+// The left axis's title when the plot gives none: one curve's own, or the unit its curves
+// share, so that a plot of several curves is not left with a bare axis.
+std::string y_axis_title(const std::vector<std::string>& y) {
+  if (y.size() == 1) return axis_title(y.front());
+  const std::string u = y.empty() ? "" : column_unit(y.front());
+  for (const auto& c : y)
+    if (column_unit(c) != u) return "";
+  return u.empty() ? "" : "[" + u + "]";
+}
 
 std::size_t column(const std::vector<std::string>& names, const std::string& name, const std::string& file) {
   for (std::size_t i = 0; i < names.size(); ++i)
@@ -142,7 +174,7 @@ void plot_csv(const std::string& csv, const PlotSpec& spec, const std::string& p
   if (!spec.reference_csv.empty()) add_lines(chart, spec.reference_csv, spec, true);
   show_legend_beside(chart);
   chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(spec.x_title.empty() ? axis_title(spec.x) : spec.x_title);
-  chart->GetAxis(vtkAxis::LEFT)->SetTitle(!spec.y_title.empty() ? spec.y_title : spec.y.size() == 1 ? spec.y[0] : "");
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(!spec.y_title.empty() ? spec.y_title : y_axis_title(spec.y));
   chart->SetTitle(spec.title.empty() ? csv : spec.title);
   cw.win.write_png(png);
 }

@@ -11,7 +11,9 @@ struct PlotSpec {
   std::string reference_csv;   ///< optional: CSV with the same x and y column names, drawn dashed
   std::string title;
   int width = 1000, height = 600;
-  std::string x_title = {}, y_title = {};  ///< axis titles with units; default: the column names
+  /// Axis titles with units. By default, the column's name, with its unit where the name ends
+  /// in one ("time_ms" reads "time [ms]"); for several curves, the unit they share.
+  std::string x_title = {}, y_title = {};
 };
 
 /// Plots from `csv` into `png`; throws Error naming the file and column if one is missing.

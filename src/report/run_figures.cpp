@@ -26,11 +26,13 @@ RunPlots::RunPlots(const ReportDirs& d) : run_dir_(d.run_dir), files_dir_(d.file
 }
 
 void RunPlots::operator()(const std::string& csv, const std::string& x, std::vector<std::string> y,
-                          const std::string& title, const std::string& png, const std::string& reference_csv) const {
+                          const std::string& title, const std::string& png, const std::string& reference_csv,
+                          const std::string& y_title) const {
   // series.csv is the run's: with --from-run it was not copied into the report's files.
   const fs::path from = fs::path(csv == "series.csv" ? run_dir_ : files_dir_) / csv;
-  render::plot_csv(from.string(), render::PlotSpec{x, std::move(y), reference_csv, title},
-                   (plots_dir(files_dir_) / png).string());
+  render::PlotSpec spec{x, std::move(y), reference_csv, title};
+  spec.y_title = y_title;
+  render::plot_csv(from.string(), spec, (plots_dir(files_dir_) / png).string());
 }
 
 }  // namespace dspdem::report

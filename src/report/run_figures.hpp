@@ -20,9 +20,10 @@ class RunPlots {
   explicit RunPlots(const ReportDirs& d);
   /// Columns `y` of `csv` against `x` into images/plots/`png`, with `reference_csv` dashed when
   /// given. `csv` is one of the report's files (DIR/run), or the run's own series.csv, which
-  /// with --from-run lies in the run given.
+  /// with --from-run lies in the run given. `y_title` names the left axis of several curves
+  /// (one curve's is its column's name).
   void operator()(const std::string& csv, const std::string& x, std::vector<std::string> y, const std::string& title,
-                  const std::string& png, const std::string& reference_csv = "") const;
+                  const std::string& png, const std::string& reference_csv = "", const std::string& y_title = "") const;
 
  private:
   std::string run_dir_, files_dir_;

@@ -39,7 +39,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
        "load_closure.png");
   plot("profile.csv", "y_mm", {"sigma_xx_MPa", "sigma_yy_MPa"},
        fmt::format("stresses along the loaded diameter at {:.1f} kN [MPa]; dashed: analytic", 1e-3 * r.P_profile),
-       "profile.png", (fs::path(files) / "profile_analytic.csv").string());
+       "profile.png", (fs::path(files) / "profile_analytic.csv").string(), "stress [MPa]");
   plot("series.csv", "time", {"balance_error"}, "energy balance error (fraction of the largest term)",
        "balance_error.png");
 
@@ -84,6 +84,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
                        (check_dir / "profile_analytic.csv").string(),
                        fmt::format("stress check: along the loaded diameter at {:.1f} kN [MPa]; dashed: analytic",
                                    1e-3 * check.P_profile)};
+    s.y_title = "stress [MPa]";
     render::plot_csv((check_dir / "profile.csv").string(), s, (img / "plots" / "profile_check.png").string());
   }
   const std::string study_md =

@@ -246,6 +246,7 @@ std::string run_study(const CaseConfig& base, const DiscResult& reference, const
                          100 * rows[i].second.l2_xx);
   }
   render::PlotSpec s{"wall_s", {"split_error_pct", "l2_xx_pct"}, "", "error [%] against wall time [s]"};
+  s.x_title = "wall time [s]", s.y_title = "error [%]";
   render::plot_csv(csv, s, (fs::path(image_dir) / "plots" / "study.png").string());
   study_md +=
       "| variant | knob | elements | wall time [s] | steps | dt [s] | 2P/(pi D L) [MPa] | vs f_t | L2 sigma_xx | "

@@ -86,13 +86,14 @@ int murray_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   report::draw_run_frames(dirs, a);  // the case's views: fragments, cracks, stress
   const report::RunPlots plot(dirs);
   plot("murray_series.csv", "time_ms", {"midspan_deflection_mm", "max_deflection_mm"},
-       "deflection [mm] against time [ms]: mid-span (bottom) and largest over the bottom face", "deflection.png");
+       "deflection [mm] against time [ms]: mid-span (bottom) and largest over the bottom face", "deflection.png", "",
+       "deflection [mm]");
   plot("murray_series.csv", "time_ms", {"impactor_left_vy", "impactor_right_vy"},
-       "impactor velocity vy [m/s] against time [ms]", "impactor_velocity.png");
+       "impactor velocity vy [m/s] against time [ms]", "impactor_velocity.png", "", "velocity vy [m/s]");
   plot("murray_series.csv", "time_ms", {"impactor_left_kN", "impactor_right_kN", "support_left_kN", "support_right_kN"},
-       "contact force |fy| [kN] on the impactors and supports against time [ms]", "forces.png");
+       "contact force |fy| [kN] on the impactors and supports against time [ms]", "forces.png", "", "force |fy| [kN]");
   plot("fragments_time.csv", "time_ms", {"fragments", "main_pieces"},
-       "fragments and main pieces (>= 5 % of the mass) against time [ms]", "fragments.png");
+       "fragments and main pieces (>= 5 % of the mass) against time [ms]", "fragments.png", "", "pieces");
 
   std::vector<std::vector<std::string>> study_rows;
   if (a.study) {
