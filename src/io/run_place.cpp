@@ -5,6 +5,7 @@
 #include <fstream>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -82,6 +83,28 @@ std::optional<fs::path> kept_below(const fs::path& place) {
        it.increment(e))
     if (marks_a_run(*it) || marks_a_report(*it) || (it.depth() > 0 && marks_a_render_drawing(*it)))
       return it->path().parent_path();
+  return std::nullopt;
+}
+
+// The first entry under a run's images/ that `dspdem render` does not write there: a folder
+// per view (stress, fragments, cracks) of frame_NNNN.png, the view's animations beside it
+// (<view>.ogv, .mp4, .gif, and the <view>.seq folder of links an encoding stages), plots/*.png.
+// Anything else is someone's own, which a replaced run's images going with its frames must
+// not take.
+std::optional<fs::path> not_drawn(const fs::path& images) {
+  static const std::set<std::string> folders = {"stress", "fragments", "cracks", "plots"};
+  static const std::set<std::string> animations = {".ogv", ".mp4", ".gif"};
+  std::error_code e;
+  for (auto it = fs::recursive_directory_iterator(images, e); !e && it != fs::recursive_directory_iterator();
+       it.increment(e)) {
+    const fs::path& p = it->path();
+    const bool dir = it->is_directory(e) && !it->is_symlink(e);
+    const bool ok = it.depth() == 0 ? (dir ? folders.count(p.filename().string()) > 0 || p.extension() == ".seq"
+                                           : animations.count(p.extension().string()) > 0)
+                                    : it.depth() == 1 && !dir && p.extension() == ".png";
+    if (!ok) return p;
+  }
+  if (e) return images;  // unreadable: not known to be drawn
   return std::nullopt;
 }
 }  // namespace
@@ -207,6 +230,7 @@ ReplacedImages remove_replaced_images(const std::string& run_dir) {
   std::error_code ec;
   if (!fs::is_directory(images, ec)) return {};
   if (const auto inside = kept_below(images)) return {ReplacedImages::Fate::holds_inside, inside->string()};
+  if (const auto other = not_drawn(images)) return {ReplacedImages::Fate::not_drawn, other->string()};
   fs::remove_all(images, ec);
   DSPDEM_CHECK(!ec, "cannot remove '{}': {}", images.string(), ec.message());
   return {ReplacedImages::Fate::removed, {}};

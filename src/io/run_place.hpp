@@ -62,16 +62,18 @@ struct ReplacedImages {
     removed,         ///< drawn from the frames replaced, they went with them
     render_drawing,  ///< kept: a render is drawing into the run's folder now
     holds_inside,    ///< kept: a run, a report or a render drawing now lies inside them
+    not_drawn,       ///< kept: they hold a file a render does not write
   };
   Fate fate = Fate::none;
-  std::string inside;  ///< for holds_inside: where that one lies
+  std::string inside;  ///< for holds_inside: where that one lies; for not_drawn: the file
 };
 
 /// The images/ of a run in `run_dir` that a new run has just replaced: removed, under the
 /// folder's render lock, as they were drawn from the frames it replaced; kept when a render is
 /// drawing into the folder now (it may have drawn the new run's frames already) or when a run, a
 /// report or a render drawing now lies inside them (made there by hand: removing them would take
-/// that too).
+/// that too), or when they hold a file a render does not write (<view>/ and plots/ of .png
+/// files, the views' .ogv, .mp4 and .gif): a folder's images/ may be its owner's, not a render's.
 ReplacedImages remove_replaced_images(const std::string& run_dir);
 
 }  // namespace dspdem

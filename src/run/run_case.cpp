@@ -856,6 +856,12 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
             "dspdem render {} --out OTHER)",
             opt.out_dir, images.inside, opt.out_dir);
         break;
+      case ReplacedImages::Fate::not_drawn:
+        log::warn(
+            "{}: its images/ was kept, since it holds {}, which dspdem render does not write; its frames are not this "
+            "run's (draw this one with dspdem render {} --out OTHER)",
+            opt.out_dir, images.inside, opt.out_dir);
+        break;
     }
   }
   // The folder a restart came from (an interrupted run, or the staging folder of a killed

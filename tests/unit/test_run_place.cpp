@@ -222,6 +222,24 @@ TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThemOrARenderDrawsThem
   EXPECT_TRUE(fs::exists(images / "x" / "summary.json"));
   EXPECT_TRUE(fs::exists(images / "stress" / "frame_0040.png"));
   fs::remove_all(images / "x");
+  // A file a render does not write (someone's own, in a folder that held a summary.json): kept.
+  std::ofstream(images / "site_photo.jpg") << "not drawn";
+  const ReplacedImages own = remove_replaced_images(run.string());
+  EXPECT_EQ(own.fate, Fate::not_drawn);
+  EXPECT_EQ(own.inside, (images / "site_photo.jpg").string());
+  EXPECT_TRUE(fs::exists(images / "stress" / "frame_0040.png"));
+  fs::remove(images / "site_photo.jpg");
+  fs::create_directories(images / "notes");
+  EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::not_drawn);  // a folder no view has
+  fs::remove(images / "notes");
+  std::ofstream(images / "stress" / "notes.txt") << "mine";
+  EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::not_drawn);  // in a view's folder
+  fs::remove(images / "stress" / "notes.txt");
+  // What a render writes: frames, animations, the links an encoding stages, plots.
+  for (const char* f : {"stress.ogv", "stress.mp4", "stress.gif", "plots/energy.png"})
+    fs::create_directories((images / f).parent_path()), std::ofstream(images / f) << "drawn";
+  fs::create_directories(images / "stress.seq");
+  fs::create_symlink(images / "stress" / "frame_0040.png", images / "stress.seq" / "000000.png");
   EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::removed);
   EXPECT_FALSE(fs::exists(images));
   EXPECT_TRUE(fs::exists(run / "summary.json"));     // the run itself is not touched
