@@ -109,6 +109,13 @@ vtkSmartPointer<vtkPoints> magnified(vtkPoints* x, vtkDataArray* u, double m) {
   return pts;
 }
 
+// Text in pixels: a 1/`per` of the image's height, or of the height a 16:9 image of its width
+// would have, whichever is more: a wide, low image (the impact beam's 1280 x 400) has its
+// text sized as a 1280 x 720 one's, not shrunk to the smallest.
+int text_px(const ViewOptions& o, int per, int least) {
+  return std::max(least, std::max(o.height, o.width * 9 / 16) / per);
+}
+
 void place_camera(vtkRenderer* r, const ViewOptions& o) {
   const double* b = o.bounds;
   const double c[3] = {0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])};
@@ -134,7 +141,16 @@ void place_camera(vtkRenderer* r, const ViewOptions& o) {
   cam->SetViewUp(up);
   cam->ParallelProjectionOn();  // no perspective: crack patterns compare pixel to pixel
   const double aspect = static_cast<double>(o.width) / o.height;
-  cam->SetParallelScale(0.55 * diag / std::min(1.0, aspect) * 0.9);
+  DSPDEM_CHECK(o.fit == "diagonal" || o.fit == "box", "unknown framing fit '{}' (known: diagonal, box)", o.fit);
+  if (o.fit == "box" && o.camera != "iso") {
+    // The box's face the camera sees fills the image with a margin of 30 % (a long beam across
+    // a wide image); the diagonal's sphere below fits any camera, and pieces flying off.
+    const double ex = b[1] - b[0], ey = b[3] - b[2], ez = b[5] - b[4];
+    const double across = o.camera == "side" ? ez : ex, up_down = o.camera == "top" ? ez : ey;
+    cam->SetParallelScale(0.5 * 1.3 * std::max(up_down, across / aspect));
+  } else {
+    cam->SetParallelScale(0.55 * diag / std::min(1.0, aspect) * 0.9);
+  }
   cam->SetClippingRange(0.1 * diag, 10 * diag);
 }
 }  // namespace
@@ -161,7 +177,7 @@ struct FrameRenderer::Impl {
     const double per_px = 2 * ren->GetActiveCamera()->GetParallelScale() / o.height;
     const double len = nice_length(o.width / 6.0 * per_px);
     if (!(len > 0)) return;
-    const double px = len / per_px, font = std::max(12, o.height / 30);
+    const double px = len / per_px, font = text_px(o, 30, 12);
     const double x1 = o.width - 0.03 * o.width, x0 = x1 - px, y = o.height - 10 - 0.5 * font, tick = 0.35 * font;
     vtkNew<vtkPoints> pts;
     for (const auto& [x, yy] :
@@ -199,9 +215,9 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
   // Colours and labels in display units (MPa, mm); the range is given in the field's own.
   const double lo = o.range[0] * s.display.scale, hi = o.range[1] * s.display.scale;
   fill_lookup_table(s.lut, s.display.is_signed, lo, hi);
-  s.time_text->GetTextProperty()->SetFontSize(std::max(12, o.height / 30));
+  s.time_text->GetTextProperty()->SetFontSize(text_px(o, 30, 12));
   s.time_text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
-  s.time_text->SetPosition(10, o.height - 10 - std::max(12, o.height / 30));
+  s.time_text->SetPosition(10, o.height - 10 - text_px(o, 30, 12));
   s.ren->AddViewProp(s.time_text);
   // A magnified drawing says so on a line of its own below the time: the scale bar holds for
   // the bodies' places, not for their displacements.
@@ -239,7 +255,7 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     s.bar->SetTextPositionToPrecedeScalarBar();
     s.bar->UnconstrainedFontSizeOn();
     // Upright, plain labels (VTK's default is bold italic with a shadow), as large as the title.
-    const int font = std::max(10, o.height / 40);
+    const int font = text_px(o, 40, 10);
     vtkTextProperty* labels = s.bar->GetLabelTextProperty();
     labels->SetFontSize(font);
     labels->SetColor(0.1, 0.1, 0.1);
@@ -281,7 +297,7 @@ FrameRenderer::FrameRenderer(const ViewOptions& o) : impl_(new Impl(o)) {
     // The key, bottom left, each line in the colour it names, the grey darker than the
     // translucent bodies look, to be read (a panel of a montage too: a figure is cut from it
     // on its own).
-    const int font = std::max(10, o.height / 40);
+    const int font = text_px(o, 40, 10);
     s.key_cracks->SetInput("broken joints");
     s.key_bodies->SetInput("bodies and open cracks (translucent grey)");
     int line = 0;

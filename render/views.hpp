@@ -33,7 +33,10 @@ struct ViewOptions {
   bool auto_range = true;
   double range[2] = {0, 1};    ///< colour range [field unit]
   std::string camera = "iso";  ///< front, back, top, side, iso
-  std::string cut = "none";    ///< none, x, y, z: keep the half below the mid-plane normal to it
+  /// diagonal: the bounds' diagonal fits the image's shorter side, whatever the camera; box:
+  /// for front, back, top and side, the face of the bounds seen fills the image with a 30 % margin.
+  std::string fit = "diagonal";
+  std::string cut = "none";  ///< none, x, y, z: keep the half below the mid-plane normal to it
   int width = 1280, height = 720;
   std::array<double, 3> background = {1.0, 1.0, 1.0};
   double bounds[6] = {0, 1, 0, 1, 0, 1};  ///< framing (first frame's bounds)

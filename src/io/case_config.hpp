@@ -82,6 +82,7 @@ struct InitialConfig {
 struct RenderConfig {
   std::vector<std::string> views = {"stress", "fragments"};
   std::string field = "von_mises", camera = "iso", cut = "none", plot_reference;
+  std::string fit = "diagonal";  ///< how the camera frames the first frame (render/views.hpp)
   Real magnify = 1;
   bool auto_min = true, auto_max = true;
   Real range_min = 0, range_max = 0;

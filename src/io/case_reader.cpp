@@ -817,6 +817,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     if (!r.auto_min && !r.auto_max && !(r.range_min < r.range_max))
       fail("{}: [render] range_min must be below range_max", s.where("range_max"));
     r.camera = s.str("camera");
+    r.fit = s.str("fit");
     r.cut = s.str("cut");
     r.width = static_cast<int>(s.integer("width"));
     r.height = static_cast<int>(s.integer("height"));

@@ -137,6 +137,7 @@ const std::vector<Key>& general_keys() {
     {"render", "range_min", T::Real, "auto", -inf, inf, false, false, "Pa", nullptr, "Lower end of the colour range; default: 0.5th percentile over all frames (0 for von Mises)."},
     {"render", "range_max", T::Real, "auto", -inf, inf, false, false, "Pa", nullptr, "Upper end of the colour range; default: 99.5th percentile over all frames."},
     {"render", "camera", T::String, "\"iso\"", 0, 0, false, false, "", "front|back|top|side|iso", "Camera preset (parallel projection, framed on the first frame)."},
+    {"render", "fit", T::String, "\"diagonal\"", 0, 0, false, false, "", "diagonal|box", "How the camera frames the first frame: diagonal, its bounding box's diagonal across the image's shorter side, for every camera (pieces flying off stay in view); box, for front, back, top and side, the face of the box seen fills the image with a 30 % margin (a long beam in a wide image)."},
     {"render", "cut", T::String, "\"none\"", 0, 0, false, false, "", "none|x|y|z", "Cut the bodies at the mid-plane normal to this axis and show the half below it."},
     {"render", "width", T::Int, "1280", 16, 8192, false, false, "px", nullptr, "Image width."},
     {"render", "height", T::Int, "720", 16, 8192, false, false, "px", nullptr, "Image height."},

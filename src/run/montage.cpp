@@ -89,6 +89,7 @@ MontageFrames write_montage(const MontageArgs& a) {
   if (fs::exists(resolved)) c = read_case(resolved.string());
   render::ViewOptions base;
   base.camera = a.camera.empty() ? c.render.camera : a.camera;
+  base.fit = c.render.fit;
   base.field = a.field.empty() ? c.render.field : a.field;
   base.magnify = 1.0;  // a montage compares runs as they are
   base.edges = c.render.edges;

@@ -163,6 +163,7 @@ int render_command(const RenderArgs& in) {
   o.field = a.field.empty() ? rc.field : a.field;
   o.camera = a.camera.empty() ? rc.camera : a.camera;
   o.cut = a.cut.empty() ? rc.cut : a.cut;
+  o.fit = rc.fit;
   o.magnify = a.magnify > 0 ? a.magnify : rc.magnify;
   o.width = rc.width, o.height = rc.height;
   if (!a.size.empty()) parse_image_size(a.size, "--size", o.width, o.height);
