@@ -15,13 +15,17 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 
-// Commands that act outside the model: processes, files, the process itself.
-constexpr std::array<std::string_view, 9> kRefused = {
-    "SystemCall", "NonBlockingSystemCall", "OnelabRun", "Exit", "CreateDir", "DeleteFile", "RenameFile", "Save",
-    "Print"};
-// What a script may Include or Merge besides scripts and meshes: geometry to mesh.
-constexpr std::array<std::string_view, 8> kDataFiles = {".step", ".stp", ".brep", ".iges",
-                                                        ".igs",  ".stl", ".STEP", ".STP"};
+// Commands that act outside the model: processes, files, the process itself, and names of
+// commands made at run time (gmsh 4.8's Gmsh.y: its general commands are matched by name).
+constexpr std::array<std::string_view, 15> kRefused = {"SystemCall", "System",       "NonBlockingSystemCall",
+                                                       "OnelabRun",  "OnelabAction", "SendToServer",
+                                                       "Exit",       "Sleep",        "CreateDir",
+                                                       "Save",       "Print",        "Plugin",
+                                                       "S2N",        "StringToName", "MergeWithBoundingBox"};
+// Option categories a mesh script does not set.
+constexpr std::array<std::string_view, 2> kRefusedOptions = {"General", "Solver"};
+// What a script may Merge besides scripts and meshes: geometry to mesh (compared in lower case).
+constexpr std::array<std::string_view, 7> kDataFiles = {".step", ".stp", ".brep", ".brp", ".iges", ".igs", ".stl"};
 // Nested includes deeper than this are refused (a file including itself would not end).
 constexpr int kMostDepth = 16;
 
@@ -40,14 +44,15 @@ struct Scanner {
     if (text[pos] == '\n') ++line;
     ++pos;
   }
-  // Past blanks and comments (// to the line's end, /* */).
+  // Past blanks and comments (// to the line's end, /* */), as gmsh's lexer.
   void skip_space() {
     while (pos < text.size()) {
-      if (std::isspace(static_cast<unsigned char>(text[pos]))) {
+      const char c = text[pos];
+      if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f') {
         advance();
-      } else if (text[pos] == '/' && at(pos + 1) == '/') {
+      } else if (c == '/' && at(pos + 1) == '/') {
         while (pos < text.size() && text[pos] != '\n') advance();
-      } else if (text[pos] == '/' && at(pos + 1) == '*') {
+      } else if (c == '/' && at(pos + 1) == '*') {
         const int from = line;
         pos += 2;
         while (pos < text.size() && !(text[pos] == '*' && at(pos + 1) == '/')) advance();
@@ -58,48 +63,52 @@ struct Scanner {
       }
     }
   }
-  // A quoted string starting at pos: its text (escapes kept as written), pos past it.
+  // A string in double or single quotes starting at pos: its text, pos past it. gmsh knows
+  // no escapes: a backslash is a character like any other.
   std::string string_literal() {
     const int from = line;
+    const char quote = text[pos];
     std::string s;
-    for (advance(); pos < text.size() && text[pos] != '"'; advance()) {
-      if (text[pos] == '\\' && pos + 1 < text.size()) s += text[pos], advance();
-      s += text[pos];
-    }
-    if (pos >= text.size()) line = from, error("a string \" is never closed");
+    for (advance(); pos < text.size() && text[pos] != quote; advance()) s += text[pos];
+    if (pos >= text.size()) line = from, error("a string {} is never closed", quote);
     advance();
     return s;
+  }
+  // Whether the word just read is followed by '.' (an option's category, "Print.Width").
+  bool before_dot() const {
+    std::size_t i = pos;
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+    return at(i) == '.';
   }
 };
 
 void check_script(const std::string& path, const std::string& text, int depth);
 
-// Whether the word just read names an option category ("Print.Width = 800;"), not a command.
-bool option_category(const Scanner& sc) {
-  std::size_t i = sc.pos;
-  while (i < sc.text.size() && (sc.text[i] == ' ' || sc.text[i] == '\t')) ++i;
-  return sc.at(i) == '.';
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
 }
 
 // A file a script includes or merges, named by `name` relative to the script's folder.
 void check_included(const Scanner& sc, const std::string& command, const std::string& name, int depth) {
-  if (name.find('\\') != std::string::npos)
-    sc.error("{} \"{}\": a file name with an escape is not read (give the name as it is)", command, name);
   fs::path p(name);
   if (p.is_relative()) p = fs::path(sc.path).parent_path() / p;
-  const std::string ext = p.extension().string();
-  if (std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end()) return;
-  if (ext != ".geo" && ext != ".msh")
-    sc.error("{} \"{}\": dspdem lets a script read .geo, .msh, STEP, BREP, IGES and STL files only", command, name);
-  if (!fs::exists(p)) sc.error("{} \"{}\": the file {} does not exist", command, name, p.string());
+  const std::string ext = lower(p.extension().string());
+  const bool script = command == "Include" || ext == ".geo";  // gmsh parses any Include as a script
+  if (!script) {
+    if (std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end()) return;
+    if (ext != ".msh")
+      sc.error("{} \"{}\": dspdem lets a script merge .geo, .msh, STEP, BREP, IGES and STL files only", command, name);
+  }
+  if (!fs::is_regular_file(p)) sc.error("{} \"{}\": {} is not a file", command, name, p.string());
   if (depth >= kMostDepth) sc.error("{} \"{}\": scripts nested more than {} deep", command, name, kMostDepth);
   // The fault named in the file that has it, and where the case's own script includes it.
   try {
     const std::string inner = read_file(p.string(), "mesh file");
-    if (ext == ".msh")
-      check_msh_text(p.string(), inner);
-    else
+    if (script)
       check_script(p.string(), inner, depth + 1);
+    else
+      check_msh_text(p.string(), inner, false);  // a surface mesh merged to build a volume
   } catch (const Error& e) {
     if (depth > 0) throw;  // named once, by the case's own script, not at every level
     sc.error("{} \"{}\": {}", command, name, e.what());
@@ -108,15 +117,23 @@ void check_included(const Scanner& sc, const std::string& command, const std::st
 
 void check_script(const std::string& path, const std::string& text, int depth) {
   Scanner sc{path, text};
+  // gmsh's lexer ends a string or a // comment at a NUL byte and reads on; this check would not.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    sc.line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
+    sc.error("a NUL byte: a script is text");
+  }
   while (true) {
     sc.skip_space();
     if (sc.pos >= text.size()) return;
     const char ch = text[sc.pos];
-    if (ch == '"') {
+    const auto u = static_cast<unsigned char>(ch);
+    if (u < 32 || u == 127)
+      sc.error("a control character (byte {}) outside a string: a script is text", static_cast<int>(u));
+    if (ch == '"' || ch == '\'') {
       sc.string_literal();
       continue;
     }
-    if (!(std::isalpha(static_cast<unsigned char>(ch)) || ch == '_')) {
+    if (!(std::isalpha(u) || ch == '_')) {
       sc.advance();
       continue;
     }
@@ -124,15 +141,18 @@ void check_script(const std::string& path, const std::string& text, int depth) {
     while (sc.pos < text.size() && (std::isalnum(static_cast<unsigned char>(text[sc.pos])) || text[sc.pos] == '_'))
       ++sc.pos;
     const std::string_view word(text.data() + from, sc.pos - from);
-    if (std::find(kRefused.begin(), kRefused.end(), word) != kRefused.end() && !option_category(sc))
-      sc.error("the command {} acts outside the model (a program, a file or the process); dspdem does not run it",
-               word);
+    if (std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end() && sc.before_dot())
+      sc.error(
+          "{}.* options are gmsh's own, not the model's (General.AbortOnError ends the process on an error; "
+          "dspdem sets General.NumThreads itself, for the same mesh every run); dspdem does not let a script "
+          "set them",
+          word);
     if (word == "Printf") {
       // Printf(...) prints; Printf(...) > "file" writes: a '>' past its closing parenthesis.
       int paren = 0;
       for (sc.skip_space(); sc.pos < text.size() && text[sc.pos] != ';'; sc.skip_space()) {
         const char c = text[sc.pos];
-        if (c == '"') {
+        if (c == '"' || c == '\'') {
           sc.string_literal();
           continue;
         }
@@ -141,9 +161,16 @@ void check_script(const std::string& path, const std::string& text, int depth) {
         if (c == '>' && paren == 0) sc.error("Printf into a file: dspdem does not let a script write files");
         sc.advance();
       }
-    } else if (word == "Include" || word == "Merge") {
+      continue;
+    }
+    if (std::find(kRefused.begin(), kRefused.end(), word) != kRefused.end() && !(word == "Print" && sc.before_dot()))
+      sc.error(
+          "{} acts outside the model (runs a program, writes files, ends or stalls the process, or names a command "
+          "made at run time); dspdem does not run it",
+          word);
+    if (word == "Include" || word == "Merge") {
       sc.skip_space();
-      if (sc.at(sc.pos) != '"')
+      if (sc.at(sc.pos) != '"' && sc.at(sc.pos) != '\'')
         sc.error("{} of a name made by the script: dspdem checks a file it reads, so give its name in quotes", word);
       const std::string name = sc.string_literal();
       sc.skip_space();

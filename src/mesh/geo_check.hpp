@@ -1,21 +1,30 @@
 // A check of a gmsh .geo script before gmsh runs it. A .geo is a program: besides geometry it
-// can run shell commands (SystemCall), write, create and remove files, and end the process
-// (Exit, which through gmsh's API ended dspdem with status 0 and no result). A case file
-// is often someone else's, run in batch on a shared server or in CI, so the commands that act
-// outside the model are refused, by line, before gmsh reads anything. This is a guard against
-// the script language's own commands, not a sandbox: gmsh's parser is not.
+// can run shell commands (SystemCall), write files and folders, set gmsh's own options and end
+// the process (Exit, which through gmsh's API ended dspdem with status 0 and no result). A
+// case file is often someone else's, run in batch on a shared server or in CI, so the script
+// is read as gmsh 4.8's lexer reads it (strings in double or single quotes, no escapes, //
+// and /* */ comments) and the commands and options that act outside the model are refused, by
+// line, before gmsh reads anything. This guards against the language's commands known to
+// act outside the model; it is not a sandbox for gmsh's parser or its plugins' code.
 #pragma once
 #include <string>
 
 namespace dspdem {
 
-/// Throws Error "mesh file '<path>': line <n>: <what>" at the first use in `text` (the
-/// contents of `path`) of a command that runs a program or acts on files or the process:
-/// SystemCall, NonBlockingSystemCall, OnelabRun, Exit, CreateDir, DeleteFile, RenameFile,
-/// Save, Print, Printf redirected into a file (> or >>), and Include or Merge of a name that is
-/// not a quoted file name. Files a script includes or merges are checked as they would be
-/// read: a .geo as a script, a .msh with check_msh_text; CAD and STL files are let through,
-/// any other kind refused.
+/// Throws Error "mesh file '<path>': line <n>: <what>" at the first thing in `text` (the
+/// contents of `path`) that gmsh would run outside the model:
+/// - the commands SystemCall, System, NonBlockingSystemCall, OnelabRun, OnelabAction,
+///   SendToServer, Exit, Sleep, CreateDir, Save, Print, MergeWithBoundingBox and Plugin, and
+///   Printf redirected into a file (> or >>);
+/// - S2N and StringToName, which make a command's name from a string;
+/// - General.* and Solver.* options (General.AbortOnError ends the process on an error;
+///   dspdem sets General.NumThreads itself, for meshes the same every run);
+/// - Include or Merge of a name the script builds rather than a quoted file name;
+/// - a byte gmsh's lexer would read otherwise than this check (NUL and other control
+///   characters), and a string or comment never closed.
+/// Files the script includes are checked as scripts, whatever their extension (gmsh parses
+/// an Include as a script); a merged .geo as a script, a merged .msh as a mesh file (format
+/// only); merged STEP, BREP, IGES and STL files are let through, any other kind refused.
 void check_geo_script(const std::string& path, const std::string& text);
 
 }  // namespace dspdem

@@ -38,7 +38,8 @@ std::string shown(std::string_view t) {
 
 class Checker {
  public:
-  Checker(const std::string& path, const std::string& text) : path_(path), text_(text) {}
+  Checker(const std::string& path, const std::string& text, bool need_volume)
+      : path_(path), text_(text), need_volume_(need_volume) {}
 
   void run() {
     // gmsh tells a mesh by its first line: a file that does not start with $MeshFormat
@@ -103,7 +104,7 @@ class Checker {
     }
     if (!seen_nodes_) error("the file has no $Nodes section");
     if (!seen_elements_) error("the file has no $Elements section");
-    if (volume_elements_ == 0) {
+    if (need_volume_ && volume_elements_ == 0) {
       no_ = elements_line;
       error("$Elements holds no volume (3D) elements: a 3D mesh of tetrahedra or hexahedra is needed");
     }
@@ -427,6 +428,7 @@ class Checker {
 
   const std::string& path_;
   const std::string& text_;
+  const bool need_volume_;
   std::size_t pos_ = 0;
   int no_ = 0;  // number of the current line, from 1
   std::string_view line_;
@@ -439,6 +441,8 @@ class Checker {
 
 }  // namespace
 
-void check_msh_text(const std::string& path, const std::string& text) { Checker(path, text).run(); }
+void check_msh_text(const std::string& path, const std::string& text, bool need_volume) {
+  Checker(path, text, need_volume).run();
+}
 
 }  // namespace dspdem

@@ -12,8 +12,9 @@ namespace dspdem {
 /// (the contents of `path`) that breaks the format: sections and their order, counts,
 /// numbers, entity, node and element tags, references to nodes and entities. Also refused:
 /// sections dspdem does not read (gmsh would interpret them unchecked), format versions
-/// other than 2.x, 4.0 and 4.1, and a file without volume (3D) elements. Past their format
-/// line, binary files are left to gmsh.
-void check_msh_text(const std::string& path, const std::string& text);
+/// other than 2.x, 4.0 and 4.1, and, with `need_volume`, a file without volume (3D) elements
+/// (a surface mesh a .geo script merges to build its volume has none). Past their format line,
+/// binary files are left to gmsh.
+void check_msh_text(const std::string& path, const std::string& text, bool need_volume = true);
 
 }  // namespace dspdem

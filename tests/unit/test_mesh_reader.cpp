@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "mesh/geo_check.hpp"
 #include "mesh/gmsh_reader.hpp"
 
 using namespace dspdem;
@@ -144,34 +145,55 @@ TEST(MeshReader, AnUnreadableFileDoesNotBreakLaterReads) {
 }
 
 // A .geo's commands that act outside the model are refused by line before gmsh runs anything:
-// a case file is often someone else's, run in batch on a shared server.
+// a case file is often someone else's, run in batch on a shared server. The script is read as
+// gmsh 4.8's lexer reads it, or a string or comment could hide a command from the check.
 TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
   const fs::path marker = fs::temp_directory_path() / "dspdem_mesh_reader" / "system_call_ran";
   fs::remove(marker);
   const std::string box = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nMesh.MeshSizeMax = 0.6;\n";
-  expect_error("system_call.geo", box + "SystemCall \"touch " + marker.string() + "\";\n",
-               {"line 4", "SystemCall", "does not run it"});
-  EXPECT_FALSE(fs::exists(marker)) << "the script's command ran";
-  for (const char* cmd : {"NonBlockingSystemCall \"true\";", "Exit;", "CreateDir \"made\";", "Save \"copy.msh\";",
-                          "Print \"view.png\";", "OnelabRun(\"x\", \"true\");"})
+  const std::string touch = "\"touch " + marker.string() + "\"";
+  expect_error("system_call.geo", box + "SystemCall " + touch + ";\n", {"line 4", "SystemCall", "does not run it"});
+  // Ways a review found past the first check (each ran its command then): gmsh has no escapes
+  // and takes single quotes; a NUL ends its // comment; S2N names a command from a string;
+  // System is SystemCall's alias; an Include of any extension is parsed as a script.
+  expect_error("backslash.geo", box + "s = \"\\\"; SystemCall " + touch + "; // \"\n", {"line 4", "SystemCall"});
+  expect_error("single_quote.geo", box + "x = '\"'; SystemCall " + touch + "; y = '\"';\n", {"line 4", "SystemCall"});
+  expect_error("nul.geo", box + "// note" + std::string(1, '\0') + "SystemCall " + touch + ";\n",
+               {"line 4", "NUL byte"});
+  expect_error("s2n.geo", box + "S2N[StrCat(\"System\", \"Call\")] " + touch + ";\n", {"line 4", "S2N"});
+  write_file("evil.stl", "SystemCall " + touch + ";\n");
+  expect_error("include_stl.geo", box + "Include \"evil.stl\";\n", {"line 4", "evil.stl", "line 1", "SystemCall"});
+  for (const char* cmd :
+       {"System \"true\";", "NonBlockingSystemCall \"true\";", "Exit;", "Sleep 1e9;", "CreateDir \"made\";",
+        "Save \"copy.msh\";", "Print \"view.png\";", "OnelabRun(\"x\", \"true\");", "MergeWithBoundingBox \"a.geo\";",
+        "Plugin(Bubbles).OutputFile = \"victim\";", "General.AbortOnError = 4;", "Solver.Executable0 = \"sh\";"})
     expect_error("refused.geo", box + "  " + cmd + "\n", {"line 4", std::string(cmd).substr(0, 4)});
+  EXPECT_FALSE(fs::exists(marker)) << "a script's command ran";
   // Printf writes into a file only past its parenthesis: "a > b" inside is a comparison.
   expect_error("printf.geo", box + "Printf(\"%g\", 2 > 1) >> \"out.txt\";\n", {"line 4", "Printf into a file"});
-  // Include and Merge: a name the script makes is not checked, so it is refused; a file
-  // included is checked as its kind is read.
+  expect_error("printf_quote.geo", box + "Printf(')') > \"out.txt\";\n", {"line 4", "Printf into a file"});
+  // Include and Merge: a name the script makes is not checked, so it is refused.
   expect_error("include_made.geo", box + "Include StrCat(\"a\", \".geo\");\n", {"line 4", "in quotes"});
   write_file("inner_bad.geo", "// an included script\n\nExit;\n");
   expect_error("include_bad.geo", box + "Include \"inner_bad.geo\";\n", {"inner_bad.geo", "line 3", "Exit"});
   expect_error("merge_py.geo", box + "Merge \"solver.py\";\n", {"line 4", "solver.py"});
   expect_error("include_self.geo", box + "Include \"include_self.geo\";\n", {"nested more than 16"});
   expect_error("open_comment.geo", box + "/* never closed\n", {"line 4", "never closed"});
+  expect_error("open_string.geo", box + "s = 'never closed;\n", {"line 4", "never closed"});
 
   // What a meshing script uses is read: comments and strings naming the commands, option
-  // categories of the same names, Printf to the terminal, an included script.
-  write_file("inner_ok.geo", "Physical Volume(\"solid\") = {1};\n");
+  // categories of the same names, Printf to the terminal, an included script, and a merged
+  // surface mesh (no volume elements: the script builds its volume from it) or CAD file
+  // whatever the case of its extension.
+  write_file("inner_ok.geo", "Physical Volume('solid') = {1};\n");
   const Mesh m = read_gmsh(write_file("fine.geo", box + "// SystemCall \"rm -rf /\"; in a comment\n"
                                                         "/* Exit; */ Printf(\"Exit; SystemCall > x\");\n"
                                                         "Print.Width = 800;\nInclude \"inner_ok.geo\";\n"));
   EXPECT_GT(m.n_elements(), 0);
   EXPECT_NE(m.find_group("solid"), nullptr);
+  const std::string surface = replace(kTetV2, "2\n1 2 2 1 1 1 3 2\n2 4 2 2 1 1 2 3 4\n", "1\n1 2 2 1 1 1 3 2\n");
+  write_file("surface.msh", surface);
+  write_file("part.STEP", "not read by the check");
+  EXPECT_NO_THROW(check_geo_script(write_file("merges.geo", "Merge \"surface.msh\";\nMerge 'part.STEP';\n"),
+                                   "Merge \"surface.msh\";\nMerge 'part.STEP';\n"));
 }
