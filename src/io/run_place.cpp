@@ -88,7 +88,8 @@ std::optional<fs::path> kept_below(const fs::path& place) {
 
 // The first entry under a run's images/ that `dspdem render` does not write there: a folder
 // per view (stress, fragments, cracks) of frame_NNNN.png, the view's animations beside it
-// (<view>.ogv, .mp4, .gif, and the <view>.seq folder of links an encoding stages), plots/*.png.
+// (<view>.ogv, .mp4, .gif, the <view>.seq folder of links an encoding stages and the log of one
+// that failed), plots/*.png, and PNGs a report drew of the run beside them.
 // Anything else is someone's own, which a replaced run's images going with its frames must
 // not take.
 std::optional<fs::path> not_drawn(const fs::path& images) {
@@ -99,9 +100,13 @@ std::optional<fs::path> not_drawn(const fs::path& images) {
        it.increment(e)) {
     const fs::path& p = it->path();
     const bool dir = it->is_directory(e) && !it->is_symlink(e);
-    const bool ok = it.depth() == 0 ? (dir ? folders.count(p.filename().string()) > 0 || p.extension() == ".seq"
-                                           : animations.count(p.extension().string()) > 0)
-                                    : it.depth() == 1 && !dir && p.extension() == ".png";
+    // At the top also a report's own images of the run (the packing's heap_front.png) and the
+    // log ffmpeg leaves beside an animation it could not encode (fragments.mp4.log).
+    const std::string ext = p.extension().string(), inner = p.stem().extension().string();
+    const bool ok = it.depth() == 0 ? (dir ? folders.count(p.filename().string()) > 0 || ext == ".seq"
+                                           : animations.count(ext) > 0 || ext == ".png" ||
+                                                 (ext == ".log" && animations.count(inner)))
+                                    : it.depth() == 1 && !dir && ext == ".png";
     if (!ok) return p;
   }
   if (e) return images;  // unreadable: not known to be drawn

@@ -236,7 +236,8 @@ TEST_F(RunPlace, ARunsReplacedImagesGoUnlessARunLiesInsideThemOrARenderDrawsThem
   EXPECT_EQ(remove_replaced_images(run.string()).fate, Fate::not_drawn);  // in a view's folder
   fs::remove(images / "stress" / "notes.txt");
   // What a render writes: frames, animations, the links an encoding stages, plots.
-  for (const char* f : {"stress.ogv", "stress.mp4", "stress.gif", "plots/energy.png"})
+  for (const char* f :
+       {"stress.ogv", "stress.mp4", "stress.gif", "plots/energy.png", "heap_front.png", "stress.mp4.log"})
     fs::create_directories((images / f).parent_path()), std::ofstream(images / f) << "drawn";
   fs::create_directories(images / "stress.seq");
   fs::create_symlink(images / "stress" / "frame_0040.png", images / "stress.seq" / "000000.png");
