@@ -16,8 +16,17 @@ namespace dspdem {
 int mesh_command(const CaseConfig& c, const std::string& out_dir) {
   namespace fs = std::filesystem;
   Timer t;
+  std::error_code ec;
+  DSPDEM_CHECK(!fs::exists(out_dir, ec) || fs::is_directory(out_dir, ec),
+               "mesh --out {}: a file is there, not a folder: give --out a folder", out_dir);
   fs::create_directories(out_dir);
   const std::string msh = (fs::path(out_dir) / (c.name + ".msh")).string();
+  // Written over its own source, a .msh would be lost (gmsh writes what it read as 4.1, and
+  // without the elements outside every physical group).
+  DSPDEM_CHECK(c.mesh_file.empty() || !fs::exists(msh, ec) || !fs::equivalent(msh, c.mesh_file, ec),
+               "mesh: {} is the case's own mesh file, which writing the mesh there would replace: give --out another "
+               "folder",
+               msh);
   Mesh m;
   std::string source;
   if (c.mesh_generator.empty()) {
