@@ -2,6 +2,7 @@
 // and out-of-range values are errors naming file, line, section and key.
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +19,21 @@
 namespace dspdem {
 
 namespace {
+// A wall's or a monitor's name heads columns of series.csv: a comma, a quote or a line break
+// in it, or no name at all, would shift every column after it (the render then refused the
+// file, the run long done).
+void check_column_name(const std::string& name, const std::string& where, const char* what) {
+  const bool plain =
+      !name.empty() && name.front() != ' ' && name.back() != ' ' && std::none_of(name.begin(), name.end(), [](char ch) {
+        const auto u = static_cast<unsigned char>(ch);
+        return ch == ',' || ch == '"' || u < 32 || u == 127;
+      });
+  DSPDEM_CHECK(plain,
+               "{}: {} name '{}' heads columns of series.csv: it must not be empty, hold a comma, a quote or a "
+               "control character, or start or end with a space",
+               where, what, name);
+}
+
 namespace fs = std::filesystem;
 using schema::Type;
 
@@ -647,6 +663,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       wc.where = s.where();
       contact::Wall& w = wc.wall;
       w.name = s.str("name");
+      check_column_name(w.name, s.where("name"), "wall");
       for (const auto& o : c.walls)
         DSPDEM_CHECK(o.wall.name != w.name, "{}: wall name '{}' used twice", s.where("name"), w.name);
       const std::string type = s.str("type");
@@ -764,6 +781,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
       MonitorConfig m;
       m.where = s.where();
       m.name = s.str("name");
+      check_column_name(m.name, s.where("name"), "monitor");
       const std::string type = s.str("type");
       using MT = MonitorConfig::Type;
       m.type = type == "reaction"                  ? MT::Reaction

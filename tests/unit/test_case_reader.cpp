@@ -359,3 +359,16 @@ TEST(CaseReader, AWholeElementOnePastTheEndIsAppended) {
     }
   }
 }
+
+TEST(CaseReader, NamesThatHeadSeriesColumnsAreRefusedWhenTheyWouldShiftThem) {
+  // A probe's finding: a monitor named "a,b" ran, and series.csv then held one more name than
+  // values in each row, which the render refused after the run.
+  const std::string m = std::string(kGood) + "[[monitors]]\nname = \"low\"\ntype = \"broken_joints\"\n";
+  for (const char* bad : {"\"a,b\"", "\"\"", "\"say \\\"hi\\\"\"", "\"two\\nlines\"", "\" padded\""})
+    expect_error(replace(m, "\"low\"", bad), {":16:", "heads columns of series.csv"});
+  const std::string w = std::string(kGood) +
+                        "[contact]\nenabled = true\n[[walls]]\nname = \"w,1\"\ntype = \"plane\"\n"
+                        "point = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n";
+  expect_error(w, {"wall name 'w,1' heads columns of series.csv"});
+  EXPECT_NO_THROW(read_case(write_case(replace(m, "\"low\"", "\"notch-left_2.a\""))));
+}
