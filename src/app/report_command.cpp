@@ -24,7 +24,14 @@ int report_command(const report::ReportArgs& args) {
     const auto resolved = std::filesystem::path(a.from_runs.front()) / "case.resolved.toml";
     if (std::filesystem::exists(resolved)) {
       if (!a.sets.empty()) log::warn("--from-run: the run's own case.resolved.toml is analysed; --set is ignored");
+      const std::string given = scenes::of_case(c).name;
       c = read_case(resolved.string());
+      // A run of another scene would be reported as that scene's under this case's command.
+      const std::string ran = scenes::of_case(c).name;
+      DSPDEM_CHECK(ran == given,
+                   "{}: --from-run {} is a run of the scene '{}' (its case.resolved.toml), and this case is the scene "
+                   "'{}': give a run of this case, or report that run with its own case",
+                   a.case_file, a.from_runs.front(), ran, given);
     }
   }
   // Each run of a sweep would refuse such a monitor at its own start; refused here, the

@@ -1088,6 +1088,15 @@ TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
   EXPECT_EQ(two.code, 2) << two.out;
   EXPECT_NE(two.out.find("--from-run given 2 times: scene 'brazilian_disc' analyses one run"), std::string::npos)
       << two.out;
+  // A run of another scene: it was analysed as its own scene under the disc's command (a
+  // probe's finding: "report galvez_beam.toml --from-run DISC_RUN" wrote the disc's report).
+  fs::create_directories(dir_ / "galvez_run");
+  fs::copy_file(fs::path(DSPDEM_SOURCE_DIR) / "cases/galvez_beam.toml", dir_ / "galvez_run" / "case.resolved.toml");
+  const Result other =
+      run("report " + disc + " --from-run " + (dir_ / "galvez_run").string() + " --out " + (dir_ / "rep").string());
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_NE(other.out.find("is a run of the scene 'galvez_beam'"), std::string::npos) << other.out;
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / "report.md"));
 }
 
 TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
