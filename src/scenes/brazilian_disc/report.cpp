@@ -112,21 +112,26 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   doc.figures(
       {{"load against time", "images/plots/load_time.png"}, {"load against closure", "images/plots/load_closure.png"}});
   doc.section("Stresses along the loaded diameter");
-  doc.para(fmt::format(
-      "At P = {:.2f} kN ({:.0f} % of the peak; the paper uses 33.0 of 40.6 kN = 81 %; never after the first broken "
-      "joint), frame {} (t = {:.3f} ms). "
-      "Elements within half an element size of x = 0, averaged in 16 bins over the central 80 % of the diameter, "
-      "against the point-load solution (paper eqs. 24-25 on the axis). Each element's constant stress is compared "
-      "with the mean of the full two-load field over that element, averaged in the same bins: near a load the field "
-      "curves across an element, and a constant-stress element approximates its mean, not a point value. Relative "
-      "L2 error: sigma_xx {:.1f} %, sigma_yy {:.1f} % (sigma_xx against the field at the element centroids "
-      "instead: {:.1f} %). "
-      "At the centre: sigma_xx {}, sigma_yy {}. The disc is 3D and the reference is plane stress: through the "
-      "thickness at the centre (|y| < h), sigma_xx is {} on the end faces (outer half-element layer) and {} on "
-      "the mid-plane against the 2D value{}.",
-      1e-3 * r.P_profile, 100 * r.P_profile / r.P_peak, r.profile_frame, 1e3 * r.t_profile, 100 * r.l2_xx,
-      100 * r.l2_yy, 100 * r.l2_xx_centroid, pct(r.centre_xx), pct(r.centre_yy), pct(r.face_xx), pct(r.mid_xx),
-      r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t" : ""));
+  if (!(r.P_peak > 0))  // a run stopped before the jaws met the disc: no profile to compare
+    doc.para("No load reached the disc in the run: no stress profile is compared.");
+  else
+    doc.para(fmt::format(
+        "At P = {:.2f} kN ({}; the paper uses 33.0 of 40.6 kN = 81 %; never after the first broken "
+        "joint), frame {} (t = {:.3f} ms). "
+        "Elements within half an element size of x = 0, averaged in 16 bins over the central 80 % of the diameter, "
+        "against the point-load solution (paper eqs. 24-25 on the axis). Each element's constant stress is compared "
+        "with the mean of the full two-load field over that element, averaged in the same bins: near a load the field "
+        "curves across an element, and a constant-stress element approximates its mean, not a point value. Relative "
+        "L2 error: sigma_xx {:.1f} %, sigma_yy {:.1f} % (sigma_xx against the field at the element centroids "
+        "instead: {:.1f} %). "
+        "At the centre: sigma_xx {}, sigma_yy {}. The disc is 3D and the reference is plane stress: through the "
+        "thickness at the centre (|y| < h), sigma_xx is {} on the end faces (outer half-element layer) and {} on "
+        "the mid-plane against the 2D value{}.",
+        1e-3 * r.P_profile, fmt::format("{:.0f} % of the peak", 100 * r.P_profile / r.P_peak), r.profile_frame,
+        1e3 * r.t_profile, 100 * r.l2_xx, 100 * r.l2_yy, 100 * r.l2_xx_centroid, pct(r.centre_xx), pct(r.centre_yy),
+        pct(r.face_xx), pct(r.mid_xx),
+        r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t"
+                                              : ""));
   doc.figure("profile", "images/plots/profile.png");
   if (checked) {
     doc.subsection("Stress check on a mesh that resolves the loads");
@@ -151,8 +156,10 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
   std::string fr;
   for (std::size_t i = 0; i < std::min<std::size_t>(4, r.mass_fractions.size()); ++i)
     fr += fmt::format("{}{:.3f}", i ? ", " : "", r.mass_fractions[i]);
-  doc.para(fmt::format("{} fragments; largest mass fractions {}. First broken joint at t = {:.3f} ms (frame {}).",
-                       r.fragments, fr, 1e3 * r.t_init, r.init_frame));
+  doc.para(fmt::format(
+      "{} fragments; largest mass fractions {}. {}", r.fragments, fr,
+      r.init_frame >= 0 ? fmt::format("First broken joint at t = {:.3f} ms (frame {}).", 1e3 * r.t_init, r.init_frame)
+                        : std::string("No joint broke in the run.")));
   if (r.crack_mean_x >= 0)
     doc.para(fmt::format(
         "Crack path (broken joints at the split, frame {}, {:.0f} cm^2): their centroids lie {:.1f} mm from the loaded "
