@@ -8,6 +8,7 @@
 #include <vtkPointData.h>
 
 #include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "core/error.hpp"
@@ -62,6 +63,14 @@ ImageDiff compare_png(const std::string& a, const std::string& b, const std::str
                    diff_png, in);
     DSPDEM_CHECK(!fs::is_directory(diff_png), "the difference image '{}' is a folder; give --diff a file's name",
                  diff_png);
+    // A file there is replaced only when it is an image (an earlier difference): not a user's notes.
+    if (fs::exists(diff_png)) {
+      std::string head(8, '\0');
+      std::ifstream(diff_png, std::ios::binary).read(head.data(), 8);
+      DSPDEM_CHECK(head == "\x89PNG\r\n\x1a\n",
+                   "the difference image '{}' would replace a file that is not a PNG image; give --diff another file",
+                   diff_png);
+    }
     const fs::path parent = fs::absolute(diff_png).parent_path();
     DSPDEM_CHECK(fs::is_directory(parent), "the difference image's folder '{}' does not exist", parent.string());
   }

@@ -271,7 +271,9 @@ int run_main(int argc, char** argv) {
       return 1;
     }
     const int code = app.exit(e);  // prints help or the message
-    return code == 0 ? 0 : 1;      // README: 1 is a command-line error, whatever CLI11 calls it
+    // README: 1 is a command-line error, whatever CLI11 calls it; but imgdiff's 1 is "the
+    // images differ", which a script must tell from a mistyped option: 2 there.
+    return code == 0 ? 0 : *imgdiff ? 2 : 1;
   }
   log::set_level(quiet ? log::Level::Quiet : verbose ? log::Level::Debug : log::Level::Info);
   if (par::rank() > 0) log::set_level(log::Level::Quiet), log::set_warnings(false);  // one log: process 0's

@@ -295,6 +295,17 @@ TEST(ImgDiff, DamagedOrOddImagesAreNamedAndADifferenceNeverReplacesItsInput) {
     EXPECT_NE(r.out.find("the difference image"), std::string::npos) << r.out;
   }
   EXPECT_EQ(slurp_bytes(a), bytes);
+  // A probe's findings: --diff replaced a file that was no image, and a mistyped option
+  // exited 1, which reads as "the images differ".
+  const fs::path notes = spit("notes.txt", "my notes");
+  const Result rn = sh(bin() + " imgdiff " + a.string() + " " + a.string() + " --diff " + notes.string());
+  EXPECT_EQ(rn.code, 2) << rn.out;
+  EXPECT_NE(rn.out.find("not a PNG image"), std::string::npos) << rn.out;
+  EXPECT_EQ(slurp_bytes(notes), "my notes");
+  for (const char* bad : {"--threshold 1.5", "--tolerance 300", "--nosuch"}) {
+    const Result ru = sh(bin() + " imgdiff " + a.string() + " " + a.string() + " " + bad);
+    EXPECT_EQ(ru.code, 2) << bad << ": " << ru.out;
+  }
   fs::remove_all(out);
 }
 
