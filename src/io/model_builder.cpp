@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/log.hpp"
 
 namespace dspdem {
 
@@ -316,8 +317,11 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
            m.contact.setup_error());
   }
 
-  // Constraints: the last condition on a dof wins; say so when two disagree.
+  // Constraints: the last condition on a dof wins; say so when two disagree (a velocity over a
+  // fixed edge's nodes changes the run, and nothing else would tell).
   std::map<Index, Constraint> cons;
+  std::map<Index, std::size_t> set_by;                              // dof -> the [[boundary]] that set it
+  std::map<std::pair<std::size_t, std::size_t>, Index> overridden;  // (earlier, later) -> dofs
   for (std::size_t bi = 0; bi < c.boundaries.size(); ++bi) {
     const BoundaryConfig& bc = c.boundaries[bi];
     const Group& g = need_group(me, bc.group, bc.where);
@@ -329,10 +333,21 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
     }
     const bool fixed = bc.type == BoundaryConfig::Type::Fixed;
     for (Index n : g.nodes)
-      for (int d = 0; d < 3; ++d)
-        if (bc.dof[d]) cons[3 * n + d] = {3 * n + d, fixed ? 0.0 : bc.value(d), fixed ? 0.0 : bc.ramp};
+      for (int d = 0; d < 3; ++d) {
+        if (!bc.dof[d]) continue;
+        const Constraint now{3 * n + d, fixed ? 0.0 : bc.value(d), fixed ? 0.0 : bc.ramp};
+        if (const auto it = cons.find(now.dof);
+            it != cons.end() && (it->second.value != now.value || it->second.ramp != now.ramp))
+          ++overridden[{set_by[now.dof], bi}];
+        cons[now.dof] = now, set_by[now.dof] = bi;
+      }
   }
   for (auto& [dof, con] : cons) m.constraints.push_back(con);
+  for (const auto& [pair, count] : overridden)
+    log::warn(
+        "{}: sets {} node component(s) that {} also sets, to another velocity or ramp; the later condition "
+        "holds there",
+        c.boundaries[pair.second].where, count, c.boundaries[pair.first].where);
 
   m.v0.assign(3 * static_cast<std::size_t>(me.n_nodes()), 0.0);
   for (const auto& ic : c.initial) {

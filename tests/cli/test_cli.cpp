@@ -1886,3 +1886,16 @@ TEST_F(Cli, ThreadCountDoesNotChangeTheResult) {
   const Result bad = run("-t -1 keys");
   EXPECT_EQ(bad.code, 1) << bad.out;
 }
+
+TEST_F(Cli, BoundaryConditionsThatDisagreeOnANodeAreNamed) {
+  // A probe's finding: a velocity on the nodes another [[boundary]] fixes silently replaced it
+  // there (the later one holds, as before); the run now says which two and on how many.
+  const std::string bar = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/bar_tension.toml";
+  const Result r = run("run " + bar + " --estimate --set 'boundary.1.group=\"left\"'");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("bar_tension.toml:18: sets 9 node component(s) that"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bar_tension.toml:15 also sets"), std::string::npos) << r.out;
+  // The same condition twice is no disagreement.
+  const Result same = run("run " + bar + " --estimate --set 'boundary.1.group=\"right\"'");
+  EXPECT_EQ(same.out.find("also sets"), std::string::npos) << same.out;
+}
