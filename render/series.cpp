@@ -8,6 +8,8 @@
 #include <vtkXMLReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <regex>
 
@@ -26,11 +28,12 @@ std::vector<FrameRef> read_series(const std::string& run_dir, const std::string&
   const std::regex ds("<DataSet[^>]*timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), ds); it != std::sregex_iterator(); ++it) {
     FrameRef fr;
-    try {
-      fr.time = std::stod((*it)[1].str());
-    } catch (...) {
-      fail("'{}': timestep '{}' is not a number", pvd.string(), (*it)[1].str());
-    }
+    // The whole text a finite number ("2.09e-05xyz" and "nan" were read as times).
+    const std::string t = (*it)[1].str();
+    char* end = nullptr;
+    fr.time = std::strtod(t.c_str(), &end);
+    DSPDEM_CHECK(!t.empty() && *end == '\0' && std::isfinite(fr.time), "'{}': timestep '{}' is not a number",
+                 pvd.string(), t);
     fr.file = (fs::path(run_dir) / (*it)[2].str()).string();
     frames.push_back(fr);
   }

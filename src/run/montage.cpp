@@ -73,6 +73,13 @@ MontageFrames write_montage(const MontageArgs& a) {
   DSPDEM_CHECK(!a.run_dirs.empty(), "--montage: no run folder given");
   DSPDEM_CHECK(!a.out.empty(), "--montage: no output image given");
   const fs::path out = png_path(a.out);
+  // A run's frames/ holds its frame files only: the next run into that folder is refused
+  // while anything else is there (io/run_place.hpp, check_run_frames).
+  const fs::path holder = fs::absolute(out).parent_path();
+  DSPDEM_CHECK(holder.filename() != "frames" || !fs::exists(holder.parent_path() / "run.pvd"),
+               "--montage {}: that is inside the frames/ of the run in {}, which holds its frame files only; write the "
+               "montage elsewhere",
+               a.out, holder.parent_path().string());
   DSPDEM_CHECK(a.labels.empty() || a.labels.size() == a.run_dirs.size(),
                "--montage: {} label(s) for {} run folder(s): give one per run or none", a.labels.size(),
                a.run_dirs.size());

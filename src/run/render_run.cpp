@@ -156,7 +156,10 @@ int render_command(const RenderArgs& in) {
   if (a.out_dir.empty()) a.out_dir = a.run_dir;
   const fs::path resolved = fs::path(a.run_dir) / "case.resolved.toml";
   CaseConfig c;
-  if (fs::exists(resolved)) c = read_case(resolved.string());
+  if (fs::exists(resolved))
+    c = read_case(resolved.string());
+  else if (a.worker.empty())
+    log::warn("{}: no case.resolved.toml: drawn with the default [render] settings (views, size, camera)", a.run_dir);
   const RenderConfig& rc = c.render;
   if (a.views.empty()) a.views = rc.views;
   render::ViewOptions o;

@@ -330,6 +330,7 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
       {"--range 2:1", "MIN must be below MAX"},
       {"--label a --label b", "2 labels for one run folder"},
       {"--montage " + (out / "m.png").string() + " --size 64x48y", "expected WIDTHxHEIGHT"},
+      {"--montage " + (out / "frames" / "m.png").string(), "inside the frames/ of the run"},
   };
   for (const auto& b : cases) {
     const Result r = sh(bin() + " render " + out.string() + " " + b.args);
@@ -356,4 +357,13 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
   r = sh(bin() + " render " + out.string());
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("frame_0001.vtu"), std::string::npos) << r.out;
+  // A time in run.pvd is read whole (a probe's finding: "nan" and "2e-05xyz" were taken).
+  const std::string pvd = slurp(out / "run.pvd");
+  const std::size_t at = pvd.find("timestep=\"") + 10;
+  for (const char* t : {"nan", "2e-05xyz"}) {
+    std::ofstream(out / "run.pvd") << pvd.substr(0, at) + t + pvd.substr(pvd.find('"', at));
+    r = sh(bin() + " render " + out.string());
+    EXPECT_EQ(r.code, 2) << t << ": " << r.out;
+    EXPECT_NE(r.out.find(std::string("timestep '") + t + "' is not a number"), std::string::npos) << r.out;
+  }
 }
