@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <filesystem>
+#include <set>
 #include <string_view>
 
 #include "core/error.hpp"
@@ -24,8 +25,10 @@ constexpr std::array<std::string_view, 15> kRefused = {"SystemCall", "System",  
                                                        "S2N",        "StringToName", "MergeWithBoundingBox"};
 // Option categories a mesh script does not set.
 constexpr std::array<std::string_view, 2> kRefusedOptions = {"General", "Solver"};
-// What a script may Merge besides scripts and meshes: geometry to mesh (compared in lower case).
-constexpr std::array<std::string_view, 7> kDataFiles = {".step", ".stp", ".brep", ".brp", ".iges", ".igs", ".stl"};
+// What a script may Merge besides scripts and meshes: geometry to mesh, spelt as gmsh 4.8 knows
+// it (GuessFileFormatFromFileName); any other spelling gmsh parses as a script.
+constexpr std::array<std::string_view, 13> kDataFiles = {".stl", ".STL", ".step", ".STEP", ".stp", ".STP", ".brep",
+                                                         ".brp", ".BRP", ".iges", ".IGES", ".igs", ".IGS"};
 // Nested includes deeper than this are refused (a file including itself would not end).
 constexpr int kMostDepth = 16;
 
@@ -74,36 +77,70 @@ struct Scanner {
     advance();
     return s;
   }
-  // Whether the word just read is followed by '.' (an option's category, "Print.Width").
-  bool before_dot() const {
-    std::size_t i = pos;
-    while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
-    return at(i) == '.';
+  // Whether the word just read is followed, past any blanks, by `c` ('.': an option's
+  // category, "Print.Width").
+  bool before(char c) const { return next_after(text, pos) == c; }
+  static char next_after(const std::string& t, std::size_t i) {
+    while (i < t.size() && (t[i] == ' ' || t[i] == '\t' || t[i] == '\n' || t[i] == '\r' || t[i] == '\f')) ++i;
+    return i < t.size() ? t[i] : '\0';
   }
 };
 
 void check_script(const std::string& path, const std::string& text, int depth);
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
+// gmsh reads "<file>.opt" beside every file it opens or merges, as a script.
+void check_companion(const std::string& file, int depth) {
+  const std::string opt = file + ".opt";
+  if (fs::exists(opt)) check_script(opt, read_file(opt, "gmsh option file"), depth + 1);
+}
+
+// The words gmsh could still take for code where the reading above saw a string or a comment:
+// its If, For and Macro skip text without reading strings ("If (0) x = "EndIf Exit; ..."),
+// and a For's or a Macro's body is read again from the line after its header.
+void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_words) {
+  const std::string& t = sc.text;
+  for (std::size_t i = 0; i < t.size();) {
+    const auto u = static_cast<unsigned char>(t[i]);
+    if (!(std::isalpha(u) || t[i] == '_')) {
+      ++i;
+      continue;
+    }
+    const std::size_t from = i;
+    while (i < t.size() && (std::isalnum(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
+    const std::string_view word(t.data() + from, i - from);
+    const bool command = std::find(kRefused.begin(), kRefused.end(), word) != kRefused.end() &&
+                         !(word == "Print" && Scanner::next_after(t, i) == '.');
+    const bool option = std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end() &&
+                        (Scanner::next_after(t, i) == '.' || Scanner::next_after(t, i) == '[');
+    const bool reads = (word == "Include" || word == "Merge" || word == "Printf") && !code_words.count(from);
+    if (command || option || reads)
+      fail(
+          "mesh file '{}': line {}: '{}' in a string or a comment: gmsh's If, For and Macro skip text without "
+          "reading its strings and may run it; dspdem refuses it there too (reword the string or comment)",
+          sc.path, 1 + std::count(t.begin(), t.begin() + static_cast<long>(from), '\n'), word);
+  }
 }
 
 // A file a script includes or merges, named by `name` relative to the script's folder.
 void check_included(const Scanner& sc, const std::string& command, const std::string& name, int depth) {
   fs::path p(name);
   if (p.is_relative()) p = fs::path(sc.path).parent_path() / p;
-  const std::string ext = lower(p.extension().string());
-  const bool script = command == "Include" || ext == ".geo";  // gmsh parses any Include as a script
-  if (!script) {
-    if (std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end()) return;
-    if (ext != ".msh")
-      sc.error("{} \"{}\": dspdem lets a script merge .geo, .msh, STEP, BREP, IGES and STL files only", command, name);
-  }
+  const std::string ext = p.extension().string();
+  // gmsh parses any Include as a script; a Merge by the file's kind, known by its extension's
+  // exact spelling (another spelling it parses as a script).
+  const bool data = std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end();
+  const bool script = command == "Include" || ext == ".geo";
+  if (!script && !data && ext != ".msh")
+    sc.error(
+        "{} \"{}\": dspdem lets a script merge .geo, .msh, STEP, BREP, IGES and STL files only (extensions "
+        "spelt as gmsh knows them)",
+        command, name);
   if (!fs::is_regular_file(p)) sc.error("{} \"{}\": {} is not a file", command, name, p.string());
   if (depth >= kMostDepth) sc.error("{} \"{}\": scripts nested more than {} deep", command, name, kMostDepth);
   // The fault named in the file that has it, and where the case's own script includes it.
   try {
+    if (command == "Merge") check_companion(p.string(), depth);  // gmsh reads its .opt too
+    if (data && !script) return;
     const std::string inner = read_file(p.string(), "mesh file");
     if (script)
       check_script(p.string(), inner, depth + 1);
@@ -117,6 +154,7 @@ void check_included(const Scanner& sc, const std::string& command, const std::st
 
 void check_script(const std::string& path, const std::string& text, int depth) {
   Scanner sc{path, text};
+  std::set<std::size_t> code_words;  // where Include, Merge and Printf were read as code
   // gmsh's lexer ends a string or a // comment at a NUL byte and reads on; this check would not.
   if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
     sc.line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
@@ -124,7 +162,7 @@ void check_script(const std::string& path, const std::string& text, int depth) {
   }
   while (true) {
     sc.skip_space();
-    if (sc.pos >= text.size()) return;
+    if (sc.pos >= text.size()) return check_hidden_words(sc, code_words);
     const char ch = text[sc.pos];
     const auto u = static_cast<unsigned char>(ch);
     if (u < 32 || u == 127)
@@ -141,7 +179,8 @@ void check_script(const std::string& path, const std::string& text, int depth) {
     while (sc.pos < text.size() && (std::isalnum(static_cast<unsigned char>(text[sc.pos])) || text[sc.pos] == '_'))
       ++sc.pos;
     const std::string_view word(text.data() + from, sc.pos - from);
-    if (std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end() && sc.before_dot())
+    if (word == "Include" || word == "Merge" || word == "Printf") code_words.insert(from);
+    if (std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end())
       sc.error(
           "{}.* options are gmsh's own, not the model's (General.AbortOnError ends the process on an error; "
           "dspdem sets General.NumThreads itself, for the same mesh every run); dspdem does not let a script "
@@ -163,7 +202,7 @@ void check_script(const std::string& path, const std::string& text, int depth) {
       }
       continue;
     }
-    if (std::find(kRefused.begin(), kRefused.end(), word) != kRefused.end() && !(word == "Print" && sc.before_dot()))
+    if (std::find(kRefused.begin(), kRefused.end(), word) != kRefused.end() && !(word == "Print" && sc.before('.')))
       sc.error(
           "{} acts outside the model (runs a program, writes files, ends or stalls the process, or names a command "
           "made at run time); dspdem does not run it",
@@ -183,5 +222,7 @@ void check_script(const std::string& path, const std::string& text, int depth) {
 }  // namespace
 
 void check_geo_script(const std::string& path, const std::string& text) { check_script(path, text, 0); }
+
+void check_gmsh_option_file(const std::string& file) { check_companion(file, 0); }
 
 }  // namespace dspdem

@@ -17,14 +17,22 @@ namespace dspdem {
 ///   SendToServer, Exit, Sleep, CreateDir, Save, Print, MergeWithBoundingBox and Plugin, and
 ///   Printf redirected into a file (> or >>);
 /// - S2N and StringToName, which make a command's name from a string;
-/// - General.* and Solver.* options (General.AbortOnError ends the process on an error;
-///   dspdem sets General.NumThreads itself, for meshes the same every run);
+/// - the words General and Solver, gmsh's own option categories (General.AbortOnError ends the
+///   process on an error; dspdem sets General.NumThreads itself, for the same mesh every run);
 /// - Include or Merge of a name the script builds rather than a quoted file name;
 /// - a byte gmsh's lexer would read otherwise than this check (NUL and other control
 ///   characters), and a string or comment never closed.
+/// Words of the first list, General. and Solver. options, and Include, Merge and Printf not
+/// read as code are refused in strings and comments too: gmsh's If, For and Macro skip text
+/// without reading its strings, so what this reading takes for a string gmsh may run.
 /// Files the script includes are checked as scripts, whatever their extension (gmsh parses
 /// an Include as a script); a merged .geo as a script, a merged .msh as a mesh file (format
-/// only); merged STEP, BREP, IGES and STL files are let through, any other kind refused.
+/// only), and a merged file's ".opt"; merged STEP, BREP, IGES and STL files (extensions spelt
+/// as gmsh knows them) are let through, any other kind refused.
 void check_geo_script(const std::string& path, const std::string& text);
+
+/// gmsh reads "<file>.opt" beside a file it opens or merges, as a script: when there is one,
+/// it is checked as check_geo_script checks a script.
+void check_gmsh_option_file(const std::string& file);
 
 }  // namespace dspdem

@@ -217,6 +217,7 @@ Mesh read_gmsh(const std::string& path, const std::string& save_as) {
   } else {
     check_geo_script(path, read_file(path, "mesh file"));
   }
+  check_gmsh_option_file(path);  // gmsh runs "<file>.opt" beside the file it opens
   GmshSession session;
   try {
     gmsh::open(path);

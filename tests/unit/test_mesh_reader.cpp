@@ -144,6 +144,20 @@ TEST(MeshReader, AnUnreadableFileDoesNotBreakLaterReads) {
   expect_tet(read_gmsh(write_file("after_bad.msh", kTetV2)));
 }
 
+// Expects check_geo_script to refuse `text` (written as `name`) naming every fragment. The
+// refusals are checked without gmsh: were one to fail, gmsh would run the command in the test
+// (Exit ends the process with status 0, which ctest counts as a pass; Sleep hangs it).
+void expect_geo_refused(const std::string& name, const std::string& text, const std::vector<std::string>& fragments) {
+  const std::string path = write_file(name, text);
+  try {
+    check_geo_script(path, text);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    for (const auto& f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+  }
+}
+
 // A .geo's commands that act outside the model are refused by line before gmsh runs anything:
 // a case file is often someone else's, run in batch on a shared server. The script is read as
 // gmsh 4.8's lexer reads it, or a string or comment could hide a command from the check.
@@ -152,48 +166,71 @@ TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
   fs::remove(marker);
   const std::string box = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nMesh.MeshSizeMax = 0.6;\n";
   const std::string touch = "\"touch " + marker.string() + "\"";
+  // Through the reader: refused before gmsh opens the file, and the command did not run.
   expect_error("system_call.geo", box + "SystemCall " + touch + ";\n", {"line 4", "SystemCall", "does not run it"});
-  // Ways a review found past the first check (each ran its command then): gmsh has no escapes
-  // and takes single quotes; a NUL ends its // comment; S2N names a command from a string;
-  // System is SystemCall's alias; an Include of any extension is parsed as a script.
-  expect_error("backslash.geo", box + "s = \"\\\"; SystemCall " + touch + "; // \"\n", {"line 4", "SystemCall"});
-  expect_error("single_quote.geo", box + "x = '\"'; SystemCall " + touch + "; y = '\"';\n", {"line 4", "SystemCall"});
-  expect_error("nul.geo", box + "// note" + std::string(1, '\0') + "SystemCall " + touch + ";\n",
-               {"line 4", "NUL byte"});
-  expect_error("s2n.geo", box + "S2N[StrCat(\"System\", \"Call\")] " + touch + ";\n", {"line 4", "S2N"});
+  write_file("opt_case.geo", box);
+  write_file("opt_case.geo.opt", "SystemCall " + touch + ";\n");  // gmsh runs <file>.opt beside it
+  expect_error("opt_case.geo", box, {"opt_case.geo.opt", "line 1", "SystemCall"});
+  fs::remove(fs::temp_directory_path() / "dspdem_mesh_reader" / "opt_case.geo.opt");
+  EXPECT_FALSE(fs::exists(marker)) << "a script's command ran";
+  // Ways two reviews found past earlier versions of the check (each ran its command then):
+  // gmsh has no escapes and takes single quotes; a NUL ends its // comment; S2N names a
+  // command from a string; System is SystemCall's alias; an Include of any extension is parsed
+  // as a script; a false If skips to an EndIf inside a string; a For's body is read again from
+  // the line after its header; an option's category indexed or on the next line.
+  expect_geo_refused("backslash.geo", box + "s = \"\\\"; SystemCall " + touch + "; // \"\n", {"line 4", "SystemCall"});
+  expect_geo_refused("single_quote.geo", box + "x = '\"'; SystemCall " + touch + "; y = '\"';\n",
+                     {"line 4", "SystemCall"});
+  expect_geo_refused("nul.geo", box + "// note" + std::string(1, '\0') + "SystemCall " + touch + ";\n",
+                     {"line 4", "NUL byte"});
+  expect_geo_refused("s2n.geo", box + "S2N[StrCat(\"System\", \"Call\")] " + touch + ";\n", {"line 4", "S2N"});
   write_file("evil.stl", "SystemCall " + touch + ";\n");
-  expect_error("include_stl.geo", box + "Include \"evil.stl\";\n", {"line 4", "evil.stl", "line 1", "SystemCall"});
+  expect_geo_refused("include_stl.geo", box + "Include \"evil.stl\";\n",
+                     {"line 4", "evil.stl", "line 1", "SystemCall"});
+  write_file("evil.Step", "SystemCall " + touch + ";\n");  // gmsh knows .step, .STEP, .stp, .STP only
+  expect_geo_refused("merge_spelt.geo", box + "Merge \"evil.Step\";\n", {"line 4", "evil.Step", "spelt"});
+  expect_geo_refused("if_skip.geo", box + "If (0)\nx = \"EndIf Exit; y = '\"'; // '\nEndIf\n",
+                     {"line 5", "'Exit' in a string or a comment"});
+  expect_geo_refused("for_header.geo", box + "For i In {1:2} x = \"\nSystemCall 'true'; // \";\nEndFor\n",
+                     {"line 5", "'SystemCall' in a string or a comment"});
+  expect_geo_refused("hidden_include.geo", box + "If (0)\nx = \"EndIf Include 'x.geo'; // \";\nEndIf\n",
+                     {"line 5", "'Include' in a string or a comment"});
+  expect_geo_refused("general_index.geo", box + "General[0].AbortOnError = 4;\n", {"line 4", "General"});
+  expect_geo_refused("general_line.geo", box + "General\n.AbortOnError = 4;\n", {"line 4", "General"});
   for (const char* cmd :
        {"System \"true\";", "NonBlockingSystemCall \"true\";", "Exit;", "Sleep 1e9;", "CreateDir \"made\";",
         "Save \"copy.msh\";", "Print \"view.png\";", "OnelabRun(\"x\", \"true\");", "MergeWithBoundingBox \"a.geo\";",
         "Plugin(Bubbles).OutputFile = \"victim\";", "General.AbortOnError = 4;", "Solver.Executable0 = \"sh\";"})
-    expect_error("refused.geo", box + "  " + cmd + "\n", {"line 4", std::string(cmd).substr(0, 4)});
+    expect_geo_refused("refused.geo", box + "  " + cmd + "\n", {"line 4", std::string(cmd).substr(0, 4)});
   EXPECT_FALSE(fs::exists(marker)) << "a script's command ran";
   // Printf writes into a file only past its parenthesis: "a > b" inside is a comparison.
-  expect_error("printf.geo", box + "Printf(\"%g\", 2 > 1) >> \"out.txt\";\n", {"line 4", "Printf into a file"});
-  expect_error("printf_quote.geo", box + "Printf(')') > \"out.txt\";\n", {"line 4", "Printf into a file"});
+  expect_geo_refused("printf.geo", box + "Printf(\"%g\", 2 > 1) >> \"out.txt\";\n", {"line 4", "Printf into a file"});
+  expect_geo_refused("printf_quote.geo", box + "Printf(')') > \"out.txt\";\n", {"line 4", "Printf into a file"});
   // Include and Merge: a name the script makes is not checked, so it is refused.
-  expect_error("include_made.geo", box + "Include StrCat(\"a\", \".geo\");\n", {"line 4", "in quotes"});
+  expect_geo_refused("include_made.geo", box + "Include StrCat(\"a\", \".geo\");\n", {"line 4", "in quotes"});
   write_file("inner_bad.geo", "// an included script\n\nExit;\n");
-  expect_error("include_bad.geo", box + "Include \"inner_bad.geo\";\n", {"inner_bad.geo", "line 3", "Exit"});
-  expect_error("merge_py.geo", box + "Merge \"solver.py\";\n", {"line 4", "solver.py"});
-  expect_error("include_self.geo", box + "Include \"include_self.geo\";\n", {"nested more than 16"});
-  expect_error("open_comment.geo", box + "/* never closed\n", {"line 4", "never closed"});
-  expect_error("open_string.geo", box + "s = 'never closed;\n", {"line 4", "never closed"});
+  expect_geo_refused("include_bad.geo", box + "Include \"inner_bad.geo\";\n", {"inner_bad.geo", "line 3", "Exit"});
+  expect_geo_refused("merge_py.geo", box + "Merge \"solver.py\";\n", {"line 4", "solver.py"});
+  expect_geo_refused("include_self.geo", box + "Include \"include_self.geo\";\n", {"nested more than 16"});
+  expect_geo_refused("open_comment.geo", box + "/* never closed\n", {"line 4", "never closed"});
+  expect_geo_refused("open_string.geo", box + "s = 'never closed;\n", {"line 4", "never closed"});
+  write_file("part.stl.opt", "Exit;\n");
+  write_file("part.stl", "solid x\nendsolid x\n");
+  expect_geo_refused("merge_opt.geo", box + "Merge \"part.stl\";\n", {"part.stl.opt", "Exit"});
+  fs::remove(fs::temp_directory_path() / "dspdem_mesh_reader" / "part.stl.opt");
 
-  // What a meshing script uses is read: comments and strings naming the commands, option
-  // categories of the same names, Printf to the terminal, an included script, and a merged
-  // surface mesh (no volume elements: the script builds its volume from it) or CAD file
-  // whatever the case of its extension.
+  // What a meshing script uses is read: comments and strings, option categories named like a
+  // command (Print.Width), Printf to the terminal, an included script, and a merged surface
+  // mesh (no volume elements: the script builds its volume from it) or CAD file.
   write_file("inner_ok.geo", "Physical Volume('solid') = {1};\n");
-  const Mesh m = read_gmsh(write_file("fine.geo", box + "// SystemCall \"rm -rf /\"; in a comment\n"
-                                                        "/* Exit; */ Printf(\"Exit; SystemCall > x\");\n"
+  const Mesh m = read_gmsh(write_file("fine.geo", box + "// the box, meshed coarsely\n"
+                                                        "/* a comment */ Printf(\"meshed: %g\", 1);\n"
                                                         "Print.Width = 800;\nInclude \"inner_ok.geo\";\n"));
   EXPECT_GT(m.n_elements(), 0);
   EXPECT_NE(m.find_group("solid"), nullptr);
   const std::string surface = replace(kTetV2, "2\n1 2 2 1 1 1 3 2\n2 4 2 2 1 1 2 3 4\n", "1\n1 2 2 1 1 1 3 2\n");
   write_file("surface.msh", surface);
   write_file("part.STEP", "not read by the check");
-  EXPECT_NO_THROW(check_geo_script(write_file("merges.geo", "Merge \"surface.msh\";\nMerge 'part.STEP';\n"),
-                                   "Merge \"surface.msh\";\nMerge 'part.STEP';\n"));
+  const std::string merges = "Merge \"surface.msh\";\nMerge 'part.STEP';\nMerge \"part.stl\";\n";
+  EXPECT_NO_THROW(check_geo_script(write_file("merges.geo", merges), merges));
 }
