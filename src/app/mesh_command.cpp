@@ -19,7 +19,8 @@ int mesh_command(const CaseConfig& c, const std::string& out_dir) {
   std::error_code ec;
   DSPDEM_CHECK(!fs::exists(out_dir, ec) || fs::is_directory(out_dir, ec),
                "mesh --out {}: a file is there, not a folder: give --out a folder", out_dir);
-  fs::create_directories(out_dir);
+  fs::create_directories(out_dir, ec);
+  DSPDEM_CHECK(!ec, "mesh --out {}: cannot make the folder: {}", out_dir, ec.message());
   const std::string msh = (fs::path(out_dir) / (c.name + ".msh")).string();
   // Written over its own source, a .msh would be lost (gmsh writes what it read as 4.1, and
   // without the elements outside every physical group).

@@ -336,8 +336,9 @@ Model build_model(const CaseConfig& c, Mesh mesh) {
       for (int d = 0; d < 3; ++d) {
         if (!bc.dof[d]) continue;
         const Constraint now{3 * n + d, fixed ? 0.0 : bc.value(d), fixed ? 0.0 : bc.ramp};
+        // A ramp scales the value: two zero values are the same condition whatever their ramps.
         if (const auto it = cons.find(now.dof);
-            it != cons.end() && (it->second.value != now.value || it->second.ramp != now.ramp))
+            it != cons.end() && (it->second.value != now.value || (now.value != 0 && it->second.ramp != now.ramp)))
           ++overridden[{set_by[now.dof], bi}];
         cons[now.dof] = now, set_by[now.dof] = bi;
       }

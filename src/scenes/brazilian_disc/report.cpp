@@ -132,7 +132,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
         pct(r.face_xx), pct(r.mid_xx),
         r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t"
                                               : ""));
-  doc.figure("profile", "images/plots/profile.png");
+  if (r.P_peak > 0) doc.figure("profile", "images/plots/profile.png");
   if (checked) {
     doc.subsection("Stress check on a mesh that resolves the loads");
     doc.para(fmt::format(
@@ -228,12 +228,13 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
        yes(two_halves && crosses && r.crack_path_mean_x >= 0 && r.crack_path_mean_x < c.mesh_num.at("size")),
        "DiscUnaligned.SplitsAlongTheDiameterWithinFifteenPercentOfTheStrength"},
       {"stresses along the loaded diameter, L2 error against the point-load solution", "eqs. 24-25, shown",
-       fmt::format("sigma_xx {:.1f} %, sigma_yy {:.1f} %", 100 * r.l2_xx, 100 * r.l2_yy), "",
-       "DiscField.SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh"},
+       r.P_peak > 0 ? fmt::format("sigma_xx {:.1f} %, sigma_yy {:.1f} %", 100 * r.l2_xx, 100 * r.l2_yy)
+                    : std::string("no load reached the disc"),
+       "", "DiscField.SigmaAlongTheDiameterWithinFivePercentOnTheCheckMesh"},
       report::balance_row(r.balance_max, "")};
   if (!a.no_render) {
     doc.thumbnail("fragments at the end", fmt::format("images/fragments/frame_{:04d}.png", r.last_frame));
-    doc.thumbnail("stress at crack initiation",
+    doc.thumbnail(r.init_frame >= 0 ? "stress at crack initiation" : "stress at the start (no joint broke)",
                   fmt::format("images/stress/frame_{:04d}.png", std::max<Index>(0, r.init_frame)));
   }
   doc.thumbnail("load against closure", "images/plots/load_closure.png");
