@@ -116,7 +116,7 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
     doc.para("No load reached the disc in the run: no stress profile is compared.");
   else
     doc.para(fmt::format(
-        "At P = {:.2f} kN ({}; the paper uses 33.0 of 40.6 kN = 81 %; never after the first broken "
+        "At P = {:.2f} kN ({:.0f} % of the peak; the paper uses 33.0 of 40.6 kN = 81 %; never after the first broken "
         "joint), frame {} (t = {:.3f} ms). "
         "Elements within half an element size of x = 0, averaged in 16 bins over the central 80 % of the diameter, "
         "against the point-load solution (paper eqs. 24-25 on the axis). Each element's constant stress is compared "
@@ -127,9 +127,8 @@ int brazilian_disc_report(const CaseConfig& c, const report::ReportArgs& a) {
         "At the centre: sigma_xx {}, sigma_yy {}. The disc is 3D and the reference is plane stress: through the "
         "thickness at the centre (|y| < h), sigma_xx is {} on the end faces (outer half-element layer) and {} on "
         "the mid-plane against the 2D value{}.",
-        1e-3 * r.P_profile, fmt::format("{:.0f} % of the peak", 100 * r.P_profile / r.P_peak), r.profile_frame,
-        1e3 * r.t_profile, 100 * r.l2_xx, 100 * r.l2_yy, 100 * r.l2_xx_centroid, pct(r.centre_xx), pct(r.centre_yy),
-        pct(r.face_xx), pct(r.mid_xx),
+        1e-3 * r.P_profile, 100 * r.P_profile / r.P_peak, r.profile_frame, 1e3 * r.t_profile, 100 * r.l2_xx,
+        100 * r.l2_yy, 100 * r.l2_xx_centroid, pct(r.centre_xx), pct(r.centre_yy), pct(r.face_xx), pct(r.mid_xx),
         r.face_xx > 0 && r.face_xx > r.mid_xx ? ": the faces reach f_t first, below the nominal 2P/(pi D L) = f_t"
                                               : ""));
   if (r.P_peak > 0) doc.figure("profile", "images/plots/profile.png");
