@@ -74,6 +74,8 @@ struct Scanner {
     std::string s;
     for (advance(); pos < text.size() && text[pos] != quote; advance()) s += text[pos];
     if (pos >= text.size()) line = from, error("a string {} is never closed", quote);
+    // gmsh's lexer cuts a string at 1023 characters and reads the rest as code.
+    if (s.size() > 1023) line = from, error("a string of {} characters: gmsh reads at most 1023", s.size());
     advance();
     return s;
   }
@@ -88,10 +90,14 @@ struct Scanner {
 
 void check_script(const std::string& path, const std::string& text, int depth);
 
-// gmsh reads "<file>.opt" beside every file it opens or merges, as a script.
+// gmsh reads "<file>.opt" beside every file it opens or merges, as a script, and merging that
+// reads its own ".opt": "<file>.opt.opt" and on.
 void check_companion(const std::string& file, int depth) {
-  const std::string opt = file + ".opt";
-  if (fs::exists(opt)) check_script(opt, read_file(opt, "gmsh option file"), depth + 1);
+  std::string opt = file + ".opt";
+  for (int k = 0; fs::exists(opt); ++k, opt += ".opt") {
+    DSPDEM_CHECK(k < kMostDepth, "gmsh option files beside '{}' chained more than {} deep", file, kMostDepth);
+    check_script(opt, read_file(opt, "gmsh option file"), depth + 1);
+  }
 }
 
 // The words gmsh could still take for code where the reading above saw a string or a comment:
@@ -113,7 +119,14 @@ void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_wor
     const bool option = std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end() &&
                         (Scanner::next_after(t, i) == '.' || Scanner::next_after(t, i) == '[');
     const bool reads = (word == "Include" || word == "Merge" || word == "Printf") && !code_words.count(from);
-    if (command || option || reads)
+    bool deletes = false;
+    if (word == "Delete") {
+      std::size_t k = i;
+      while (k < t.size() && std::isspace(static_cast<unsigned char>(t[k]))) ++k;
+      for (const std::string_view what : {"Options", "All", "Model"})
+        deletes = deletes || t.compare(k, what.size(), what) == 0;
+    }
+    if (command || option || reads || deletes)
       fail(
           "mesh file '{}': line {}: '{}' in a string or a comment: gmsh's If, For and Macro skip text without "
           "reading its strings and may run it; dspdem refuses it there too (reword the string or comment)",
@@ -180,6 +193,19 @@ void check_script(const std::string& path, const std::string& text, int depth) {
       ++sc.pos;
     const std::string_view word(text.data() + from, sc.pos - from);
     if (word == "Include" || word == "Merge" || word == "Printf") code_words.insert(from);
+    if (word == "Delete") {
+      // Delete Options resets gmsh's own options (General.AbortOnError with them, so that an
+      // error no longer stops the script); Delete All and Delete Model free what the parser
+      // still reads from.
+      sc.skip_space();
+      const std::size_t w = sc.pos;
+      while (sc.pos < text.size() && std::isalpha(static_cast<unsigned char>(text[sc.pos]))) ++sc.pos;
+      const std::string_view what(text.data() + w, sc.pos - w);
+      if (what == "Options" || what == "All" || what == "Model")
+        sc.error("Delete {} resets gmsh's options or frees its model while the script runs; dspdem does not run it",
+                 what);
+      continue;
+    }
     if (std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end())
       sc.error(
           "{}.* options are gmsh's own, not the model's (General.AbortOnError ends the process on an error; "

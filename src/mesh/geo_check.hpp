@@ -16,12 +16,14 @@ namespace dspdem {
 /// - the commands SystemCall, System, NonBlockingSystemCall, OnelabRun, OnelabAction,
 ///   SendToServer, Exit, Sleep, CreateDir, Save, Print, MergeWithBoundingBox and Plugin, and
 ///   Printf redirected into a file (> or >>);
-/// - S2N and StringToName, which make a command's name from a string;
+/// - S2N and StringToName, which make a command's name from a string; Delete Options (which
+///   turns General.AbortOnError off with the other options), Delete All and Delete Model;
 /// - the words General and Solver, gmsh's own option categories (General.AbortOnError ends the
 ///   process on an error; dspdem sets General.NumThreads itself, for the same mesh every run);
 /// - Include or Merge of a name the script builds rather than a quoted file name;
 /// - a byte gmsh's lexer would read otherwise than this check (NUL and other control
-///   characters), and a string or comment never closed.
+///   characters), a string or comment never closed, and a string over 1023 characters (gmsh
+///   reads the rest as code).
 /// Words of the first list, General. and Solver. options, and Include, Merge and Printf not
 /// read as code are refused in strings and comments too: gmsh's If, For and Macro skip text
 /// without reading its strings, so what this reading takes for a string gmsh may run.
@@ -31,8 +33,8 @@ namespace dspdem {
 /// as gmsh knows them) are let through, any other kind refused.
 void check_geo_script(const std::string& path, const std::string& text);
 
-/// gmsh reads "<file>.opt" beside a file it opens or merges, as a script: when there is one,
-/// it is checked as check_geo_script checks a script.
+/// gmsh reads "<file>.opt" beside a file it opens or merges, as a script, and "<file>.opt.opt"
+/// beside that, and on: each there is checked as check_geo_script checks a script.
 void check_gmsh_option_file(const std::string& file);
 
 }  // namespace dspdem

@@ -172,6 +172,12 @@ TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
   write_file("opt_case.geo.opt", "SystemCall " + touch + ";\n");  // gmsh runs <file>.opt beside it
   expect_error("opt_case.geo", box, {"opt_case.geo.opt", "line 1", "SystemCall"});
   fs::remove(fs::temp_directory_path() / "dspdem_mesh_reader" / "opt_case.geo.opt");
+  // ... and <file>.opt.opt beside that, and on (a third review's finding).
+  write_file("opt_case.geo.opt", "// options\n");
+  write_file("opt_case.geo.opt.opt", "SystemCall " + touch + ";\n");
+  expect_error("opt_case.geo", box, {"opt_case.geo.opt.opt", "line 1", "SystemCall"});
+  fs::remove(fs::temp_directory_path() / "dspdem_mesh_reader" / "opt_case.geo.opt");
+  fs::remove(fs::temp_directory_path() / "dspdem_mesh_reader" / "opt_case.geo.opt.opt");
   EXPECT_FALSE(fs::exists(marker)) << "a script's command ran";
   // Ways two reviews found past earlier versions of the check (each ran its command then):
   // gmsh has no escapes and takes single quotes; a NUL ends its // comment; S2N names a
@@ -196,6 +202,16 @@ TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
   expect_geo_refused("hidden_include.geo", box + "If (0)\nx = \"EndIf Include 'x.geo'; // \";\nEndIf\n",
                      {"line 5", "'Include' in a string or a comment"});
   expect_geo_refused("general_index.geo", box + "General[0].AbortOnError = 4;\n", {"line 4", "General"});
+  // A third review's: Delete Options turned AbortOnError off, and gmsh cuts a string at 1023
+  // characters and reads the rest as code (there a Printf > 'file' the check had read as a string).
+  for (const char* del : {"Options", "All", "Model"})
+    expect_geo_refused("delete.geo", box + "Delete " + del + ";\n", {"line 4", std::string("Delete ") + del});
+  expect_geo_refused("hidden_delete.geo", box + "If (0)\nx = \"EndIf Delete Options; // \";\nEndIf\n",
+                     {"line 5", "'Delete' in a string or a comment"});
+  expect_geo_refused("long_string.geo", box + "x = \"" + std::string(1024, 'a') + "\";\n",
+                     {"line 4", "1024 characters", "at most 1023"});
+  EXPECT_NO_THROW(
+      check_geo_script("delete_ok.geo", box + "Delete Physicals;\nx = \"" + std::string(1023, 'a') + "\";\n"));
   expect_geo_refused("general_line.geo", box + "General\n.AbortOnError = 4;\n", {"line 4", "General"});
   for (const char* cmd :
        {"System \"true\";", "NonBlockingSystemCall \"true\";", "Exit;", "Sleep 1e9;", "CreateDir \"made\";",
