@@ -90,6 +90,12 @@ struct Scanner {
 
 void check_script(const std::string& path, const std::string& text, int depth);
 
+// gmsh (FixRelativePath, SplitFileName) takes a backslash for a folder separator and "c:" for a drive,
+// where std::filesystem on Linux reads them as characters of the name.
+bool plain_file_name(const std::string& name) {
+  return name.find('\\') == std::string::npos && !(name.size() >= 2 && name[1] == ':');
+}
+
 // gmsh reads "<file>.opt" beside every file it opens or merges, as a script, and merging that
 // reads its own ".opt": "<file>.opt.opt" and on.
 void check_companion(const std::string& file, int depth) {
@@ -136,6 +142,11 @@ void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_wor
 
 // A file a script includes or merges, named by `name` relative to the script's folder.
 void check_included(const Scanner& sc, const std::string& command, const std::string& name, int depth) {
+  if (!plain_file_name(name))
+    sc.error(
+        "{} \"{}\": a backslash or a drive letter in a file's name: gmsh takes them for folders, and would "
+        "read another file than the one checked",
+        command, name);
   fs::path p(name);
   if (p.is_relative()) p = fs::path(sc.path).parent_path() / p;
   const std::string ext = p.extension().string();
@@ -247,8 +258,20 @@ void check_script(const std::string& path, const std::string& text, int depth) {
 }
 }  // namespace
 
-void check_geo_script(const std::string& path, const std::string& text) { check_script(path, text, 0); }
+void check_geo_script(const std::string& path, const std::string& text) {
+  DSPDEM_CHECK(plain_file_name(path),
+               "mesh file '{}': a backslash or a drive letter in its name: gmsh takes them for folders, and would "
+               "read another file than the one checked",
+               path);
+  check_script(path, text, 0);
+}
 
-void check_gmsh_option_file(const std::string& file) { check_companion(file, 0); }
+void check_gmsh_option_file(const std::string& file) {
+  DSPDEM_CHECK(plain_file_name(file),
+               "mesh file '{}': a backslash or a drive letter in its name: gmsh takes them for folders, and would "
+               "read another file than the one checked",
+               file);
+  check_companion(file, 0);
+}
 
 }  // namespace dspdem

@@ -206,6 +206,11 @@ TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
   // characters and reads the rest as code (there a Printf > 'file' the check had read as a string).
   for (const char* del : {"Options", "All", "Model"})
     expect_geo_refused("delete.geo", box + "Delete " + del + ";\n", {"line 4", std::string("Delete ") + del});
+  // A fourth review's: gmsh takes a backslash for a folder separator and "c:" for a drive, so it
+  // read another file than the one the check had read.
+  expect_geo_refused("backslash_include.geo", box + "Include \"sub\\inner.geo\";\n", {"line 4", "a backslash"});
+  expect_geo_refused("drive_merge.geo", box + "Merge \"c:/part.stl\";\n", {"line 4", "drive letter"});
+  expect_geo_refused("top\\case.geo", box, {"a backslash"});
   expect_geo_refused("hidden_delete.geo", box + "If (0)\nx = \"EndIf Delete Options; // \";\nEndIf\n",
                      {"line 5", "'Delete' in a string or a comment"});
   expect_geo_refused("long_string.geo", box + "x = \"" + std::string(1024, 'a') + "\";\n",
