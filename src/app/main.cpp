@@ -52,9 +52,8 @@ std::vector<double> speed_list(const std::vector<std::string>& texts, const std:
     while (true) {
       const std::size_t comma = std::min(text.find(',', from), text.size());
       const std::string entry = text.substr(from, comma - from);
-      char* end = nullptr;
-      const double v = std::strtod(entry.c_str(), &end);
-      DSPDEM_CHECK(!entry.empty() && *end == '\0' && std::isfinite(v) && v > 0,
+      double v = 0;
+      DSPDEM_CHECK(whole_number(entry, v) && std::isfinite(v) && v > 0,
                    "{} {}: '{}' is not a speed (a finite number > 0, in m/s)", option, text, entry);
       out.push_back(v);
       if (comma == text.size()) break;

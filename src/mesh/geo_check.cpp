@@ -23,6 +23,9 @@ constexpr std::array<std::string_view, 15> kRefused = {"SystemCall", "System",  
                                                        "Exit",       "Sleep",        "CreateDir",
                                                        "Save",       "Print",        "Plugin",
                                                        "S2N",        "StringToName", "MergeWithBoundingBox"};
+// What Delete may not take: Options resets gmsh's own options (General.AbortOnError with them,
+// so that an error no longer stops the script); All and Model free what the parser still reads.
+constexpr std::array<std::string_view, 3> kRefusedDeletes = {"Options", "All", "Model"};
 // Option categories a mesh script does not set.
 constexpr std::array<std::string_view, 2> kRefusedOptions = {"General", "Solver"};
 // What a script may Merge besides scripts and meshes: geometry to mesh, spelt as gmsh 4.8 knows
@@ -95,6 +98,9 @@ void check_script(const std::string& path, const std::string& text, int depth);
 bool plain_file_name(const std::string& name) {
   return name.find('\\') == std::string::npos && !(name.size() >= 2 && name[1] == ':');
 }
+constexpr const char* kNotPlain =
+    "a backslash or a drive letter in the name: gmsh takes them for folders, and would read another file than the one "
+    "checked";
 
 // gmsh reads "<file>.opt" beside every file it opens or merges, as a script, and merging that
 // reads its own ".opt": "<file>.opt.opt" and on.
@@ -129,8 +135,7 @@ void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_wor
     if (word == "Delete") {
       std::size_t k = i;
       while (k < t.size() && std::isspace(static_cast<unsigned char>(t[k]))) ++k;
-      for (const std::string_view what : {"Options", "All", "Model"})
-        deletes = deletes || t.compare(k, what.size(), what) == 0;
+      for (const std::string_view what : kRefusedDeletes) deletes = deletes || t.compare(k, what.size(), what) == 0;
     }
     if (command || option || reads || deletes)
       fail(
@@ -142,11 +147,7 @@ void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_wor
 
 // A file a script includes or merges, named by `name` relative to the script's folder.
 void check_included(const Scanner& sc, const std::string& command, const std::string& name, int depth) {
-  if (!plain_file_name(name))
-    sc.error(
-        "{} \"{}\": a backslash or a drive letter in a file's name: gmsh takes them for folders, and would "
-        "read another file than the one checked",
-        command, name);
+  if (!plain_file_name(name)) sc.error("{} \"{}\": {}", command, name, kNotPlain);
   fs::path p(name);
   if (p.is_relative()) p = fs::path(sc.path).parent_path() / p;
   const std::string ext = p.extension().string();
@@ -205,14 +206,11 @@ void check_script(const std::string& path, const std::string& text, int depth) {
     const std::string_view word(text.data() + from, sc.pos - from);
     if (word == "Include" || word == "Merge" || word == "Printf") code_words.insert(from);
     if (word == "Delete") {
-      // Delete Options resets gmsh's own options (General.AbortOnError with them, so that an
-      // error no longer stops the script); Delete All and Delete Model free what the parser
-      // still reads from.
       sc.skip_space();
       const std::size_t w = sc.pos;
       while (sc.pos < text.size() && std::isalpha(static_cast<unsigned char>(text[sc.pos]))) ++sc.pos;
       const std::string_view what(text.data() + w, sc.pos - w);
-      if (what == "Options" || what == "All" || what == "Model")
+      if (std::find(kRefusedDeletes.begin(), kRefusedDeletes.end(), what) != kRefusedDeletes.end())
         sc.error("Delete {} resets gmsh's options or frees its model while the script runs; dspdem does not run it",
                  what);
       continue;
@@ -259,18 +257,12 @@ void check_script(const std::string& path, const std::string& text, int depth) {
 }  // namespace
 
 void check_geo_script(const std::string& path, const std::string& text) {
-  DSPDEM_CHECK(plain_file_name(path),
-               "mesh file '{}': a backslash or a drive letter in its name: gmsh takes them for folders, and would "
-               "read another file than the one checked",
-               path);
+  DSPDEM_CHECK(plain_file_name(path), "mesh file '{}': {}", path, kNotPlain);
   check_script(path, text, 0);
 }
 
 void check_gmsh_option_file(const std::string& file) {
-  DSPDEM_CHECK(plain_file_name(file),
-               "mesh file '{}': a backslash or a drive letter in its name: gmsh takes them for folders, and would "
-               "read another file than the one checked",
-               file);
+  DSPDEM_CHECK(plain_file_name(file), "mesh file '{}': {}", file, kNotPlain);
   check_companion(file, 0);
 }
 

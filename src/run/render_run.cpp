@@ -36,13 +36,6 @@ namespace dspdem {
 namespace {
 namespace fs = std::filesystem;
 
-// Whether `t` is all of a whole number (strtol alone takes "3x" as 3 and "" as 0).
-bool whole_number(const std::string& t, long& v) {
-  char* end = nullptr;
-  v = std::strtol(t.c_str(), &end, 10);
-  return !t.empty() && *end == '\0';
-}
-
 std::vector<std::size_t> select_frames(const std::string& spec, std::size_t n) {
   std::vector<std::size_t> out;
   if (spec == "all") {
