@@ -33,7 +33,7 @@ int mesh_command(const CaseConfig& c, const std::string& out_dir) {
   if (c.mesh_generator.empty()) {
     // The mesh gmsh made or read, not the source file: a .geo copied under the name .msh
     // was its script, which no mesh reader takes.
-    m = read_gmsh(c.mesh_file, msh);
+    m = read_gmsh(c.mesh_file, msh, c.mesh_time_limit);
     source = c.mesh_file;
   } else {
     // Inverted elements are refused inside (check_element_volumes); nothing is written then.

@@ -106,6 +106,7 @@ struct CaseConfig {
   std::map<std::string, double> mesh_num;       ///< its numeric parameters
   std::map<std::string, std::string> mesh_str;  ///< its text parameters
   bool mesh_cache = true;
+  double mesh_time_limit = 600;  ///< [mesh] time_limit: seconds gmsh may take to read mesh_file
   Vec3 gravity = Vec3::Zero();
   std::vector<Material> materials;
   std::vector<JointMaterial> joint_materials;               ///< parallel to materials

@@ -403,6 +403,7 @@ CaseConfig read_case(const std::string& path, const std::vector<std::string>& ov
     c.mesh_cache = s.boolean("cache");
     if (s.has("file")) {
       c.mesh_file = s.str("file");
+      c.mesh_time_limit = s.real("time_limit");
       const fs::path p(c.mesh_file);
       if (p.is_relative()) c.mesh_file = (fs::path(c.dir) / p).lexically_normal().string();
       s.finish();

@@ -38,6 +38,7 @@ const std::vector<Key>& general_keys() {
     {"case", "description", T::String, "\"\"", 0, 0, false, false, "", nullptr, "Free text: what the case checks, sources of its numbers and choices made."},
     {"mesh", "file", T::String, "auto", 0, 0, false, false, "", nullptr, "Mesh file (.msh v2/v4, or a .geo script that gmsh meshes in 3D), relative to the case file. Give either file or generator."},
     {"mesh", "generator", T::String, "auto", 0, 0, false, false, "", "brazilian_disc|galvez_beam|murray_beam|sphere_plate|packing", "Mesh generator; its parameters go in a [mesh.<generator>] table."},
+    {"mesh", "time_limit", T::Real, "600.0", 0, inf, true, false, "s", nullptr, "With file: how long gmsh may take to read the mesh file, or to run and mesh a .geo script, before the run stops with an error. gmsh reads it in a child process that cannot start programs, write, remove or change files, or open sockets (a .geo is a program, and a case file is often someone else's)."},
     {"mesh", "cache", T::Bool, "true", 0, 0, false, false, "", nullptr, "Reuse a generated mesh when generator, parameters and gmsh version are unchanged (folder: $DSPDEM_MESH_CACHE, else ~/.cache/dspdem/meshes)."},
     {"physics", "gravity", T::Vec3, "[0.0, 0.0, 0.0]", -inf, inf, false, false, "m/s^2", nullptr, "Gravitational acceleration applied to every node."},
     {"contact", "enabled", T::Bool, "false", 0, 0, false, false, "", nullptr, "Contact between pieces (elements with a free face in different fragments or bodies) and with [[walls]] (README M3)."},

@@ -5,7 +5,9 @@
 // is read as gmsh 4.8's lexer reads it (strings in double or single quotes, no escapes, //
 // and /* */ comments) and the commands and options that act outside the model are refused, by
 // line, before gmsh reads anything. This guards against the language's commands known to
-// act outside the model; it is not a sandbox for gmsh's parser or its plugins' code.
+// act outside the model, and names the line; it is not a sandbox for gmsh's parser or its
+// plugins' code. The sandbox is behind it: gmsh reads the file in a child process that the
+// kernel stops before it acts outside itself (core/sandbox.hpp, mesh/gmsh_reader.cpp).
 #pragma once
 #include <string>
 

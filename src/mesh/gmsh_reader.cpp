@@ -10,7 +10,9 @@
 #include "core/error.hpp"
 #include "core/file.hpp"
 #include "core/log.hpp"
+#include "core/sandbox.hpp"
 #include "mesh/geo_check.hpp"
+#include "mesh/gmsh_model_dump.hpp"
 #include "mesh/msh_check.hpp"
 
 namespace dspdem {
@@ -30,18 +32,6 @@ std::string gmsh_last_error() {
   return err;
 }
 
-// A gmsh error thrown from inside its file reader (the API sets General.AbortOnError = 2)
-// leaves the reader's "busy" lock set: every later open in the process is then ignored ("I'm
-// busy! Ask me that later") and reads an empty model, so one unreadable file (a .geo with a
-// syntax error, say) broke every mesh read after it. Restarting the library clears it.
-void restart_gmsh() {
-  try {
-    gmsh::finalize();
-  } catch (...) {
-  }
-  gmsh::initialize(0, nullptr, false);
-  gmsh::option::setNumber("General.Terminal", log::level() >= log::Level::Debug ? 1 : 0);
-}
 }  // namespace
 
 // gmsh sets the OpenMP thread count to its own General.NumThreads (1) on initialise and
@@ -205,7 +195,36 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
   return mesh;
 }
 
-Mesh read_gmsh(const std::string& path, const std::string& save_as) {
+namespace {
+// The child's part (core/sandbox.hpp): gmsh opens the file, a .geo's script runs and is
+// meshed, and the model comes back whole. Its messages follow "mesh file '<path>': ".
+// The parent's GmshSession has set gmsh up (and cleared it, which removes gmsh's temporary
+// file: a call the child may not make).
+std::string open_in_child(const std::string& path, bool geo) {
+  try {
+    gmsh::open(path);
+  } catch (...) {
+    fail("gmsh could not read it: {}", gmsh_last_error());
+  }
+  const std::string err = gmsh_last_error();
+  DSPDEM_CHECK(err.empty(), "gmsh reported: {}", err);
+  if (geo) {
+    std::vector<std::size_t> t;
+    std::vector<double> c, p;
+    gmsh::model::mesh::getNodes(t, c, p, 3, -1, true, false);
+    if (t.empty()) {
+      try {
+        gmsh::model::mesh::generate(3);
+      } catch (...) {
+        fail("gmsh could not mesh it: {}", gmsh_last_error());
+      }
+    }
+  }
+  return dump_gmsh_model();
+}
+}  // namespace
+
+Mesh read_gmsh(const std::string& path, const std::string& save_as, double time_limit) {
   namespace fs = std::filesystem;
   DSPDEM_CHECK(fs::exists(path), "mesh file '{}' does not exist", path);
   const auto ext = fs::path(path).extension().string();
@@ -215,36 +234,62 @@ Mesh read_gmsh(const std::string& path, const std::string& save_as) {
     // its faults are named by line.
     check_msh_text(path, read_file(path, "mesh file"));
   } else {
+    // Refused by line before anything runs; the sandbox (read_gmsh_unchecked) stops what
+    // gets past.
     check_geo_script(path, read_file(path, "mesh file"));
   }
   check_gmsh_option_file(path);  // gmsh runs "<file>.opt" beside the file it opens
+  return read_gmsh_unchecked(path, save_as, time_limit);
+}
+
+Mesh read_gmsh_unchecked(const std::string& path, const std::string& save_as, double time_limit) {
+  namespace fs = std::filesystem;
+  const bool geo = fs::path(path).extension() == ".geo";
+  // gmsh opens the file in a child process that cannot start programs, write files or open
+  // sockets, and that is stopped after time_limit: a .geo is a program, and a file that
+  // crashes gmsh then ends that process, not this one. It also keeps this process's gmsh
+  // clear of the reader's state after an error (its "busy" lock ignored every later open).
+  // gmsh is initialised here first: at its first start it writes FLTK's preferences file,
+  // which the child may not.
   GmshSession session;
-  try {
-    gmsh::open(path);
-  } catch (...) {
-    const std::string err = gmsh_last_error();
-    restart_gmsh();
-    fail("mesh file '{}': gmsh could not read it: {}", path, err);
+  const SandboxResult got = run_sandboxed([&] { return open_in_child(path, geo); }, time_limit);
+  switch (got.status) {
+    case SandboxResult::Status::Done:
+      break;
+    case SandboxResult::Status::Failed:
+      fail("mesh file '{}': {}", path, got.message);
+    case SandboxResult::Status::Refused:
+      fail(
+          "mesh file '{}': gmsh was stopped at {} that reading it made: a mesh file may not start programs, write, "
+          "remove or change files, open sockets or signal other processes",
+          path, got.message.empty() ? std::string("a system call") : "the system call " + got.message);
+    case SandboxResult::Status::TimedOut:
+      fail("mesh file '{}': gmsh {} ([mesh] time_limit; a larger mesh may need more)", path, got.message);
+    case SandboxResult::Status::Ended:
+      fail("mesh file '{}': gmsh ended before it had read the mesh ({}): a script's Exit ends it so, or a crash", path,
+           got.message);
   }
-  const std::string err = gmsh_last_error();
-  DSPDEM_CHECK(err.empty(), "mesh file '{}': gmsh reported: {}", path, err);
-  if (ext == ".geo") {
-    std::vector<std::pair<int, int>> vols;
-    gmsh::model::getEntities(vols, 3);
-    std::vector<std::size_t> t;
-    std::vector<double> c, p;
-    gmsh::model::mesh::getNodes(t, c, p, 3, -1, true, false);
-    if (t.empty()) gmsh::model::mesh::generate(3);
-  }
+  const GmshOptions write_options = load_gmsh_model(got.bytes, path);
   Mesh mesh = mesh_from_gmsh_model(path);
   if (!save_as.empty()) {
+    // The file's own write options for this write only (gmsh keeps options for the process).
+    GmshOptions before;
+    for (const auto& [name, value] : write_options) {
+      double v = 0;
+      gmsh::option::getNumber(name, v);
+      before.emplace_back(name, v);
+      gmsh::option::setNumber(name, value);
+    }
     // gmsh picks the format from the extension: the temporary name ends in .msh too.
     const fs::path dst(save_as), tmp = dst.parent_path() / fmt::format(".{}.tmp.msh", dst.stem().string());
+    std::string write_error;
     try {
       gmsh::write(tmp.string());
     } catch (...) {
-      fail("cannot write mesh '{}': {}", tmp.string(), gmsh_last_error());
+      write_error = gmsh_last_error();
     }
+    for (const auto& [name, value] : before) gmsh::option::setNumber(name, value);
+    DSPDEM_CHECK(write_error.empty(), "cannot write mesh '{}': {}", tmp.string(), write_error);
     fs::rename(tmp, dst);
   }
   return mesh;

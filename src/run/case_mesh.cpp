@@ -16,7 +16,7 @@ meshing::Params generator_params(const CaseConfig& c) {
 }
 
 Mesh load_case_mesh(const CaseConfig& c) {
-  if (c.mesh_generator.empty()) return read_gmsh(c.mesh_file);
+  if (c.mesh_generator.empty()) return read_gmsh(c.mesh_file, "", c.mesh_time_limit);
   const meshing::Params p = generator_params(c);
   Timer t;
   if (!c.mesh_cache) {

@@ -290,6 +290,8 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
   write("meshes/inverted.msh",
         "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"beam\"\n$EndPhysicalNames\n"
         "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 3 2 4\n$EndElements\n");
+  // A script that would run for hours: stopped at [mesh] time_limit.
+  write("meshes/forever.geo", "For i In {1:2000000000}\nEndFor\n");
   struct Bad {
     std::string name, text, args;
     std::vector<std::string> expect;
@@ -310,6 +312,10 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
        replace(good_, "meshes/cantilever_hex.geo", "meshes/inverted.msh"),
        "",
        {"inverted", "element tags: 1"}},
+      {"geo_time_limit",
+       replace(good_, "meshes/cantilever_hex.geo", "meshes/forever.geo"),
+       "--set mesh.time_limit=1",
+       {"forever.geo", "gmsh did not finish within 1 s", "[mesh] time_limit"}},
       {"stop_series", good_, "--set time.stop_series=plate_fy", {"stop_series = \"plate_fy\"", "known:"}},
       {"stop_reach", good_, "--set time.stop_reach=1e3", {"[time] stop_reach", "needs stop_series"}},
       // Written as numbers but not numbers TOML reads: said so, not "must be a number, got a string".

@@ -1,6 +1,7 @@
 // Mesh reading (read_gmsh): broken .msh files are refused by line before gmsh sees them, and
 // one unreadable file does not break the reads after it. Regression tests for the defects
 // the fuzz test (tests/robustness/test_fuzz_inputs.cpp) found.
+#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -254,4 +255,98 @@ TEST(MeshReader, GeoCommandsThatActOutsideTheModelAreRefusedByLine) {
   write_file("part.STEP", "not read by the check");
   const std::string merges = "Merge \"surface.msh\";\nMerge 'part.STEP';\nMerge \"part.stl\";\n";
   EXPECT_NO_THROW(check_geo_script(write_file("merges.geo", merges), merges));
+}
+
+namespace {
+// Expects read_gmsh_unchecked (gmsh in the sandbox, without the checks that would refuse the
+// script first) to throw Error naming the file and one of `any`.
+void expect_stopped(const std::string& name, const std::string& text, const std::vector<std::string>& any,
+                    double time_limit = 60) {
+  const std::string path = write_file(name, text);
+  try {
+    read_gmsh_unchecked(path, "", time_limit);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << "file not named: " << msg;
+    bool named = false;
+    for (const auto& f : any) named = named || msg.find(f) != std::string::npos;
+    EXPECT_TRUE(named) << msg;
+  }
+}
+}  // namespace
+
+// The second line of defence, behind the checks of the text above: gmsh runs the script in a
+// child process that cannot start programs, write, remove or make files, and that is stopped
+// at [mesh] time_limit. Each script here gets past no check (none is made): what it would do
+// is stopped by the sandbox, and leaves no trace.
+TEST(MeshReader, AGeoScriptRunsWhereItCannotActOutsideTheModel) {
+  const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_reader";
+  const fs::path marker = dir / "sandboxed_call_ran", saved = dir / "sandboxed_save.msh", made = dir / "sandboxed_dir";
+  fs::remove(marker);
+  fs::remove(saved);
+  fs::remove(made);
+  const std::string box = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nMesh.MeshSizeMax = 0.6;\n";
+  const std::string stopped = "gmsh was stopped at";
+  expect_stopped("sandboxed_call.geo", box + "SystemCall \"touch " + marker.string() + "\";\n", {stopped});
+  expect_stopped("sandboxed_save.geo", box + "Mesh 3;\nSave \"" + saved.string() + "\";\n",
+                 {stopped + " the system call openat"});
+  expect_stopped("sandboxed_dir.geo", box + "CreateDir \"" + made.string() + "\";\n",
+                 {stopped + " the system call mkdir"});
+  // Exit ends the child (and its exit handlers may try more): no mesh, and the run goes on.
+  expect_stopped("sandboxed_exit.geo", box + "Exit;\n", {"ended before it had read the mesh", stopped});
+  expect_stopped("sandboxed_sleep.geo", box + "Sleep 100;\n",
+                 {"gmsh did not finish within 1 s and was stopped ([mesh] time_limit"}, 1.0);
+  EXPECT_FALSE(fs::exists(marker));
+  EXPECT_FALSE(fs::exists(saved));
+  EXPECT_FALSE(fs::exists(made));
+  // This process's gmsh is as it was: a good file reads.
+  expect_tet(read_gmsh(write_file("after_sandboxed.msh", kTetV2)));
+}
+
+namespace {
+// Same nodes, elements and groups in the same order; coordinates within `rel` of each other
+// (0: the same doubles).
+void expect_same_mesh(const Mesh& a, const Mesh& b, double rel) {
+  EXPECT_EQ(a.node_tag, b.node_tag);
+  ASSERT_EQ(a.x.size(), b.x.size());
+  for (std::size_t i = 0; i < a.x.size(); ++i)
+    ASSERT_LE(std::abs(a.x[i] - b.x[i]), rel * std::abs(a.x[i])) << "coordinate " << i;
+  ASSERT_EQ(a.blocks.size(), b.blocks.size());
+  for (std::size_t k = 0; k < a.blocks.size(); ++k) {
+    EXPECT_EQ(a.blocks[k].conn, b.blocks[k].conn);
+    EXPECT_EQ(a.blocks[k].tag, b.blocks[k].tag);
+  }
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (std::size_t g = 0; g < a.groups.size(); ++g) {
+    EXPECT_EQ(a.groups[g].name, b.groups[g].name);
+    EXPECT_EQ(a.groups[g].dim, b.groups[g].dim);
+    EXPECT_EQ(a.groups[g].nodes, b.groups[g].nodes);
+    EXPECT_EQ(a.groups[g].elements, b.groups[g].elements);
+    EXPECT_EQ(a.groups[g].tri, b.groups[g].tri);
+  }
+}
+}  // namespace
+
+// The mesh comes from the child as a dump of gmsh's model and is loaded into this process's
+// gmsh again: it is the mesh gmsh makes of the script in this process (the same doubles), and
+// the .msh written from it reads back as the same mesh (gmsh writes coordinates with 16
+// digits: within 1e-15 of them).
+TEST(MeshReader, AMeshReadInTheSandboxIsTheMeshGmshMakesAndWrites) {
+  const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_reader";
+  const std::string geo = std::string(DSPDEM_SOURCE_DIR) + "/tests/data/tension_block.geo";
+  const std::string saved = (dir / "round_trip.msh").string();
+  const Mesh m = read_gmsh(geo, saved);
+  ASSERT_GT(m.n_elements(), 100);
+  ASSERT_EQ(m.groups.size(), 5u);
+  EXPECT_GT(m.find_group("left")->tri.size(), 0u);
+  Mesh here;
+  {
+    GmshSession session;  // a trusted script of the tests, run in this process
+    gmsh::open(geo);
+    gmsh::model::mesh::generate(3);
+    here = mesh_from_gmsh_model(geo);
+  }
+  expect_same_mesh(here, m, 0);
+  expect_same_mesh(m, read_gmsh(saved), 1e-15);
 }

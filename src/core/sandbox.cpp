@@ -1,0 +1,315 @@
+#include "core/sandbox.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <poll.h>
+#include <sched.h>
+#include <seccomp.h>
+#include <signal.h>
+#include <sys/ioctl.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+namespace dspdem {
+
+namespace {
+// The child writes its result on this descriptor (the pipe's end, moved there), and nothing
+// else of ours stays open in it.
+constexpr int kResultFd = 3;
+// The child's exit status when the filter stopped it (the SIGSYS handler's).
+constexpr int kRefusedExit = 117;
+constexpr char kDone = 'D', kFailed = 'F', kRefused = 'R';
+
+bool write_all(int fd, const char* p, std::size_t n) {
+  while (n > 0) {
+    const ssize_t w = write(fd, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    p += w;
+    n -= static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+// The filter's action on a call it stops is a SIGSYS here, with the call's number: the call
+// has not run, and the handler reports it and ends the child. Only async-signal-safe calls.
+extern "C" void on_refused_call(int, siginfo_t* si, void*) {
+  char msg[1 + sizeof(int)];
+  msg[0] = kRefused;
+  const int nr = si->si_syscall;
+  std::memcpy(msg + 1, &nr, sizeof nr);
+  const ssize_t w = write(kResultFd, msg, sizeof msg);
+  (void)w;
+  _exit(kRefusedExit);
+}
+
+// What the child may not do. A list of what it may not do, not of what it may: the work is a
+// library (gmsh) whose calls are not ours to list, and an allow-list that missed one (a new
+// glibc's, the sanitizers') would stop good input. Every way out that a script language or a
+// file reader has is on it: programs and processes, files written or changed, sockets,
+// signals to others, io_uring (whose operations the filter would not see), namespaces.
+bool install_filter(std::string& why) {
+  scmp_filter_ctx ctx = seccomp_init(SCMP_ACT_ALLOW);  // also sets no_new_privs
+  if (!ctx) {
+    why = "seccomp_init failed";
+    return false;
+  }
+  int rc = 0;
+  auto stop = [&](int nr, unsigned n = 0, scmp_arg_cmp a = {}) {
+    if (rc == 0)
+      rc = n == 0 ? seccomp_rule_add(ctx, SCMP_ACT_TRAP, nr, 0) : seccomp_rule_add(ctx, SCMP_ACT_TRAP, nr, 1, a);
+  };
+  for (int nr : {SCMP_SYS(execve),
+                 SCMP_SYS(execveat),
+                 SCMP_SYS(fork),
+                 SCMP_SYS(vfork),
+                 SCMP_SYS(ptrace),
+                 SCMP_SYS(process_vm_writev),
+                 SCMP_SYS(socket),
+                 SCMP_SYS(socketpair),
+                 SCMP_SYS(io_uring_setup),
+                 SCMP_SYS(io_uring_enter),
+                 SCMP_SYS(io_uring_register),
+                 SCMP_SYS(creat),
+                 SCMP_SYS(unlink),
+                 SCMP_SYS(unlinkat),
+                 SCMP_SYS(rename),
+                 SCMP_SYS(renameat),
+                 SCMP_SYS(renameat2),
+                 SCMP_SYS(mkdir),
+                 SCMP_SYS(mkdirat),
+                 SCMP_SYS(rmdir),
+                 SCMP_SYS(link),
+                 SCMP_SYS(linkat),
+                 SCMP_SYS(symlink),
+                 SCMP_SYS(symlinkat),
+                 SCMP_SYS(mknod),
+                 SCMP_SYS(mknodat),
+                 SCMP_SYS(chmod),
+                 SCMP_SYS(fchmod),
+                 SCMP_SYS(fchmodat),
+                 SCMP_SYS(chown),
+                 SCMP_SYS(fchown),
+                 SCMP_SYS(lchown),
+                 SCMP_SYS(fchownat),
+                 SCMP_SYS(truncate),
+                 SCMP_SYS(ftruncate),
+                 SCMP_SYS(fallocate),
+                 SCMP_SYS(utime),
+                 SCMP_SYS(utimes),
+                 SCMP_SYS(utimensat),
+                 SCMP_SYS(futimesat),
+                 SCMP_SYS(setxattr),
+                 SCMP_SYS(lsetxattr),
+                 SCMP_SYS(fsetxattr),
+                 SCMP_SYS(removexattr),
+                 SCMP_SYS(lremovexattr),
+                 SCMP_SYS(fremovexattr),
+                 SCMP_SYS(copy_file_range),
+                 SCMP_SYS(name_to_handle_at),
+                 SCMP_SYS(open_by_handle_at),
+                 SCMP_SYS(mount),
+                 SCMP_SYS(umount2),
+                 SCMP_SYS(unshare),
+                 SCMP_SYS(setns),
+                 SCMP_SYS(chroot),
+                 SCMP_SYS(pivot_root),
+                 SCMP_SYS(bpf),
+                 SCMP_SYS(perf_event_open),
+                 SCMP_SYS(userfaultfd),
+                 SCMP_SYS(keyctl),
+                 SCMP_SYS(add_key),
+                 SCMP_SYS(request_key),
+                 SCMP_SYS(pidfd_open),
+                 SCMP_SYS(pidfd_getfd),
+                 SCMP_SYS(pidfd_send_signal),
+                 SCMP_SYS(tkill)})
+    stop(nr);
+  // Threads are the work's own (gmsh, OpenMP, the sanitizers); a clone without CLONE_THREAD
+  // is a new process. clone3 passes its flags in memory, which the filter cannot read: it
+  // is answered "not implemented", and glibc then uses clone.
+  stop(SCMP_SYS(clone), 1, SCMP_A0(SCMP_CMP_MASKED_EQ, CLONE_THREAD, 0));
+  if (rc == 0) rc = seccomp_rule_add(ctx, SCMP_ACT_ERRNO(ENOSYS), SCMP_SYS(clone3), 0);
+  if (rc == 0) rc = seccomp_rule_add(ctx, SCMP_ACT_ERRNO(ENOSYS), SCMP_SYS(openat2), 0);
+  // Files open for reading only: each flag that writes, creates or empties is stopped.
+  for (unsigned flag : {unsigned(O_WRONLY), unsigned(O_RDWR), unsigned(O_CREAT), unsigned(O_TRUNC)}) {
+    stop(SCMP_SYS(open), 1, SCMP_A1(SCMP_CMP_MASKED_EQ, flag, flag));
+    stop(SCMP_SYS(openat), 1, SCMP_A2(SCMP_CMP_MASKED_EQ, flag, flag));
+  }
+  // Signals to itself only (abort() and raise() signal their own process).
+  const auto self = static_cast<scmp_datum_t>(getpid());
+  stop(SCMP_SYS(kill), 1, SCMP_A0(SCMP_CMP_NE, self));
+  stop(SCMP_SYS(tgkill), 1, SCMP_A0(SCMP_CMP_NE, self));
+  stop(SCMP_SYS(rt_sigqueueinfo), 1, SCMP_A0(SCMP_CMP_NE, self));
+  stop(SCMP_SYS(rt_tgsigqueueinfo), 1, SCMP_A0(SCMP_CMP_NE, self));
+  // Typing into the terminal's input (the shell's, after the child ends).
+  stop(SCMP_SYS(ioctl), 1, SCMP_A1(SCMP_CMP_MASKED_EQ, 0xffffffffu, TIOCSTI));
+  if (rc == 0) rc = seccomp_load(ctx);
+  seccomp_release(ctx);
+  if (rc != 0) why = fmt::format("the seccomp filter could not be set: {}", std::strerror(-rc));
+  return rc == 0;
+}
+
+[[noreturn]] void child(int result_fd, pid_t parent, const std::function<std::string()>& work) {
+  // With the parent: a SIGKILL when it ends, and at once if it has ended already.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != parent) _exit(1);
+  // The parent's handlers would speak for the parent (a run's stop message); the signal that
+  // ends it ends the child too. One that the parent ignores (nohup) stays ignored.
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+    struct sigaction old {};
+    sigaction(sig, nullptr, &old);
+    if (old.sa_handler != SIG_IGN) signal(sig, SIG_DFL);
+  }
+  if (result_fd != kResultFd) dup2(result_fd, kResultFd);
+  close_range(kResultFd + 1, ~0U, 0);
+  const struct rlimit no_core {};
+  setrlimit(RLIMIT_CORE, &no_core);
+  struct sigaction act {};
+  act.sa_sigaction = on_refused_call;
+  act.sa_flags = SA_SIGINFO;
+  sigemptyset(&act.sa_mask);
+  sigaction(SIGSYS, &act, nullptr);
+  sigset_t sys;
+  sigemptyset(&sys);
+  sigaddset(&sys, SIGSYS);
+  sigprocmask(SIG_UNBLOCK, &sys, nullptr);
+
+  std::string out, why;
+  char status = kFailed;
+  if (!install_filter(why)) {
+    out = why;
+  } else {
+    try {
+      out = work();
+      status = kDone;
+    } catch (const std::exception& e) {
+      out = e.what();
+    } catch (...) {
+      out = "an unknown exception";
+    }
+  }
+  const bool sent = write_all(kResultFd, &status, 1) && write_all(kResultFd, out.data(), out.size());
+  _exit(sent ? 0 : 1);
+}
+
+std::string how_it_ended(int st) {
+  if (WIFSIGNALED(st)) {
+    const int sig = WTERMSIG(st);
+    return fmt::format("signal {}, {}", sig, strsignal(sig));
+  }
+  if (WIFEXITED(st)) return fmt::format("exit status {} and no result", WEXITSTATUS(st));
+  return "no result";
+}
+}  // namespace
+
+SandboxResult run_sandboxed(const std::function<std::string()>& work, double seconds) {
+  using Clock = std::chrono::steady_clock;
+  SandboxResult res;
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) {
+    res.status = SandboxResult::Status::Failed;
+    res.message = fmt::format("cannot make a pipe: {}", std::strerror(errno));
+    return res;
+  }
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    res.status = SandboxResult::Status::Failed;
+    res.message = fmt::format("cannot start a process: {}", std::strerror(errno));
+    return res;
+  }
+  if (pid == 0) {
+    if (fds[0] != kResultFd) close(fds[0]);
+    child(fds[1], parent, work);
+  }
+  close(fds[1]);
+
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  auto ms_left = [&] {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    return static_cast<int>(std::clamp<long long>(left, 0, INT_MAX));
+  };
+  std::string got;
+  bool late = false;
+  char buf[1 << 16];
+  for (;;) {
+    const int wait_ms = ms_left();
+    if (wait_ms == 0) {
+      late = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int r = poll(&p, 1, wait_ms);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) continue;  // the deadline is checked again above
+    const ssize_t n = read(fds[0], buf, sizeof buf);
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n <= 0) break;  // the end: the child has closed its end, as when it ends
+    got.append(buf, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  int st = 0;
+  if (!late) {
+    // Its end is closed: it is ending. Still bounded by the deadline, should it go on.
+    for (;;) {
+      const pid_t w = waitpid(pid, &st, WNOHANG);
+      if (w == pid) break;
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0) break;
+      if (ms_left() == 0) {
+        late = true;
+        break;
+      }
+      poll(nullptr, 0, 5);
+    }
+  }
+  if (late) {
+    kill(pid, SIGKILL);
+    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+    }
+    res.status = SandboxResult::Status::TimedOut;
+    res.message = fmt::format("did not finish within {:g} s and was stopped", seconds);
+    return res;
+  }
+  if (WIFEXITED(st) && WEXITSTATUS(st) == kRefusedExit && got.size() == 1 + sizeof(int) && got[0] == kRefused) {
+    int nr = 0;
+    std::memcpy(&nr, got.data() + 1, sizeof nr);
+    char* name = seccomp_syscall_resolve_num_arch(SCMP_ARCH_NATIVE, nr);
+    res.status = SandboxResult::Status::Refused;
+    res.message = name ? name : fmt::format("system call {}", nr);
+    std::free(name);
+    return res;
+  }
+  if (WIFEXITED(st) && WEXITSTATUS(st) == 0 && !got.empty() && (got[0] == kDone || got[0] == kFailed)) {
+    res.status = got[0] == kDone ? SandboxResult::Status::Done : SandboxResult::Status::Failed;
+    (got[0] == kDone ? res.bytes : res.message) = got.substr(1);
+    return res;
+  }
+  // The kernel ends it with SIGSYS itself when the call came with signals blocked (glibc's
+  // posix_spawn, system() blocks them all around its clone): which call is not known then.
+  if (WIFSIGNALED(st) && WTERMSIG(st) == SIGSYS) {
+    res.status = SandboxResult::Status::Refused;
+    res.message.clear();
+    return res;
+  }
+  res.status = SandboxResult::Status::Ended;
+  res.message = how_it_ended(st);
+  return res;
+}
+
+}  // namespace dspdem
