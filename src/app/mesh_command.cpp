@@ -1,8 +1,10 @@
 #include "app/mesh_command.hpp"
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "core/log.hpp"
 #include "core/timer.hpp"
 #include "io/staging.hpp"
@@ -28,6 +30,16 @@ int mesh_command(const CaseConfig& c, const std::string& out_dir) {
                "mesh: {} is the case's own mesh file, which writing the mesh there would replace: give --out another "
                "folder",
                msh);
+  // quality.json is replaced whole: only one that dspdem mesh wrote (a file of that name from
+  // elsewhere was lost).
+  const fs::path quality = fs::path(out_dir) / "quality.json";
+  if (fs::exists(quality, ec)) {
+    const auto old = nlohmann::json::parse(read_file(quality.string(), "quality file"), nullptr, false);
+    DSPDEM_CHECK(old.is_object() && old.contains("quality_measure") && old.contains("slivers"),
+                 "mesh: {} is not a quality.json that dspdem mesh wrote, which writing the mesh's would replace: "
+                 "give --out another folder",
+                 quality.string());
+  }
   Mesh m;
   std::string source;
   if (c.mesh_generator.empty()) {

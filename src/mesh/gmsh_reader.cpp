@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <unordered_map>
 
 #include "core/error.hpp"
@@ -12,7 +13,7 @@
 #include "core/log.hpp"
 #include "core/sandbox.hpp"
 #include "mesh/geo_check.hpp"
-#include "mesh/gmsh_model_dump.hpp"
+#include "mesh/gmsh_model_data.hpp"
 #include "mesh/msh_check.hpp"
 
 namespace dspdem {
@@ -63,15 +64,30 @@ GmshSession::~GmshSession() {
   omp_set_num_threads(omp_threads_);
 }
 
-Mesh mesh_from_gmsh_model(const std::string& source) {
+namespace {
+std::string element_type_name(int type) {
+  try {
+    std::string name;
+    int d, order, nn, npn;
+    std::vector<double> lc;
+    gmsh::model::mesh::getElementProperties(type, name, d, order, nn, lc, npn);
+    return name;
+  } catch (...) {
+    return fmt::format("gmsh type {}", type);
+  }
+}
+}  // namespace
+
+Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source) {
   Mesh mesh;
   mesh.source = source;
+  auto garbled = [&](bool ok) {
+    DSPDEM_CHECK(ok, "mesh '{}': the mesh read in its own process came back garbled", source);
+  };
+  std::map<std::pair<int, int>, const GmshEntity*> entity;
+  for (const GmshEntity& e : model.entities) entity[{e.dim, e.tag}] = &e;
 
   // Volume cells first: they decide which nodes the model uses.
-  std::vector<std::pair<int, int>> vols;
-  gmsh::model::getEntities(vols, 3);
-  DSPDEM_CHECK(!vols.empty(), "mesh '{}': no volume entities (a 3D mesh is needed)", source);
-
   ElementBlock tets{CellType::Tet4, {}, {}}, hexes{CellType::Hex8, {}, {}};
   std::unordered_map<std::size_t, Index> node_index;
   std::vector<std::size_t> used_tags;
@@ -86,74 +102,63 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
     Index first, count;
   };
   std::unordered_map<int, std::vector<Range>> entity_ranges;
-
-  for (auto [dim, tag] : vols) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> etags, ntags;
-    gmsh::model::mesh::getElements(types, etags, ntags, dim, tag);
-    for (std::size_t k = 0; k < types.size(); ++k) {
+  bool any_volume = false;
+  for (const GmshEntity& v : model.entities) {
+    if (v.dim != 3) continue;
+    any_volume = true;
+    for (std::size_t k = 0; k < v.types.size(); ++k) {
+      const auto& etags = v.elem_tags[k];
       ElementBlock* blk = nullptr;
       int b = -1;
-      if (types[k] == kGmshTet4) {
+      if (v.types[k] == kGmshTet4) {
         blk = &tets;
         b = 0;
-      } else if (types[k] == kGmshHex8) {
+      } else if (v.types[k] == kGmshHex8) {
         blk = &hexes;
         b = 1;
       } else {
-        std::string name;
-        int d, order, nn, npn;
-        std::vector<double> lc;
-        gmsh::model::mesh::getElementProperties(types[k], name, d, order, nn, lc, npn);
         fail(
             "mesh '{}': volume {} holds {} element(s) of type '{}' (e.g. tag {}); only linear tetrahedra "
             "and hexahedra are supported",
-            source, tag, etags[k].size(), name, etags[k].empty() ? 0 : etags[k][0]);
+            source, v.tag, etags.size(), element_type_name(v.types[k]), etags.empty() ? 0 : etags[0]);
       }
-      const int npe = blk->npe();
-      entity_ranges[tag].push_back({b, blk->size(), static_cast<Index>(etags[k].size())});
-      for (std::size_t e = 0; e < etags[k].size(); ++e) {
-        blk->tag.push_back(etags[k][e]);
-        for (int i = 0; i < npe; ++i) blk->conn.push_back(local(ntags[k][e * npe + i]));
+      const std::size_t npe = static_cast<std::size_t>(blk->npe());
+      garbled(v.elem_nodes[k].size() == etags.size() * npe);
+      entity_ranges[v.tag].push_back({b, blk->size(), static_cast<Index>(etags.size())});
+      for (std::size_t e = 0; e < etags.size(); ++e) {
+        blk->tag.push_back(etags[e]);
+        for (std::size_t i = 0; i < npe; ++i) blk->conn.push_back(local(v.elem_nodes[k][e * npe + i]));
       }
     }
   }
+  DSPDEM_CHECK(any_volume, "mesh '{}': no volume entities (a 3D mesh is needed)", source);
   DSPDEM_CHECK(tets.size() + hexes.size() > 0, "mesh '{}': no tetrahedra or hexahedra found", source);
   mesh.blocks.push_back(std::move(tets));
   mesh.blocks.push_back(std::move(hexes));
 
   // Coordinates of the used nodes only: geometry points not attached to cells carry no mass.
-  {
-    std::vector<std::size_t> tags;
-    std::vector<double> coord, param;
-    gmsh::model::mesh::getNodes(tags, coord, param, -1, -1, false, false);
-    mesh.x.assign(3 * used_tags.size(), 0.0);
-    std::vector<char> seen(used_tags.size(), 0);
-    for (std::size_t i = 0; i < tags.size(); ++i) {
-      auto it = node_index.find(tags[i]);
+  mesh.x.assign(3 * used_tags.size(), 0.0);
+  std::vector<char> seen(used_tags.size(), 0);
+  for (const GmshEntity& e : model.entities)
+    for (std::size_t i = 0; i < e.node_tags.size(); ++i) {
+      auto it = node_index.find(e.node_tags[i]);
       if (it == node_index.end()) continue;
-      for (int d = 0; d < 3; ++d) mesh.x[3 * it->second + d] = coord[3 * i + d];
+      for (int d = 0; d < 3; ++d) mesh.x[3 * it->second + d] = e.coord[3 * i + d];
       seen[it->second] = 1;
     }
-    for (std::size_t i = 0; i < seen.size(); ++i)
-      DSPDEM_CHECK(seen[i], "mesh '{}': element refers to node {} which has no coordinates", source, used_tags[i]);
-    mesh.node_tag = std::move(used_tags);
-  }
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    DSPDEM_CHECK(seen[i], "mesh '{}': element refers to node {} which has no coordinates", source, used_tags[i]);
+  mesh.node_tag = std::move(used_tags);
 
   // Physical groups.
-  std::vector<std::pair<int, int>> phys;
-  gmsh::model::getPhysicalGroups(phys);
-  for (auto [dim, ptag] : phys) {
+  for (const GmshPhysical& p : model.physicals) {
     Group g;
-    g.dim = dim;
-    gmsh::model::getPhysicalName(dim, ptag, g.name);
-    if (g.name.empty()) g.name = std::to_string(ptag);
+    g.dim = p.dim;
+    g.name = p.name.empty() ? std::to_string(p.tag) : p.name;
     DSPDEM_CHECK(mesh.find_group(g.name) == nullptr, "mesh '{}': physical group name '{}' used twice", source, g.name);
-    std::vector<int> ents;
-    gmsh::model::getEntitiesForPhysicalGroup(dim, ptag, ents);
-    if (dim == 3) {
+    if (p.dim == 3) {
       g.elements.resize(mesh.blocks.size());
-      for (int ent : ents)
+      for (int ent : p.entities)
         for (const auto& r : entity_ranges[ent])
           for (Index e = r.first; e < r.first + r.count; ++e) g.elements[r.block].push_back(e);
       for (std::size_t b = 0; b < mesh.blocks.size(); ++b)
@@ -162,27 +167,27 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
           for (int i = 0; i < blk.npe(); ++i) g.nodes.push_back(blk.conn[static_cast<std::size_t>(e) * blk.npe() + i]);
         }
     } else {
-      std::vector<std::size_t> ntags;
-      std::vector<double> coord;
-      gmsh::model::mesh::getNodesForPhysicalGroup(dim, ptag, ntags, coord);
-      for (auto t : ntags) {
-        auto it = node_index.find(t);
-        if (it != node_index.end()) g.nodes.push_back(it->second);
-      }
-      if (dim == 2) {
-        for (int ent : ents) {
-          std::vector<int> types;
-          std::vector<std::vector<std::size_t>> etags, en;
-          gmsh::model::mesh::getElements(types, etags, en, 2, ent);
-          for (std::size_t k = 0; k < types.size(); ++k) {
-            auto* dst = types[k] == kGmshTri3 ? &g.tri : types[k] == kGmshQuad4 ? &g.quad : nullptr;
-            if (!dst) continue;
-            for (auto t : en[k]) {
-              auto it = node_index.find(t);
-              DSPDEM_CHECK(it != node_index.end(), "mesh '{}': surface group '{}' has a face node {} not on any cell",
-                           source, g.name, t);
-              dst->push_back(it->second);
-            }
+      // The nodes of the group's elements (as gmsh's getNodesForPhysicalGroup), and a
+      // surface's faces, on the nodes that cells use.
+      for (int ent : p.entities) {
+        const auto it = entity.find({p.dim, ent});
+        if (it == entity.end()) continue;
+        const GmshEntity& e = *it->second;
+        for (std::size_t k = 0; k < e.types.size(); ++k) {
+          for (auto t : e.elem_nodes[k]) {
+            auto n = node_index.find(t);
+            if (n != node_index.end()) g.nodes.push_back(n->second);
+          }
+          auto* dst = p.dim != 2                 ? nullptr
+                      : e.types[k] == kGmshTri3  ? &g.tri
+                      : e.types[k] == kGmshQuad4 ? &g.quad
+                                                 : nullptr;
+          if (!dst) continue;
+          for (auto t : e.elem_nodes[k]) {
+            auto n = node_index.find(t);
+            DSPDEM_CHECK(n != node_index.end(), "mesh '{}': surface group '{}' has a face node {} not on any cell",
+                         source, g.name, t);
+            dst->push_back(n->second);
           }
         }
       }
@@ -194,6 +199,8 @@ Mesh mesh_from_gmsh_model(const std::string& source) {
   check_element_volumes(mesh);
   return mesh;
 }
+
+Mesh mesh_from_gmsh_model(const std::string& source) { return mesh_from_model_data(gmsh_model_data(), source); }
 
 namespace {
 // The child's part (core/sandbox.hpp): gmsh opens the file, a .geo's script runs and is
@@ -220,7 +227,7 @@ std::string open_in_child(const std::string& path, bool geo) {
       }
     }
   }
-  return dump_gmsh_model();
+  return to_bytes(gmsh_model_data());
 }
 }  // namespace
 
@@ -269,12 +276,14 @@ Mesh read_gmsh_unchecked(const std::string& path, const std::string& save_as, do
       fail("mesh file '{}': gmsh ended before it had read the mesh ({}): a script's Exit ends it so, or a crash", path,
            got.message);
   }
-  const GmshOptions write_options = load_gmsh_model(got.bytes, path);
-  Mesh mesh = mesh_from_gmsh_model(path);
+  const GmshModelData model = from_bytes(got.bytes, path);
+  Mesh mesh = mesh_from_model_data(model, path);
   if (!save_as.empty()) {
-    // The file's own write options for this write only (gmsh keeps options for the process).
+    // Loaded into this process's gmsh to be written, with the file's own write options for
+    // this write only (gmsh keeps options for the process).
+    load_into_gmsh(model);
     GmshOptions before;
-    for (const auto& [name, value] : write_options) {
+    for (const auto& [name, value] : model.write_options) {
       double v = 0;
       gmsh::option::getNumber(name, v);
       before.emplace_back(name, v);

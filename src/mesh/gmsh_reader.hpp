@@ -3,6 +3,7 @@
 #pragma once
 #include <string>
 
+#include "mesh/gmsh_model_data.hpp"
 #include "mesh/mesh.hpp"
 
 namespace dspdem {
@@ -22,6 +23,9 @@ Mesh read_gmsh(const std::string& path, const std::string& save_as = "", double 
 /// read_gmsh without its checks of the text: gmsh opens the file in the sandbox at once.
 /// For tests of the sandbox, with scripts that the checks would refuse first.
 Mesh read_gmsh_unchecked(const std::string& path, const std::string& save_as = "", double time_limit = kMeshTimeLimit);
+
+/// Converts a gmsh model's arrays into a Mesh; `source` names the origin in messages.
+Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source);
 
 /// Converts the model currently loaded in the gmsh API into a Mesh (used by the reader
 /// and by the generators in meshing/). `source` names the origin in messages.

@@ -490,6 +490,16 @@ TEST_F(Cli, MeshCommandWritesMshAndQuality) {
   const Result below = run("mesh " + nb + " --out " + (dir_ / "afile" / "sub").string());
   EXPECT_EQ(below.code, 2) << below.out;
   EXPECT_NE(below.out.find("cannot make the folder"), std::string::npos) << below.out;
+  // A quality.json that dspdem mesh did not write is not replaced (a probe's finding); one it
+  // wrote is (m3's, meshed again).
+  fs::create_directories(dir_ / "theirs");
+  write("theirs/quality.json", "{\"their\": \"notes\"}\n");
+  const Result theirs = run("mesh " + nb + " --out " + (dir_ / "theirs").string());
+  EXPECT_EQ(theirs.code, 2) << theirs.out;
+  EXPECT_NE(theirs.out.find("is not a quality.json that dspdem mesh wrote"), std::string::npos) << theirs.out;
+  EXPECT_EQ(slurp(dir_ / "theirs/quality.json"), "{\"their\": \"notes\"}\n");
+  EXPECT_FALSE(fs::exists(dir_ / "theirs/notched_bar.msh"));
+  EXPECT_EQ(run("-q mesh " + nb + " --out " + (dir_ / "m3").string()).code, 0);
 }
 
 TEST_F(Cli, AMeshSizeGmshCannotMeshIsAnErrorNamingTheKeyNotAnAbort) {
