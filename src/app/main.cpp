@@ -395,16 +395,16 @@ int run_main(int argc, char** argv) {
     if (par::rank() == 0) fmt::print(stderr, "stopped by a signal: {}\n", e.what());
     return kExitInterrupted;
   } catch (const NumericalError& e) {
-    fmt::print(stderr, "error: numerical failure: {}\n", e.what());
+    fmt::print(stderr, "error: numerical failure: {}\n", log::printable(e.what()));
     return 3;
   } catch (const Error& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "error: {}\n", log::printable(e.what()));
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: unexpected failure: {}\n", e.what());
+    fmt::print(stderr, "error: unexpected failure: {}\n", log::printable(e.what()));
     return 4;
   } catch (const std::string& e) {  // the gmsh API throws its messages as strings
-    fmt::print(stderr, "error: gmsh: {}\n", e);
+    fmt::print(stderr, "error: gmsh: {}\n", log::printable(e));
     return 2;
   }
   return 0;

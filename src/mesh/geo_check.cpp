@@ -91,7 +91,14 @@ struct Scanner {
   }
 };
 
-void check_script(const std::string& path, const std::string& text, int depth);
+// Files checked whole already (by their canonical path): each is read once, however many
+// times it is included (a chain of files each including the next ten times made 10^15 reads).
+using Checked = std::set<std::string>;
+
+void check_script(const std::string& path, const std::string& text, int depth, Checked& done);
+
+// Mesh.MaxNumThreads1D, 2D, 3D: meshing on several threads.
+bool threads_option(std::string_view word) { return word.rfind("MaxNumThreads", 0) == 0; }
 
 // gmsh (FixRelativePath, SplitFileName) takes a backslash for a folder separator and "c:" for a drive,
 // where std::filesystem on Linux reads them as characters of the name.
@@ -104,11 +111,11 @@ constexpr const char* kNotPlain =
 
 // gmsh reads "<file>.opt" beside every file it opens or merges, as a script, and merging that
 // reads its own ".opt": "<file>.opt.opt" and on.
-void check_companion(const std::string& file, int depth) {
+void check_companion(const std::string& file, int depth, Checked& done) {
   std::string opt = file + ".opt";
   for (int k = 0; fs::exists(opt); ++k, opt += ".opt") {
     DSPDEM_CHECK(k < kMostDepth, "gmsh option files beside '{}' chained more than {} deep", file, kMostDepth);
-    check_script(opt, read_file(opt, "gmsh option file"), depth + 1);
+    check_script(opt, read_file(opt, "gmsh option file"), depth + 1, done);
   }
 }
 
@@ -131,13 +138,14 @@ void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_wor
     const bool option = std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end() &&
                         (Scanner::next_after(t, i) == '.' || Scanner::next_after(t, i) == '[');
     const bool reads = (word == "Include" || word == "Merge" || word == "Printf") && !code_words.count(from);
+    const bool threads = threads_option(word);
     bool deletes = false;
     if (word == "Delete") {
       std::size_t k = i;
       while (k < t.size() && std::isspace(static_cast<unsigned char>(t[k]))) ++k;
       for (const std::string_view what : kRefusedDeletes) deletes = deletes || t.compare(k, what.size(), what) == 0;
     }
-    if (command || option || reads || deletes)
+    if (command || option || reads || deletes || threads)
       fail(
           "mesh file '{}': line {}: '{}' in a string or a comment: gmsh's If, For and Macro skip text without "
           "reading its strings and may run it; dspdem refuses it there too (reword the string or comment)",
@@ -146,7 +154,7 @@ void check_hidden_words(const Scanner& sc, const std::set<std::size_t>& code_wor
 }
 
 // A file a script includes or merges, named by `name` relative to the script's folder.
-void check_included(const Scanner& sc, const std::string& command, const std::string& name, int depth) {
+void check_included(const Scanner& sc, const std::string& command, const std::string& name, int depth, Checked& done) {
   if (!plain_file_name(name)) sc.error("{} \"{}\": {}", command, name, kNotPlain);
   fs::path p(name);
   if (p.is_relative()) p = fs::path(sc.path).parent_path() / p;
@@ -154,30 +162,39 @@ void check_included(const Scanner& sc, const std::string& command, const std::st
   // gmsh parses any Include as a script; a Merge by the file's kind, known by its extension's
   // exact spelling (another spelling it parses as a script).
   const bool data = std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end();
-  const bool script = command == "Include" || ext == ".geo";
-  if (!script && !data && ext != ".msh")
+  const bool script = command == "Include" || ext == ".geo" || ext == ".msh";
+  if (!script && !data)
     sc.error(
         "{} \"{}\": dspdem lets a script merge .geo, .msh, STEP, BREP, IGES and STL files only (extensions "
         "spelt as gmsh knows them)",
         command, name);
   if (!fs::is_regular_file(p)) sc.error("{} \"{}\": {} is not a file", command, name, p.string());
   if (depth >= kMostDepth) sc.error("{} \"{}\": scripts nested more than {} deep", command, name, kMostDepth);
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(p, ec);
+  const std::string key = ec ? p.string() : canonical.string();
+  if (done.count(key)) return;
   // The fault named in the file that has it, and where the case's own script includes it.
   try {
-    if (command == "Merge") check_companion(p.string(), depth);  // gmsh reads its .opt too
+    if (command == "Merge") check_companion(p.string(), depth, done);  // gmsh reads its .opt too
     if (data && !script) return;
     const std::string inner = read_file(p.string(), "mesh file");
-    if (script)
-      check_script(p.string(), inner, depth + 1);
+    // Include reads a script; Merge reads a .geo or .msh by its first line, whatever its name.
+    const GmshText kind = command == "Include" ? GmshText::Script : gmsh_reads_as(inner);
+    if (kind == GmshText::View)
+      sc.error("{} \"{}\": a post-processing view ($PostFormat or $View), not a mesh or a script", command, name);
+    if (kind == GmshText::Script)
+      check_script(p.string(), inner, depth + 1, done);
     else
       check_msh_text(p.string(), inner, false);  // a surface mesh merged to build a volume
+    done.insert(key);
   } catch (const Error& e) {
     if (depth > 0) throw;  // named once, by the case's own script, not at every level
     sc.error("{} \"{}\": {}", command, name, e.what());
   }
 }
 
-void check_script(const std::string& path, const std::string& text, int depth) {
+void check_script(const std::string& path, const std::string& text, int depth, Checked& done) {
   Scanner sc{path, text};
   std::set<std::size_t> code_words;  // where Include, Merge and Printf were read as code
   // gmsh's lexer ends a string or a // comment at a NUL byte and reads on; this check would not.
@@ -215,6 +232,12 @@ void check_script(const std::string& path, const std::string& text, int depth) {
                  what);
       continue;
     }
+    if (threads_option(word))
+      sc.error(
+          "Mesh.{}: gmsh's threaded mesher makes another mesh each run, and in the process that meshes a script "
+          "OpenMP runs one thread (its pool is not safe there); dspdem meshes on one thread, for the same mesh "
+          "every run, and does not let a script set it",
+          word);
     if (std::find(kRefusedOptions.begin(), kRefusedOptions.end(), word) != kRefusedOptions.end())
       sc.error(
           "{}.* options are gmsh's own, not the model's (General.AbortOnError ends the process on an error; "
@@ -250,20 +273,31 @@ void check_script(const std::string& path, const std::string& text, int depth) {
       sc.skip_space();
       if (sc.at(sc.pos) != ';')
         sc.error("{} \"{}\": expected ';' after the file name (a name made by the script is not checked)", word, name);
-      check_included(sc, std::string(word), name, depth);
+      check_included(sc, std::string(word), name, depth, done);
     }
   }
 }
 }  // namespace
 
+GmshText gmsh_reads_as(const std::string& text) {
+  // gmsh 4.8's MergeFile compares the start of the first line.
+  const auto starts = [&](std::string_view h) { return text.compare(0, h.size(), h) == 0; };
+  for (std::string_view h : {"$PTS", "$NO", "$PARA", "$ELM", "$MeshFormat", "$Comments"})
+    if (starts(h)) return GmshText::Mesh;
+  if (starts("$PostFormat") || starts("$View")) return GmshText::View;
+  return GmshText::Script;
+}
+
 void check_geo_script(const std::string& path, const std::string& text) {
   DSPDEM_CHECK(plain_file_name(path), "mesh file '{}': {}", path, kNotPlain);
-  check_script(path, text, 0);
+  Checked done;
+  check_script(path, text, 0, done);
 }
 
 void check_gmsh_option_file(const std::string& file) {
   DSPDEM_CHECK(plain_file_name(file), "mesh file '{}': {}", file, kNotPlain);
-  check_companion(file, 0);
+  Checked done;
+  check_companion(file, 0, done);
 }
 
 }  // namespace dspdem

@@ -35,6 +35,12 @@ namespace dspdem {
 /// as gmsh knows them) are let through, any other kind refused.
 void check_geo_script(const std::string& path, const std::string& text);
 
+/// How gmsh 4.8 reads a file by its first line, whatever its extension (.geo and .msh are not
+/// told apart by name): a mesh ($MeshFormat, $NOD, $Comments, ...), a post-processing view,
+/// or else a script.
+enum class GmshText { Mesh, View, Script };
+GmshText gmsh_reads_as(const std::string& text);
+
 /// gmsh reads "<file>.opt" beside a file it opens or merges, as a script, and "<file>.opt.opt"
 /// beside that, and on: each there is checked as check_geo_script checks a script.
 void check_gmsh_option_file(const std::string& file);

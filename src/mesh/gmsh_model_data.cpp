@@ -167,6 +167,7 @@ GmshModelData from_bytes(const std::string& bytes, const std::string& source) {
     GmshPhysical& p = m.physicals.emplace_back();
     p.dim = r.get<std::int32_t>();
     p.tag = r.get<std::int32_t>();
+    garbled(p.dim >= 0 && p.dim <= 3);
     p.name = r.get_string();
     p.entities = r.get_vec<int>();
   }

@@ -155,6 +155,11 @@ Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source)
     Group g;
     g.dim = p.dim;
     g.name = p.name.empty() ? std::to_string(p.tag) : p.name;
+    // As a .msh's check names them (a .geo's were written into a .msh that its check refused).
+    DSPDEM_CHECK(std::none_of(g.name.begin(), g.name.end(),
+                              [](char c) { return c == '"' || static_cast<unsigned char>(c) < 32 || c == 127; }),
+                 "mesh '{}': physical group name '{}' holds a quote or a control character", source,
+                 log::printable(g.name));
     DSPDEM_CHECK(mesh.find_group(g.name) == nullptr, "mesh '{}': physical group name '{}' used twice", source, g.name);
     if (p.dim == 3) {
       g.elements.resize(mesh.blocks.size());
@@ -173,6 +178,11 @@ Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source)
         const auto it = entity.find({p.dim, ent});
         if (it == entity.end()) continue;
         const GmshEntity& e = *it->second;
+        if (p.dim == 0)  // a point's own node, with or without a point element (as gmsh)
+          for (auto t : e.node_tags) {
+            auto n = node_index.find(t);
+            if (n != node_index.end()) g.nodes.push_back(n->second);
+          }
         for (std::size_t k = 0; k < e.types.size(); ++k) {
           for (auto t : e.elem_nodes[k]) {
             auto n = node_index.find(t);
@@ -211,7 +221,8 @@ std::string open_in_child(const std::string& path, bool geo) {
   try {
     gmsh::open(path);
   } catch (...) {
-    fail("gmsh could not read it: {}", gmsh_last_error());
+    const std::string err = gmsh_last_error();
+    fail("gmsh could not read it: {}", err.empty() ? "gmsh gave no reason" : err);
   }
   const std::string err = gmsh_last_error();
   DSPDEM_CHECK(err.empty(), "gmsh reported: {}", err);
@@ -233,19 +244,32 @@ std::string open_in_child(const std::string& path, bool geo) {
 
 Mesh read_gmsh(const std::string& path, const std::string& save_as, double time_limit) {
   namespace fs = std::filesystem;
-  DSPDEM_CHECK(fs::exists(path), "mesh file '{}' does not exist", path);
-  const auto ext = fs::path(path).extension().string();
-  DSPDEM_CHECK(ext == ".msh" || ext == ".geo", "mesh file '{}': expected a .msh or .geo file", path);
-  if (ext == ".msh") {
-    // gmsh trusts the file (a missing node crashes it): the text is checked first, and
-    // its faults are named by line.
-    check_msh_text(path, read_file(path, "mesh file"));
-  } else {
-    // Refused by line before anything runs; the sandbox (read_gmsh_unchecked) stops what
-    // gets past.
-    check_geo_script(path, read_file(path, "mesh file"));
+  try {
+    DSPDEM_CHECK(fs::exists(path), "mesh file '{}' does not exist", path);
+    const auto ext = fs::path(path).extension().string();
+    DSPDEM_CHECK(ext == ".msh" || ext == ".geo", "mesh file '{}': expected a .msh or .geo file", path);
+    const std::string text = read_file(path, "mesh file");
+    if (ext == ".msh") {
+      // gmsh trusts the file (a missing node crashes it): the text is checked first, and
+      // its faults are named by line.
+      check_msh_text(path, text);  // which also refuses a first line gmsh would run as a script
+    } else {
+      // gmsh tells a mesh from a script by the first line, not by the name: a .geo holding a
+      // mesh would be read as one, past the mesh's check (a probe's finding).
+      const GmshText kind = gmsh_reads_as(text);
+      DSPDEM_CHECK(kind == GmshText::Script,
+                   "mesh file '{}': it holds a {}, which gmsh reads by its first line whatever the file's name: name "
+                   "it .msh",
+                   path, kind == GmshText::Mesh ? "mesh" : "post-processing view");
+      // Refused by line before anything runs; the sandbox (read_gmsh_unchecked) stops what
+      // gets past.
+      check_geo_script(path, text);
+    }
+    check_gmsh_option_file(path);  // gmsh runs "<file>.opt" beside the file it opens
+  } catch (const fs::filesystem_error& e) {
+    // A name too long, a loop of links: said as the file's fault, not as dspdem's.
+    fail("mesh file '{}': {}: {}", path, e.path1().string(), e.code().message());
   }
-  check_gmsh_option_file(path);  // gmsh runs "<file>.opt" beside the file it opens
   return read_gmsh_unchecked(path, save_as, time_limit);
 }
 
@@ -281,7 +305,11 @@ Mesh read_gmsh_unchecked(const std::string& path, const std::string& save_as, do
   if (!save_as.empty()) {
     // Loaded into this process's gmsh to be written, with the file's own write options for
     // this write only (gmsh keeps options for the process).
-    load_into_gmsh(model);
+    try {
+      load_into_gmsh(model);
+    } catch (...) {
+      fail("mesh file '{}': gmsh could not take the mesh back to write it: {}", path, gmsh_last_error());
+    }
     GmshOptions before;
     for (const auto& [name, value] : model.write_options) {
       double v = 0;

@@ -292,6 +292,8 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
         "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 3 2 4\n$EndElements\n");
   // A script that would run for hours: stopped at [mesh] time_limit.
   write("meshes/forever.geo", "For i In {1:2000000000}\nEndFor\n");
+  // A script whose message carries a terminal's escape sequences (retitle, clear the screen).
+  write("meshes/escape.geo", "Error(\"A\033]0;T\007B\033[2J\");\n");
   struct Bad {
     std::string name, text, args;
     std::vector<std::string> expect;
@@ -312,6 +314,10 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
        replace(good_, "meshes/cantilever_hex.geo", "meshes/inverted.msh"),
        "",
        {"inverted", "element tags: 1"}},
+      {"geo_escape",
+       replace(good_, "meshes/cantilever_hex.geo", "meshes/escape.geo"),
+       "",
+       {"escape.geo", "A\\x1b]0;T\\x07B\\x1b[2J"}},
       {"geo_time_limit",
        replace(good_, "meshes/cantilever_hex.geo", "meshes/forever.geo"),
        "--set mesh.time_limit=1",
@@ -334,6 +340,7 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
     const fs::path c = write(b.name + ".toml", b.text);
     const Result r = run("run " + c.string() + " --out " + out.string() + " " + b.args);
     EXPECT_EQ(r.code, 2) << b.name << ": " << r.out;
+    EXPECT_EQ(r.out.find('\033'), std::string::npos) << b.name << ": a terminal's escape in " << r.out;
     EXPECT_NE(r.out.find("error:"), std::string::npos) << b.name << ": " << r.out;
     for (const auto& e : b.expect)
       EXPECT_NE(r.out.find(e), std::string::npos) << b.name << ": '" << e << "' in " << r.out;

@@ -324,6 +324,7 @@ void expect_same_mesh(const Mesh& a, const Mesh& b, double rel) {
     EXPECT_EQ(a.groups[g].nodes, b.groups[g].nodes);
     EXPECT_EQ(a.groups[g].elements, b.groups[g].elements);
     EXPECT_EQ(a.groups[g].tri, b.groups[g].tri);
+    EXPECT_EQ(a.groups[g].quad, b.groups[g].quad);
   }
 }
 }  // namespace
@@ -349,4 +350,100 @@ TEST(MeshReader, AMeshReadInTheSandboxIsTheMeshGmshMakesAndWrites) {
   }
   expect_same_mesh(here, m, 0);
   expect_same_mesh(m, read_gmsh(saved), 1e-15);
+}
+
+// Groups of every dimension, from a gmsh 4.1 file: a point group whose point has its node but
+// no point element (gmsh lists the point's own node for it; a review found the conversion
+// from the child's arrays had dropped it), a curve, a surface and the volume.
+constexpr const char* kGroupsV41 = R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+4
+0 1 "apex"
+1 2 "edge"
+2 3 "bottom"
+3 4 "solid"
+$EndPhysicalNames
+$Entities
+1 1 1 1
+4 0 0 1 1 1
+1 0 0 0 1 0 0 1 2 0
+1 0 0 0 1 1 0 1 3 0
+1 0 0 0 1 1 1 1 4 0
+$EndEntities
+$Nodes
+4 4 1 4
+0 4 0 1
+4
+0 0 1
+1 1 0 2
+1
+2
+0 0 0
+1 0 0
+2 1 0 1
+3
+0 1 0
+3 1 0 0
+$EndNodes
+$Elements
+3 3 1 3
+1 1 1 1
+2 1 2
+2 1 2 1
+3 1 3 2
+3 1 4 1
+1 1 2 3 4
+$EndElements
+)";
+
+TEST(MeshReader, GroupsOfEveryDimensionListTheirNodes) {
+  const Mesh m = read_gmsh(write_file("groups_v41.msh", kGroupsV41));
+  ASSERT_EQ(m.n_nodes(), 4);
+  ASSERT_EQ(m.n_elements(), 1);
+  // Nodes numbered as the tetrahedron lists them: tags 1 2 3 4 are 0 1 2 3.
+  EXPECT_EQ(m.node_tag, (std::vector<std::size_t>{1, 2, 3, 4}));
+  ASSERT_NE(m.find_group("apex"), nullptr);
+  EXPECT_EQ(m.find_group("apex")->dim, 0);
+  EXPECT_EQ(m.find_group("apex")->nodes, (std::vector<Index>{3}));
+  EXPECT_EQ(m.find_group("edge")->nodes, (std::vector<Index>{0, 1}));
+  EXPECT_EQ(m.find_group("bottom")->nodes, (std::vector<Index>{0, 1, 2}));
+  EXPECT_EQ(m.find_group("bottom")->tri, (std::vector<Index>{0, 2, 1}));
+  EXPECT_EQ(m.find_group("solid")->nodes, (std::vector<Index>{0, 1, 2, 3}));
+  EXPECT_EQ(m.find_group("solid")->elements[0], (std::vector<Index>{0}));
+}
+
+// What gmsh reads otherwise than its name says, or what the check itself could not get
+// through (a probe's findings): each refused with the file named, none run.
+TEST(MeshReader, AFileIsCheckedAsWhatGmshReadsItAs) {
+  // gmsh reads a mesh by its first line, whatever the name: a .geo holding a mesh (here with
+  // a node listed twice, which the .msh check refuses) is refused; a .msh that does not start
+  // as a mesh would run as a script, and is refused by the .msh check.
+  const std::string twice = replace(kTetV2, "4 0 0 1\n", "3 0 1 100\n");
+  expect_error("mesh_as.geo", twice, {"holds a mesh", "name it .msh"});
+  expect_error("script_as.msh", " " + std::string(kTetV2), {"line 1", "must start with $MeshFormat"});
+  // Merged, a .geo holding a mesh is checked as the mesh it is.
+  write_file("merged_mesh.geo", twice);
+  expect_error("merges_mesh.geo", "Merge \"merged_mesh.geo\";\n", {"merged_mesh.geo", "listed twice"});
+  // Threaded meshing: another mesh each run, and OpenMP's pool is not safe in the sandbox.
+  expect_geo_refused("threads.geo", "Mesh.MaxNumThreads3D = 2;\n", {"line 1", "MaxNumThreads3D"});
+  expect_geo_refused("threads_hidden.geo", "// Mesh.MaxNumThreads2D = 4;\n", {"MaxNumThreads2D"});
+  // A name too long for the file system: the file's error, not dspdem's failure.
+  expect_error("long_include.geo", "Include \"" + std::string(300, 'a') + ".geo\";\n", {"name too long"});
+}
+
+// Each included file is checked once: a chain of files each including the next ten times was
+// read 10^15 times before gmsh ever ran (a probe's), outside the time limit. Were each read
+// again, this test would not end before its time-out.
+TEST(MeshReader, AFileIncludedManyTimesIsCheckedOnce) {
+  std::string last = "Point(1) = {0, 0, 0};\n";
+  write_file("chain_12.geo", last);
+  for (int k = 11; k >= 0; --k) {
+    std::string text;
+    for (int i = 0; i < 10; ++i) text += "Include \"chain_" + std::to_string(k + 1) + ".geo\";\n";
+    write_file("chain_" + std::to_string(k) + ".geo", text);
+  }
+  const std::string top = write_file("chain_top.geo", "Include \"chain_0.geo\";\n");
+  EXPECT_NO_THROW(check_geo_script(top, "Include \"chain_0.geo\";\n"));
 }
