@@ -174,7 +174,8 @@ void close_other_descriptors() {
   for (rlim_t fd = kResultFd + 1; fd < hi; ++fd) close(static_cast<int>(fd));
 }
 
-[[noreturn]] void child(int result_fd, pid_t parent, double seconds, const std::function<std::string()>& work) {
+[[noreturn]] void child(int result_fd, pid_t parent, double seconds, const sigset_t& mask,
+                        const std::function<std::string()>& work) {
   // With the parent: a SIGKILL when it ends, and at once if it has ended already.
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (getppid() != parent) _exit(1);
@@ -185,6 +186,7 @@ void close_other_descriptors() {
     sigaction(sig, nullptr, &old);
     if (old.sa_handler != SIG_IGN) signal(sig, SIG_DFL);
   }
+  sigprocmask(SIG_SETMASK, &mask, nullptr);  // blocked by the parent around fork: see there
   if (result_fd != kResultFd) dup2(result_fd, kResultFd);
   close_other_descriptors();
   const int null_in = open("/dev/null", O_RDONLY);  // no terminal's input
@@ -264,7 +266,14 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, double sec
     return res;
   }
   const pid_t parent = getpid();
+  // Signals blocked across fork until the child has put its own handlers in: a Ctrl-C to the
+  // process group in between would run the parent's handler in the child (its stop message
+  // printed twice).
+  sigset_t all, mask;
+  sigfillset(&all);
+  pthread_sigmask(SIG_BLOCK, &all, &mask);
   const pid_t pid = fork();
+  if (pid != 0) pthread_sigmask(SIG_SETMASK, &mask, nullptr);
   if (pid < 0) {
     close(fds[0]);
     close(fds[1]);
@@ -274,7 +283,7 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, double sec
   }
   if (pid == 0) {
     if (fds[0] != kResultFd) close(fds[0]);
-    child(fds[1], parent, seconds, work);
+    child(fds[1], parent, seconds, mask, work);
   }
   close(fds[1]);
 

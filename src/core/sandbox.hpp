@@ -1,9 +1,12 @@
-// Work on untrusted input done in a child process that cannot act outside itself: a
-// seccomp filter stops it before it starts a program or a process, opens a file for writing,
-// makes, removes, renames or changes a file, opens a socket, or signals another process; the
-// parent kills it after a time limit. A gmsh .geo is a program (SystemCall, Save, Exit, a
-// loop that never ends), and a case file is often someone else's: mesh/gmsh_reader runs gmsh
-// here. What the work returns comes back through a pipe as bytes.
+// Work on untrusted input done in a child process that cannot act outside itself: without
+// capabilities, under a seccomp filter that stops it before it starts a program or a process,
+// opens a file for writing, makes, removes, renames or changes a file, opens a socket or an
+// IPC object, or signals, limits or schedules another process (install_filter in the .cpp has
+// the list and its reasons); system calls newer than that list are answered ENOSYS. Its CPU
+// time and memory are bounded, it runs OpenMP on one thread, and the parent kills it after a
+// time limit. A gmsh .geo is a program (SystemCall, Save, Exit, a loop that never ends), and a
+// case file is often someone else's: mesh/gmsh_reader runs gmsh here. What the work returns
+// comes back through a pipe as bytes.
 #pragma once
 #include <functional>
 #include <string>
