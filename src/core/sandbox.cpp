@@ -36,6 +36,7 @@ constexpr int kRefusedExit = 117;
 constexpr char kDone = 'D', kFailed = 'F', kRefused = 'R';
 // Longer limits are taken as this (115 days), which the clock's ticks hold.
 constexpr double kMostSeconds = 1e7;
+constexpr scmp_datum_t kIoprioWhoProcess = 1;  // linux/ioprio.h, not in glibc's headers
 
 bool write_all(int fd, const char* p, std::size_t n) {
   while (n > 0) {
@@ -131,19 +132,28 @@ bool install_filter(std::string& why) {
   stop(SCMP_SYS(tgkill), 1, SCMP_A0(SCMP_CMP_NE, self));
   stop(SCMP_SYS(rt_sigqueueinfo), 1, SCMP_A0(SCMP_CMP_NE, self));
   stop(SCMP_SYS(rt_tgsigqueueinfo), 1, SCMP_A0(SCMP_CMP_NE, self));
-  for (int cmd : {F_SETOWN, F_SETOWN_EX, F_SETSIG, F_SETLEASE})
-    stop(SCMP_SYS(fcntl), 1, SCMP_A1(SCMP_CMP_EQ, static_cast<scmp_datum_t>(cmd)));
+  // (The kernel reads an int argument's low 32 bits: the rules compare those only, or a value
+  // with a bit set above them would pass. F_SETFL too: O_ASYNC on the terminal the parent
+  // shares made it send the parent SIGIO, and O_NONBLOCK would stay on the parent's output.)
+  for (int cmd : {F_SETOWN, F_SETOWN_EX, F_SETSIG, F_SETLEASE, F_SETFL})
+    stop(SCMP_SYS(fcntl), 1, SCMP_A1(SCMP_CMP_MASKED_EQ, 0xffffffffu, static_cast<scmp_datum_t>(cmd)));
   // Limits and scheduling of itself only (pid 0), and its own end with the parent kept.
   stop(SCMP_SYS(prlimit64), 1, SCMP_A0(SCMP_CMP_NE, 0));
+  // who = 0 is itself for a process only (which = PRIO_PROCESS, IOPRIO_WHO_PROCESS): for a
+  // process group or a user it is all of them (a review reniced a sibling process).
+  stop(SCMP_SYS(setpriority), 1, SCMP_A0(SCMP_CMP_NE, PRIO_PROCESS));
   stop(SCMP_SYS(setpriority), 1, SCMP_A1(SCMP_CMP_NE, 0));
+  stop(SCMP_SYS(ioprio_set), 1, SCMP_A0(SCMP_CMP_NE, kIoprioWhoProcess));
   stop(SCMP_SYS(ioprio_set), 1, SCMP_A1(SCMP_CMP_NE, 0));
   for (int nr :
        {SCMP_SYS(sched_setaffinity), SCMP_SYS(sched_setscheduler), SCMP_SYS(sched_setparam), SCMP_SYS(sched_setattr)})
     stop(nr, 1, SCMP_A0(SCMP_CMP_NE, 0));
-  stop(SCMP_SYS(prctl), 1, SCMP_A0(SCMP_CMP_EQ, PR_SET_PDEATHSIG));
-  // The terminal: typing into its input, its settings, its size (a SIGWINCH to its jobs).
-  for (unsigned long req : {TIOCSTI, TIOCLINUX, TIOCSWINSZ, TCSETS, TCSETSW, TCSETSF, TCSETA, TCSETAW, TCSETAF,
-                            TIOCSCTTY, TIOCCONS, TIOCSPGRP, TIOCSETD, TIOCNOTTY, TIOCVHANGUP, TIOCSBRK, TCFLSH, TCXONC})
+  stop(SCMP_SYS(prctl), 1, SCMP_A0(SCMP_CMP_MASKED_EQ, 0xffffffffu, PR_SET_PDEATHSIG));
+  // The terminal: typing into its input, its settings, its size (a SIGWINCH to its jobs), and
+  // signals or non-blocking output on descriptors shared with the parent.
+  for (unsigned long req :
+       {TIOCSTI,  TIOCLINUX, TIOCSWINSZ, TCSETS,    TCSETSW,     TCSETSF,  TCSETA, TCSETAW, TCSETAF,  TIOCSCTTY,
+        TIOCCONS, TIOCSPGRP, TIOCSETD,   TIOCNOTTY, TIOCVHANGUP, TIOCSBRK, TCFLSH, TCXONC,  FIOASYNC, FIONBIO})
     stop(SCMP_SYS(ioctl), 1, SCMP_A1(SCMP_CMP_MASKED_EQ, 0xffffffffu, req));
   if (rc == 0) rc = seccomp_load(ctx);
   seccomp_release(ctx);

@@ -91,8 +91,9 @@ struct Scanner {
   }
 };
 
-// Files checked whole already (by their canonical path): each is read once, however many
-// times it is included (a chain of files each including the next ten times made 10^15 reads).
+// Files checked whole already (by command and name, and the option-file chains beside them):
+// each is read once, however many times it is included (a chain of files each including the
+// next ten times made 10^15 reads).
 using Checked = std::set<std::string>;
 
 void check_script(const std::string& path, const std::string& text, int depth, Checked& done);
@@ -112,10 +113,18 @@ constexpr const char* kNotPlain =
 // gmsh reads "<file>.opt" beside every file it opens or merges, as a script, and merging that
 // reads its own ".opt": "<file>.opt.opt" and on.
 void check_companion(const std::string& file, int depth, Checked& done) {
+  if (!done.insert("opt\n" + file).second) return;  // its chain checked already
   std::string opt = file + ".opt";
   for (int k = 0; fs::exists(opt); ++k, opt += ".opt") {
     DSPDEM_CHECK(k < kMostDepth, "gmsh option files beside '{}' chained more than {} deep", file, kMostDepth);
-    check_script(opt, read_file(opt, "gmsh option file"), depth + 1, done);
+    // gmsh merges it, which reads a file by its first line: a mesh, a view or a script.
+    const std::string text = read_file(opt, "gmsh option file");
+    const GmshText kind = gmsh_reads_as(text);
+    DSPDEM_CHECK(kind != GmshText::View, "gmsh option file '{}': a post-processing view, not options", opt);
+    if (kind == GmshText::Mesh)
+      check_msh_text(opt, text, false);
+    else
+      check_script(opt, text, depth + 1, done);
   }
 }
 
@@ -170,14 +179,17 @@ void check_included(const Scanner& sc, const std::string& command, const std::st
         command, name);
   if (!fs::is_regular_file(p)) sc.error("{} \"{}\": {} is not a file", command, name, p.string());
   if (depth >= kMostDepth) sc.error("{} \"{}\": scripts nested more than {} deep", command, name, kMostDepth);
-  std::error_code ec;
-  const fs::path canonical = fs::weakly_canonical(p, ec);
-  const std::string key = ec ? p.string() : canonical.string();
+  // Known by the command and the name as gmsh resolves it (lexically: a name through a link
+  // reads its own folder's neighbours), so that each file gmsh would read is checked once.
+  const std::string key = command + "\n" + p.lexically_normal().string();
   if (done.count(key)) return;
   // The fault named in the file that has it, and where the case's own script includes it.
   try {
     if (command == "Merge") check_companion(p.string(), depth, done);  // gmsh reads its .opt too
-    if (data && !script) return;
+    if (data && !script) {
+      done.insert(key);
+      return;
+    }
     const std::string inner = read_file(p.string(), "mesh file");
     // Include reads a script; Merge reads a .geo or .msh by its first line, whatever its name.
     const GmshText kind = command == "Include" ? GmshText::Script : gmsh_reads_as(inner);

@@ -447,3 +447,36 @@ TEST(MeshReader, AFileIncludedManyTimesIsCheckedOnce) {
   const std::string top = write_file("chain_top.geo", "Include \"chain_0.geo\";\n");
   EXPECT_NO_THROW(check_geo_script(top, "Include \"chain_0.geo\";\n"));
 }
+
+// A second review's findings on the check's memory of files read: a name through a link is
+// checked as gmsh reads it (its includes from the link's folder), an Include and a Merge of
+// one file are each checked, and a .opt is checked as what its first line makes it.
+TEST(MeshReader, EachFileIsCheckedAsGmshWouldReadItFromWhereItIsNamed) {
+  const fs::path dir = fs::temp_directory_path() / "dspdem_mesh_reader" / "linked";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  std::ofstream(dir / "b" / "real.geo") << "Include \"y.geo\";\n";
+  std::ofstream(dir / "b" / "y.geo") << "Point(1) = {0, 0, 0};\n";
+  std::ofstream(dir / "a" / "y.geo") << "Exit;\n";  // what gmsh reads through the link
+  fs::create_symlink("../b/real.geo", dir / "a" / "x.geo");
+  const std::string text = "Include \"b/real.geo\";\nInclude \"a/x.geo\";\n";
+  std::ofstream(dir / "top.geo") << text;
+  try {
+    check_geo_script((dir / "top.geo").string(), text);
+    ADD_FAILURE() << "a/y.geo, read through the link, was not checked";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Exit"), std::string::npos) << e.what();
+  }
+  // A .opt beginning as a mesh is a mesh to gmsh: checked as one (here a broken one).
+  const std::string box = "Point(1) = {0, 0, 0};\n";
+  const std::string path = write_file("opt_mesh.geo", box);
+  write_file("opt_mesh.geo.opt", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n$EndNodes\n");
+  try {
+    check_gmsh_option_file(path);
+    ADD_FAILURE() << "a .opt holding a broken mesh passed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("opt_mesh.geo.opt"), std::string::npos) << e.what();
+  }
+  fs::remove(fs::temp_directory_path() / "dspdem_mesh_reader" / "opt_mesh.geo.opt");
+}

@@ -200,6 +200,15 @@ TEST(Sandbox, StopsWhatAffectsOtherProcessesOrOutlivesTheParent) {
   expect_refused([] { return std::to_string(shmget(IPC_PRIVATE, 4096, IPC_CREAT | 0600)); }, "shmget");
   expect_refused([] { return std::to_string(setsid()); }, "setsid");
   expect_refused([] { return std::to_string(ioctl(STDERR_FILENO, TIOCSWINSZ, nullptr)); }, "ioctl");
+  // A second review's: a bit above an int's 32 (which the kernel drops) got F_SETOWN and the
+  // parent-death reset past; a priority for the process group (who = 0) reniced a sibling;
+  // O_ASYNC on the terminal shared with the parent sent it SIGIO.
+  expect_refused([] { return std::to_string(syscall(SYS_fcntl, STDERR_FILENO, (1L << 32) | F_SETOWN, getppid())); },
+                 "fcntl");
+  expect_refused([] { return std::to_string(syscall(SYS_prctl, (1L << 32) | PR_SET_PDEATHSIG, 0L, 0L, 0L, 0L)); },
+                 "prctl");
+  expect_refused([] { return std::to_string(setpriority(PRIO_PGRP, 0, 0)); }, "setpriority");
+  expect_refused([] { return std::to_string(fcntl(STDERR_FILENO, F_SETFL, O_ASYNC)); }, "fcntl");
 }
 
 TEST(Sandbox, CallsNewerThanTheFilterAreNotImplementedAndCapabilitiesAreGone) {
