@@ -213,7 +213,7 @@ TEST(Sandbox, StopsWhatAffectsOtherProcessesOrOutlivesTheParent) {
 
 TEST(Sandbox, CallsNewerThanTheFilterAreNotImplementedAndCapabilitiesAreGone) {
   // fchmodat2 (452), which libseccomp 2.5.4 does not know: a review made a file mode 777
-  // with it. Every number from 440 on is answered ENOSYS.
+  // with it. Every number from 440 to 511 is answered ENOSYS.
   const fs::path f = scratch() / "mode";
   std::ofstream(f) << "x";
   fs::permissions(f, fs::perms::owner_read | fs::perms::owner_write);
