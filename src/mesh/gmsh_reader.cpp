@@ -193,6 +193,7 @@ Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source)
                       : e.types[k] == kGmshQuad4 ? &g.quad
                                                  : nullptr;
           if (!dst) continue;
+          garbled(e.elem_nodes[k].size() == e.elem_tags[k].size() * (dst == &g.tri ? 3 : 4));
           for (auto t : e.elem_nodes[k]) {
             auto n = node_index.find(t);
             DSPDEM_CHECK(n != node_index.end(), "mesh '{}': surface group '{}' has a face node {} not on any cell",
