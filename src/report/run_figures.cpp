@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "io/case_config.hpp"
 #include "render/plot.hpp"
 #include "run/render_run.hpp"
 
@@ -19,6 +20,11 @@ void draw_run_frames(const ReportDirs& d, const ReportArgs& a, const std::vector
   ra.run_dir = d.run_dir, ra.out_dir = d.files_dir;
   ra.views = views;
   render_command(ra);
+}
+
+double drawn_magnification(const std::string& run_dir) {
+  const fs::path resolved = fs::path(run_dir) / "case.resolved.toml";
+  return fs::exists(resolved) ? read_case(resolved.string()).render.magnify : RenderConfig{}.magnify;
 }
 
 RunPlots::RunPlots(const ReportDirs& d) : run_dir_(d.run_dir), files_dir_(d.files_dir) {

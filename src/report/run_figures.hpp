@@ -14,6 +14,11 @@ namespace dspdem::report {
 /// nothing with --no-render.
 void draw_run_frames(const ReportDirs& d, const ReportArgs& a, const std::vector<std::string>& views = {});
 
+/// The displacement magnification the run's frames are drawn with: its case.resolved.toml's
+/// [render] magnify, as `render` reads it (1 without that file). A report's captions say this,
+/// not its own case's, which a report --from-run of an older run may not share.
+double drawn_magnification(const std::string& run_dir);
+
 /// Plots of the report's tables: made once per report, it makes images/plots/.
 class RunPlots {
  public:

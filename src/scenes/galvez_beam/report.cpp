@@ -174,8 +174,11 @@ int galvez_beam_report(const CaseConfig& c, const report::ReportArgs& a) {
   for (std::size_t i = 0; i < std::min<std::size_t>(3, r.mass_fractions.size()); ++i)
     fr += fmt::format("{} {:.3f}", i ? "," : "", r.mass_fractions[i]);
   doc.para(fmt::format("{} fragments; largest mass fractions{}.", r.fragments, fr));
-  // The case's magnification (the paper's Fig. 14 draws x100), said beside the images as on them.
-  const std::string drawn = c.render.magnify != 1 ? fmt::format(" (displacement x{:g})", c.render.magnify) : "";
+  // The magnification the run's frames were drawn with (the paper's Fig. 14 draws x100), said
+  // beside the images as on them: the run's, which an older run given by --from-run may not
+  // share with the case.
+  const double magnify = report::drawn_magnification(run_dir);
+  const std::string drawn = magnify != 1 ? fmt::format(" (displacement x{:g})", magnify) : "";
   if (!a.no_render)
     for (const std::string view : {"cracks", "fragments", "stress"}) {
       doc.para(view + ", last frame" + drawn + ":");
