@@ -266,6 +266,13 @@ std::string how_it_ended(int st) {
   if (WIFEXITED(st)) return fmt::format("exit status {} and no result", WEXITSTATUS(st));
   return "no result";
 }
+
+// Kills the child and reaps it (its status is not wanted then: it was stopped).
+void stop_child(pid_t pid) {
+  kill(pid, SIGKILL);
+  while (waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+  }
+}
 }  // namespace
 
 SandboxResult run_sandboxed(const std::function<std::string()>& work, double seconds) {
@@ -330,9 +337,7 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, double sec
     }
   } catch (...) {
     close(fds[0]);
-    kill(pid, SIGKILL);
-    while (waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
-    }
+    stop_child(pid);
     throw;
   }
   close(fds[0]);
@@ -360,9 +365,7 @@ SandboxResult run_sandboxed(const std::function<std::string()>& work, double sec
     if (pidfd >= 0) close(pidfd);
   }
   if (late) {
-    kill(pid, SIGKILL);
-    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-    }
+    stop_child(pid);
     res.status = SandboxResult::Status::TimedOut;
     res.message = fmt::format("did not finish within {:g} s and was stopped", seconds);
     return res;

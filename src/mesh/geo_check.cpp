@@ -110,21 +110,28 @@ constexpr const char* kNotPlain =
     "a backslash or a drive letter in the name: gmsh takes them for folders, and would read another file than the one "
     "checked";
 
-// gmsh reads "<file>.opt" beside every file it opens or merges, as a script, and merging that
-// reads its own ".opt": "<file>.opt.opt" and on.
+// gmsh reads a file it merges by its first line, whatever its name (gmsh 4.8's MergeFile):
+// a mesh, checked as a mesh file (a surface mesh merged to build a volume has no volume
+// elements); a script, checked as one; a post-processing view, which a mesh file may not hold.
+void check_by_first_line(const std::string& path, const std::string& text, int depth, Checked& done) {
+  switch (gmsh_reads_as(text)) {
+    case GmshText::View:
+      fail("mesh file '{}': a post-processing view ($PostFormat or $View), not a mesh or a script", path);
+    case GmshText::Mesh:
+      return check_msh_text(path, text, false);
+    case GmshText::Script:
+      return check_script(path, text, depth + 1, done);
+  }
+}
+
+// gmsh merges "<file>.opt" beside every file it opens or merges, and merging that reads its
+// own ".opt": "<file>.opt.opt" and on.
 void check_companion(const std::string& file, int depth, Checked& done) {
   if (!done.insert("opt\n" + file).second) return;  // its chain checked already
   std::string opt = file + ".opt";
   for (int k = 0; fs::exists(opt); ++k, opt += ".opt") {
     DSPDEM_CHECK(k < kMostDepth, "gmsh option files beside '{}' chained more than {} deep", file, kMostDepth);
-    // gmsh merges it, which reads a file by its first line: a mesh, a view or a script.
-    const std::string text = read_file(opt, "gmsh option file");
-    const GmshText kind = gmsh_reads_as(text);
-    DSPDEM_CHECK(kind != GmshText::View, "gmsh option file '{}': a post-processing view, not options", opt);
-    if (kind == GmshText::Mesh)
-      check_msh_text(opt, text, false);
-    else
-      check_script(opt, text, depth + 1, done);
+    check_by_first_line(opt, read_file(opt, "gmsh option file"), depth, done);
   }
 }
 
@@ -168,11 +175,11 @@ void check_included(const Scanner& sc, const std::string& command, const std::st
   fs::path p(name);
   if (p.is_relative()) p = fs::path(sc.path).parent_path() / p;
   const std::string ext = p.extension().string();
-  // gmsh parses any Include as a script; a Merge by the file's kind, known by its extension's
-  // exact spelling (another spelling it parses as a script).
-  const bool data = std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end();
-  const bool script = command == "Include" || ext == ".geo" || ext == ".msh";
-  if (!script && !data)
+  // gmsh parses any Include as a script; a Merge of a data file by its extension's exact
+  // spelling, and of any other name by the file's first line (another spelling of a data
+  // file's extension it parses as a script).
+  const bool data = command == "Merge" && std::find(kDataFiles.begin(), kDataFiles.end(), ext) != kDataFiles.end();
+  if (command == "Merge" && !data && ext != ".geo" && ext != ".msh")
     sc.error(
         "{} \"{}\": dspdem lets a script merge .geo, .msh, STEP, BREP, IGES and STL files only (extensions "
         "spelt as gmsh knows them)",
@@ -186,19 +193,13 @@ void check_included(const Scanner& sc, const std::string& command, const std::st
   // The fault named in the file that has it, and where the case's own script includes it.
   try {
     if (command == "Merge") check_companion(p.string(), depth, done);  // gmsh reads its .opt too
-    if (data && !script) {
-      done.insert(key);
-      return;
+    if (!data) {
+      const std::string inner = read_file(p.string(), "mesh file");
+      if (command == "Include")
+        check_script(p.string(), inner, depth + 1, done);
+      else
+        check_by_first_line(p.string(), inner, depth, done);
     }
-    const std::string inner = read_file(p.string(), "mesh file");
-    // Include reads a script; Merge reads a .geo or .msh by its first line, whatever its name.
-    const GmshText kind = command == "Include" ? GmshText::Script : gmsh_reads_as(inner);
-    if (kind == GmshText::View)
-      sc.error("{} \"{}\": a post-processing view ($PostFormat or $View), not a mesh or a script", command, name);
-    if (kind == GmshText::Script)
-      check_script(p.string(), inner, depth + 1, done);
-    else
-      check_msh_text(p.string(), inner, false);  // a surface mesh merged to build a volume
     done.insert(key);
   } catch (const Error& e) {
     if (depth > 0) throw;  // named once, by the case's own script, not at every level
@@ -302,6 +303,13 @@ GmshText gmsh_reads_as(const std::string& text) {
 
 void check_geo_script(const std::string& path, const std::string& text) {
   DSPDEM_CHECK(plain_file_name(path), "mesh file '{}': {}", path, kNotPlain);
+  // gmsh tells a mesh from a script by the first line, not by the name: a .geo holding a
+  // mesh would be read as one, past the mesh's check (a probe's finding).
+  const GmshText kind = gmsh_reads_as(text);
+  DSPDEM_CHECK(kind == GmshText::Script,
+               "mesh file '{}': it holds a {}, which gmsh reads by its first line whatever the file's name: name it "
+               ".msh",
+               path, kind == GmshText::Mesh ? "mesh" : "post-processing view");
   Checked done;
   check_script(path, text, 0, done);
 }

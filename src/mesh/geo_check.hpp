@@ -14,7 +14,9 @@
 namespace dspdem {
 
 /// Throws Error "mesh file '<path>': line <n>: <what>" at the first thing in `text` (the
-/// contents of `path`) that gmsh would run outside the model:
+/// contents of `path`) that gmsh would run outside the model, and "mesh file '<path>': it
+/// holds a mesh" if gmsh would read `text` as a mesh or a view by its first line (past the
+/// mesh's own check). Refused:
 /// - the commands SystemCall, System, NonBlockingSystemCall, OnelabRun, OnelabAction,
 ///   SendToServer, Exit, Sleep, CreateDir, Save, Print, MergeWithBoundingBox and Plugin, and
 ///   Printf redirected into a file (> or >>);
@@ -30,9 +32,10 @@ namespace dspdem {
 /// read as code are refused in strings and comments too: gmsh's If, For and Macro skip text
 /// without reading its strings, so what this reading takes for a string gmsh may run.
 /// Files the script includes are checked as scripts, whatever their extension (gmsh parses
-/// an Include as a script); a merged .geo as a script, a merged .msh as a mesh file (format
-/// only), and a merged file's ".opt"; merged STEP, BREP, IGES and STL files (extensions spelt
-/// as gmsh knows them) are let through, any other kind refused.
+/// an Include as a script); a merged .geo or .msh, and a merged file's ".opt", as what its
+/// first line makes it (gmsh_reads_as): a script, or a mesh file (format only); merged STEP,
+/// BREP, IGES and STL files (extensions spelt as gmsh knows them) are let through, any other
+/// kind refused.
 void check_geo_script(const std::string& path, const std::string& text);
 
 /// How gmsh 4.8 reads a file by its first line, whatever its extension (.geo and .msh are not

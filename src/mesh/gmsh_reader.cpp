@@ -96,6 +96,11 @@ Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source)
     if (inserted) used_tags.push_back(tag);
     return it->second;
   };
+  // A node's index among the cells' nodes, or -1 for a node no cell uses.
+  auto cell_node = [&](std::size_t tag) -> Index {
+    const auto n = node_index.find(tag);
+    return n == node_index.end() ? Index{-1} : n->second;
+  };
   // entity tag -> (block, first, count) ranges so volume groups can list their elements
   struct Range {
     int block;
@@ -141,10 +146,10 @@ Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source)
   std::vector<char> seen(used_tags.size(), 0);
   for (const GmshEntity& e : model.entities)
     for (std::size_t i = 0; i < e.node_tags.size(); ++i) {
-      auto it = node_index.find(e.node_tags[i]);
-      if (it == node_index.end()) continue;
-      for (int d = 0; d < 3; ++d) mesh.x[3 * it->second + d] = e.coord[3 * i + d];
-      seen[it->second] = 1;
+      const Index n = cell_node(e.node_tags[i]);
+      if (n < 0) continue;
+      for (int d = 0; d < 3; ++d) mesh.x[3 * static_cast<std::size_t>(n) + d] = e.coord[3 * i + d];
+      seen[static_cast<std::size_t>(n)] = 1;
     }
   for (std::size_t i = 0; i < seen.size(); ++i)
     DSPDEM_CHECK(seen[i], "mesh '{}': element refers to node {} which has no coordinates", source, used_tags[i]);
@@ -178,27 +183,23 @@ Mesh mesh_from_model_data(const GmshModelData& model, const std::string& source)
         const auto it = entity.find({p.dim, ent});
         if (it == entity.end()) continue;
         const GmshEntity& e = *it->second;
-        if (p.dim == 0)  // a point's own node, with or without a point element (as gmsh)
-          for (auto t : e.node_tags) {
-            auto n = node_index.find(t);
-            if (n != node_index.end()) g.nodes.push_back(n->second);
-          }
+        const auto add_nodes = [&](const std::vector<std::size_t>& tags) {
+          for (const std::size_t t : tags)
+            if (const Index n = cell_node(t); n >= 0) g.nodes.push_back(n);
+        };
+        if (p.dim == 0) add_nodes(e.node_tags);  // a point's own node, with or without a point element (as gmsh)
         for (std::size_t k = 0; k < e.types.size(); ++k) {
-          for (auto t : e.elem_nodes[k]) {
-            auto n = node_index.find(t);
-            if (n != node_index.end()) g.nodes.push_back(n->second);
-          }
+          add_nodes(e.elem_nodes[k]);
           auto* dst = p.dim != 2                 ? nullptr
                       : e.types[k] == kGmshTri3  ? &g.tri
                       : e.types[k] == kGmshQuad4 ? &g.quad
                                                  : nullptr;
           if (!dst) continue;
           garbled(e.elem_nodes[k].size() == e.elem_tags[k].size() * (dst == &g.tri ? 3 : 4));
-          for (auto t : e.elem_nodes[k]) {
-            auto n = node_index.find(t);
-            DSPDEM_CHECK(n != node_index.end(), "mesh '{}': surface group '{}' has a face node {} not on any cell",
-                         source, g.name, t);
-            dst->push_back(n->second);
+          for (const std::size_t t : e.elem_nodes[k]) {
+            const Index n = cell_node(t);
+            DSPDEM_CHECK(n >= 0, "mesh '{}': surface group '{}' has a face node {} not on any cell", source, g.name, t);
+            dst->push_back(n);
           }
         }
       }
@@ -255,15 +256,8 @@ Mesh read_gmsh(const std::string& path, const std::string& save_as, double time_
       // its faults are named by line.
       check_msh_text(path, text);  // which also refuses a first line gmsh would run as a script
     } else {
-      // gmsh tells a mesh from a script by the first line, not by the name: a .geo holding a
-      // mesh would be read as one, past the mesh's check (a probe's finding).
-      const GmshText kind = gmsh_reads_as(text);
-      DSPDEM_CHECK(kind == GmshText::Script,
-                   "mesh file '{}': it holds a {}, which gmsh reads by its first line whatever the file's name: name "
-                   "it .msh",
-                   path, kind == GmshText::Mesh ? "mesh" : "post-processing view");
-      // Refused by line before anything runs; the sandbox (read_gmsh_unchecked) stops what
-      // gets past.
+      // Refused by line before anything runs (a .geo holding a mesh too: gmsh would read it as
+      // one, past the mesh's check); the sandbox (read_gmsh_unchecked) stops what gets past.
       check_geo_script(path, text);
     }
     check_gmsh_option_file(path);  // gmsh runs "<file>.opt" beside the file it opens

@@ -426,6 +426,14 @@ TEST(MeshReader, AFileIsCheckedAsWhatGmshReadsItAs) {
   // Merged, a .geo holding a mesh is checked as the mesh it is.
   write_file("merged_mesh.geo", twice);
   expect_error("merges_mesh.geo", "Merge \"merged_mesh.geo\";\n", {"merged_mesh.geo", "listed twice"});
+  // A post-processing view, as the case's file, merged, or as a .opt beside a file: refused,
+  // the view's file named once, where the case's script merges it.
+  expect_geo_refused("view_as.geo", "$View\n", {"holds a post-processing view", "name it .msh"});
+  write_file("merged_view.geo", "$PostFormat\n1.4 0 8\n$EndPostFormat\n");
+  expect_error("merges_view.geo", "Merge \"merged_view.geo\";\n",
+               {"line 1: Merge \"merged_view.geo\": mesh file '", "merged_view.geo': a post-processing view"});
+  write_file("view_opt.geo.opt", "$View\n");
+  expect_error("view_opt.geo", "Point(1) = {0, 0, 0};\n", {"view_opt.geo.opt': a post-processing view"});
   // Threaded meshing: another mesh each run, and OpenMP's pool is not safe in the sandbox.
   expect_geo_refused("threads.geo", "Mesh.MaxNumThreads3D = 2;\n", {"line 1", "MaxNumThreads3D"});
   expect_geo_refused("threads_hidden.geo", "// Mesh.MaxNumThreads2D = 4;\n", {"MaxNumThreads2D"});
