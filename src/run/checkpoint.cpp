@@ -69,12 +69,13 @@ std::string checkpoint_piece(const std::string& path, int rank) {
 
 std::string checkpoint_build_id() { return DSPDEM_BUILD_INFO " " DSPDEM_COMMIT " " DSPDEM_BUILD_TOOLS; }
 
-FileCrc file_crc(const std::string& path, std::uint64_t bytes) {
+FileCrc file_crc(const std::string& path, std::uint64_t bytes, FileCrc so_far) {
   // In blocks: the executable is some megabytes, a long run's series some more.
   std::ifstream f(path, std::ios::binary);
   std::vector<char> block(1 << 16);
-  uLong c = crc32(0L, Z_NULL, 0);
-  std::uint64_t n = 0;
+  uLong c = so_far.bytes == 0 ? crc32(0L, Z_NULL, 0) : so_far.crc;
+  std::uint64_t n = std::min(so_far.bytes, bytes);
+  if (n > 0) f.seekg(static_cast<std::streamoff>(n));
   while (n < bytes && f) {
     const std::uint64_t want = std::min<std::uint64_t>(block.size(), bytes - n);
     f.read(block.data(), static_cast<std::streamsize>(want));

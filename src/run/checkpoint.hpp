@@ -56,12 +56,14 @@ struct CheckpointHeader {
 std::string checkpoint_piece(const std::string& path, int rank);
 
 /// CRC-32 of the first `bytes` bytes of file `path` (all of it with bytes = -1), and how many
-/// it read: fewer than asked when the file is shorter (or missing: 0).
+/// it read: fewer than asked when the file is shorter (or missing: 0). Given `so_far`, the
+/// CRC of the file's first so_far.bytes bytes, only the bytes after them are read: a growing
+/// file's CRC at each checkpoint costs what it grew by, not its length.
 struct FileCrc {
   std::uint32_t crc = 0;
   std::uint64_t bytes = 0;
 };
-FileCrc file_crc(const std::string& path, std::uint64_t bytes = static_cast<std::uint64_t>(-1));
+FileCrc file_crc(const std::string& path, std::uint64_t bytes = static_cast<std::uint64_t>(-1), FileCrc so_far = {});
 
 /// This build's identity, as written into checkpoints.
 std::string checkpoint_build_id();

@@ -650,12 +650,15 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     }
   };
   auto write_ckpt = [&]() {
+    // The files' CRCs carried on from the last checkpoint's (or the restored prefix's): each
+    // checkpoint reads what the files grew by since, not the whole of a long run's series.
+    const FileCrc series_before{ls.series_crc, ls.series_bytes}, fragments_before{ls.fragments_crc, ls.fragments_bytes};
     ls.series_bytes = series.bytes();
     frag_csv.flush();
     ls.fragments_bytes = static_cast<std::uint64_t>(frag_csv.tellp());
     if (my_rank == 0) {
-      ls.series_crc = file_crc((sdir / "series.csv").string(), ls.series_bytes).crc;
-      ls.fragments_crc = file_crc((sdir / "fragments.csv").string(), ls.fragments_bytes).crc;
+      ls.series_crc = file_crc((sdir / "series.csv").string(), ls.series_bytes, series_before).crc;
+      ls.fragments_crc = file_crc((sdir / "fragments.csv").string(), ls.fragments_bytes, fragments_before).crc;
     }
     const double before = ls.wall_before;
     ls.wall_before += wall.seconds();

@@ -360,6 +360,26 @@ TEST(RestartFile, ARunsFolderIsTheOneThatHoldsItsCheckpoint) {
   EXPECT_EQ(run_folder_of("out/staging/checkpoint.bin"), fs::absolute("out/staging").string());  // not a staging name
 }
 
+// A checkpoint carries series.csv's CRC on from the last one's (run_case's write_ckpt): the
+// CRC of a file's first n2 bytes, carried on from that of its first n1, is the CRC of the
+// first n2 read at once, across the reader's 64 KiB blocks and at the file's ends.
+TEST(RestartFile, AFilesCrcCarriedOnFromItsFirstBytesIsTheWholeOnes) {
+  const fs::path p = fs::temp_directory_path() / "dspdem_file_crc.bin";
+  std::string bytes(200000, '\0');
+  std::uint32_t r = 12345;
+  for (char& b : bytes) b = static_cast<char>((r = r * 1103515245u + 12345u) >> 24);
+  std::ofstream(p, std::ios::binary) << bytes;
+  for (const std::uint64_t n1 : std::vector<std::uint64_t>{0, 1, 65535, 65536, 100000})
+    for (const std::uint64_t n2 : std::vector<std::uint64_t>{n1, n1 + 1, 131073, 200000, 300000}) {
+      if (n2 < n1) continue;
+      const FileCrc whole = file_crc(p.string(), n2), on = file_crc(p.string(), n2, file_crc(p.string(), n1));
+      EXPECT_EQ(on.crc, whole.crc) << n1 << " " << n2;
+      EXPECT_EQ(on.bytes, whole.bytes) << n1 << " " << n2;
+    }
+  EXPECT_NE(file_crc(p.string(), 100).crc, file_crc(p.string(), 101).crc);
+  fs::remove(p);
+}
+
 // The side folders' names, which find_checkpoint, run --restart and a finished restart's
 // clean-up all go by (io/staging.hpp).
 TEST(RestartFile, SideFoldersAreKnownByTheirNames) {
