@@ -97,6 +97,7 @@ void build_brazilian_disc(const Params& p) {
   set_volume_size(vols, h);
   if (const double hl = p["load_size"]; hl > 0) {
     if (hl > h) param_error(p, "load_size", "larger than size: it refines the mesh at the loaded lines");
+    check_graded_count(p, "load_size", 2 * L, hl, h, D / 4);
     namespace field = gmsh::model::mesh::field;
     field::add("Distance", 1);
     field::setNumbers(1, "CurvesList", {static_cast<double>(l_top[0]), static_cast<double>(l_bot[0])});

@@ -5,6 +5,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -65,6 +66,16 @@ void check_count(const Params& p, const std::string& key, double count, const st
 
 void check_tet_count(const Params& p, const std::string& key, double volume, double h) {
   check_count(p, key, 4 * volume / (h * h * h), fmt::format("4 tetrahedra a size cubed over {:.3g} m^3", volume));
+}
+
+void check_graded_count(const Params& p, const std::string& key, double length, double fine, double coarse,
+                        double reach) {
+  // The integral of 4 / s(r)^3 over pi r dr, s = fine + (coarse - fine) r / reach, from 0 to
+  // reach: 2 pi reach^2 / (fine coarse^2) a unit length.
+  check_count(p, key, 2 * M_PI * length * reach * reach / (fine * coarse * coarse),
+              fmt::format("4 tetrahedra a size cubed, the size growing from {:.3g} m at {:.3g} m of lines to {:.3g} m "
+                          "at {:.3g} m from them",
+                          fine, length, coarse, reach));
 }
 
 const std::vector<Generator>& registry() {

@@ -35,9 +35,15 @@ inline constexpr double kMostElements = 1e8;
 /// Before meshing: param_error naming `key` when a uniform size `h` over `volume` [m^3] would
 /// give more than kMostElements tetrahedra, at 4 a size cubed (gmsh's count for the Brazilian
 /// disc's default size is 4.7: a target_elements within its range is not refused as its size is
-/// rescaled). Graded refinements (a contact, a notch or a load size) are not counted: a guard
-/// against a mistyped size, not an estimate of the mesh.
+/// rescaled). A guard against a mistyped size, not an estimate of the mesh.
 void check_tet_count(const Params& p, const std::string& key, double volume, double h);
+/// The same for a size growing linearly from `fine` at lines of total length `length` on the
+/// body's surface to `coarse` at `reach` from them (set_graded_size): 4 tetrahedra a size
+/// cubed over the half cylinders round the lines, 2 pi length reach^2 / (fine coarse^2), which
+/// grows as 1/fine (a mistyped load_size of 1e-9 m gave gmsh 1e10 elements to make). A
+/// refinement at a point or a notch tip needs none: its count grows as log(coarse / fine).
+void check_graded_count(const Params& p, const std::string& key, double length, double fine, double coarse,
+                        double reach);
 /// param_error naming `key` when `count` elements, counted as `how`, exceed kMostElements.
 void check_count(const Params& p, const std::string& key, double count, const std::string& how);
 

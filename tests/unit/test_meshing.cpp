@@ -465,6 +465,9 @@ TEST(Generators, AMeshPastAHundredMillionElementsIsRefusedBeforeGmshMeshesIt) {
   expect_error(params("galvez_beam", {"size=1e-4"}), "mesh.galvez_beam.size");
   expect_error(params("galvez_beam", {"band_min_x=-0.05", "band_max_x=0.05", "band_size=1e-4"}),
                "mesh.galvez_beam.band_size");
+  // A graded size: the disc's load_size at the loaded lines (growing as 1 / load_size).
+  expect_error(params("brazilian_disc", {"load_size=1e-9", "plates=0"}),
+               "mesh.brazilian_disc.load_size = 1e-09: about 2e+10 elements");
   expect_error(params("murray_beam", {"nx=100000", "ny=1000", "nz=1000"}), "nx x ny x nz hexahedra");
   expect_error(params("murray_beam", {"cylinders=1", "cylinder_size=1e-5"}), "mesh.murray_beam.cylinder_size");
   expect_error(params("packing", {"count=2000000", "refine=2", "size_max=0.41", "fill_height=3000"}),
