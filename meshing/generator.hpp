@@ -40,7 +40,7 @@ void check_tet_count(const Params& p, const std::string& key, double volume, dou
 /// The same for a size growing linearly from `fine` at lines of total length `length` on the
 /// body's surface to `coarse` at `reach` from them (set_graded_size): 4 tetrahedra a size
 /// cubed over the half cylinders round the lines, 2 pi length reach^2 / (fine coarse^2), which
-/// grows as 1/fine (a mistyped load_size of 1e-9 m gave gmsh 1e10 elements to make). A
+/// grows as 1/fine (a mistyped load_size of 1e-9 m gave gmsh 2e10 elements to make). A
 /// refinement at a point or a notch tip needs none: its count grows as log(coarse / fine).
 void check_graded_count(const Params& p, const std::string& key, double length, double fine, double coarse,
                         double reach);

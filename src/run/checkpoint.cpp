@@ -72,10 +72,18 @@ std::string checkpoint_build_id() { return DSPDEM_BUILD_INFO " " DSPDEM_COMMIT "
 FileCrc file_crc(const std::string& path, std::uint64_t bytes, FileCrc so_far) {
   // In blocks: the executable is some megabytes, a long run's series some more.
   std::ifstream f(path, std::ios::binary);
+  if (!f) return {};
+  // A known prefix longer than asked, or longer than the file now is, says nothing of the
+  // bytes wanted: read from the start then.
+  if (so_far.bytes > bytes) so_far = {};
+  if (so_far.bytes > 0) {
+    f.seekg(0, std::ios::end);
+    if (!(f.tellg() >= static_cast<std::streamoff>(so_far.bytes))) so_far = {};
+    f.seekg(static_cast<std::streamoff>(so_far.bytes));
+  }
   std::vector<char> block(1 << 16);
   uLong c = so_far.bytes == 0 ? crc32(0L, Z_NULL, 0) : so_far.crc;
-  std::uint64_t n = std::min(so_far.bytes, bytes);
-  if (n > 0) f.seekg(static_cast<std::streamoff>(n));
+  std::uint64_t n = so_far.bytes;
   while (n < bytes && f) {
     const std::uint64_t want = std::min<std::uint64_t>(block.size(), bytes - n);
     f.read(block.data(), static_cast<std::streamsize>(want));

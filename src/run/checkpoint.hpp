@@ -58,7 +58,8 @@ std::string checkpoint_piece(const std::string& path, int rank);
 /// CRC-32 of the first `bytes` bytes of file `path` (all of it with bytes = -1), and how many
 /// it read: fewer than asked when the file is shorter (or missing: 0). Given `so_far`, the
 /// CRC of the file's first so_far.bytes bytes, only the bytes after them are read: a growing
-/// file's CRC at each checkpoint costs what it grew by, not its length.
+/// file's CRC at each checkpoint costs what it grew by, not its length (a file now shorter
+/// than so_far.bytes, or a so_far longer than `bytes`, is read from its start).
 struct FileCrc {
   std::uint32_t crc = 0;
   std::uint64_t bytes = 0;

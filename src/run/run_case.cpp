@@ -649,16 +649,23 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
       if (my_rank == 0) write_pvd(joints_pvd, joint_frames);
     }
   };
+  // What the CRCs of series.csv and fragments.csv are known to cover: the restored prefix's
+  // (restore_outputs checked it), then the last checkpoint's. Each checkpoint reads what the
+  // files grew by since, not the whole of a long run's series; a read that came short (the
+  // file not as long as written) is not carried on, and the next reads from the start.
+  FileCrc series_known{ls.series_crc, ls.series_bytes}, fragments_known{ls.fragments_crc, ls.fragments_bytes};
+  auto carried_crc = [](const fs::path& file, std::uint64_t bytes, FileCrc& known) {
+    const FileCrc got = file_crc(file.string(), bytes, known);
+    known = got.bytes == bytes ? got : FileCrc{};
+    return got.crc;
+  };
   auto write_ckpt = [&]() {
-    // The files' CRCs carried on from the last checkpoint's (or the restored prefix's): each
-    // checkpoint reads what the files grew by since, not the whole of a long run's series.
-    const FileCrc series_before{ls.series_crc, ls.series_bytes}, fragments_before{ls.fragments_crc, ls.fragments_bytes};
     ls.series_bytes = series.bytes();
     frag_csv.flush();
     ls.fragments_bytes = static_cast<std::uint64_t>(frag_csv.tellp());
     if (my_rank == 0) {
-      ls.series_crc = file_crc((sdir / "series.csv").string(), ls.series_bytes, series_before).crc;
-      ls.fragments_crc = file_crc((sdir / "fragments.csv").string(), ls.fragments_bytes, fragments_before).crc;
+      ls.series_crc = carried_crc(sdir / "series.csv", ls.series_bytes, series_known);
+      ls.fragments_crc = carried_crc(sdir / "fragments.csv", ls.fragments_bytes, fragments_known);
     }
     const double before = ls.wall_before;
     ls.wall_before += wall.seconds();

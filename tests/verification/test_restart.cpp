@@ -362,22 +362,32 @@ TEST(RestartFile, ARunsFolderIsTheOneThatHoldsItsCheckpoint) {
 
 // A checkpoint carries series.csv's CRC on from the last one's (run_case's write_ckpt): the
 // CRC of a file's first n2 bytes, carried on from that of its first n1, is the CRC of the
-// first n2 read at once, across the reader's 64 KiB blocks and at the file's ends.
+// first n2 read at once: across the reader's 64 KiB blocks, at the file's ends, and where the
+// known prefix says nothing of the bytes wanted (longer than them, or than the file now is),
+// which is then read from the start. A missing file has no CRC, whatever was known.
 TEST(RestartFile, AFilesCrcCarriedOnFromItsFirstBytesIsTheWholeOnes) {
-  const fs::path p = fs::temp_directory_path() / "dspdem_file_crc.bin";
+  const fs::path p = fs::temp_directory_path() / fmt::format("dspdem_file_crc_{}.bin", getpid());
   std::string bytes(200000, '\0');
   std::uint32_t r = 12345;
   for (char& b : bytes) b = static_cast<char>((r = r * 1103515245u + 12345u) >> 24);
   std::ofstream(p, std::ios::binary) << bytes;
-  for (const std::uint64_t n1 : std::vector<std::uint64_t>{0, 1, 65535, 65536, 100000})
-    for (const std::uint64_t n2 : std::vector<std::uint64_t>{n1, n1 + 1, 131073, 200000, 300000}) {
-      if (n2 < n1) continue;
+  const std::vector<std::uint64_t> ns{0, 1, 65535, 65536, 100000, 131073, 200000, 300000};
+  for (const std::uint64_t n1 : ns)
+    for (const std::uint64_t n2 : ns) {
       const FileCrc whole = file_crc(p.string(), n2), on = file_crc(p.string(), n2, file_crc(p.string(), n1));
       EXPECT_EQ(on.crc, whole.crc) << n1 << " " << n2;
       EXPECT_EQ(on.bytes, whole.bytes) << n1 << " " << n2;
     }
   EXPECT_NE(file_crc(p.string(), 100).crc, file_crc(p.string(), 101).crc);
+  // The file cut shorter than the prefix known: read from the start, as far as it goes.
+  const FileCrc known = file_crc(p.string(), 150000);
+  fs::resize_file(p, 120000);
+  const FileCrc cut = file_crc(p.string(), 150000, known);
+  EXPECT_EQ(cut.bytes, 120000u);
+  EXPECT_EQ(cut.crc, file_crc(p.string(), 120000).crc);
   fs::remove(p);
+  EXPECT_EQ(file_crc(p.string(), 150000, known).bytes, 0u);
+  EXPECT_EQ(file_crc(p.string(), 150000, known).crc, 0u);
 }
 
 // The side folders' names, which find_checkpoint, run --restart and a finished restart's
