@@ -67,6 +67,15 @@ bool is_staging_folder(const std::string& dir) { return folder_name(dir).rfind(s
 
 bool is_side_folder(const std::string& dir) { return is_staging_folder(dir) || folder_name(dir) == interrupted_folder; }
 
+std::string side_folder_on_path(const std::string& dir) {
+  fs::path up;
+  for (const fs::path& part : fs::absolute(dir).lexically_normal()) {
+    up /= part;
+    if (!part.empty() && (is_side_folder(up.string()) || part == failed_folder)) return up.string();
+  }
+  return {};
+}
+
 bool left_by_killed_run(const std::string& dir) {
   const long pid = staging_pid(fs::path(dir));
   if (pid <= 0 || held_here(dir)) return false;

@@ -63,6 +63,11 @@ bool is_staging_folder(const std::string& dir);
 /// staging folder or `interrupted_run`. Their run folder is the one above them.
 bool is_side_folder(const std::string& dir);
 
+/// The first folder on `dir`'s path (`dir` itself included) named as a run's side folder, a
+/// staging folder, `interrupted_run` or `failed_run`, or "" when there is none. A run made in
+/// one goes with it: its run's restart, end or next run replaces it whole.
+std::string side_folder_on_path(const std::string& dir);
+
 /// Whether `dir` is the staging folder of a run whose process is gone: a run killed outright
 /// (`.staging-<pid>`, or such a folder moved aside, `.staging-<pid>.<k>`). A live run's (its
 /// lock held), or this process's own, is not.

@@ -245,6 +245,13 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
   g_setting_up = 1;
   ScopedSignals signals({SIGINT, SIGTERM, SIGHUP}, on_signal);
   log::info("dspdem run: case '{}' ({})", c.name, c.path);
+  // A run made inside another's side folder went with it, results and all: a restart given
+  // --out DIR/interrupted_run ended "completed" in a folder its own end removed (a probe's).
+  if (const std::string side = side_folder_on_path(opt.out_dir); !side.empty())
+    fail(
+        "run: --out {} lies in {}, a folder a run keeps its staged, stopped or failed outputs in, which its restart, "
+        "end or next run replaces whole; give --out the run's own folder ({}) or another",
+        opt.out_dir, side, std::filesystem::path(side).parent_path().string());
   check_monitor_columns(c);
   Mesh mesh = load_case_mesh(c);
   // Elements and nodes in a spatial order before anything numbers them (joints, contact,

@@ -613,6 +613,17 @@ TEST_F(Cli, ANewRunDoesNotSilentlyReplaceAnInterruptedOne) {
   EXPECT_EQ(again.code, 2) << again.out;
   EXPECT_NE(again.out.find(killed.string()), std::string::npos) << again.out;
   EXPECT_TRUE(fs::exists(killed));
+  // Nor a run made inside a side folder that holds a checkpoint (a probe's): the checkpoint's
+  // outputs went, and a restart given such an --out ended "completed" in a folder its own end
+  // removed. Refused by the folder's name, anywhere on the path, the checkpoint kept.
+  for (const fs::path& inside : {killed.parent_path(), killed.parent_path() / "frames", out / "failed_run"}) {
+    const Result in = run("run " + c.string() + " --discard-interrupted --out " + inside.string());
+    EXPECT_EQ(in.code, 2) << in.out;
+    EXPECT_NE(in.out.find("lies in"), std::string::npos) << in.out;
+    EXPECT_NE(in.out.find("give --out the run's own folder (" + out.string() + ")"), std::string::npos) << in.out;
+  }
+  EXPECT_EQ(slurp(killed), "a checkpoint by wall time");
+  EXPECT_FALSE(fs::exists(killed.parent_path() / "frames"));
 }
 
 TEST_F(Cli, ARunThatReplacesAnotherTakesItsImagesAway) {
