@@ -111,6 +111,21 @@ struct LoopState {
   }
 };
 
+// Whether the file at `path` ends as VTK's XML files do, with </VTKFile> (and blanks).
+bool ends_as_vtk_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = f.tellg();
+  if (!f || size <= 0) return false;
+  const std::streamoff tail = std::min<std::streamoff>(size, 64);
+  std::string end(static_cast<std::size_t>(tail), '\0');
+  f.seekg(size - tail);
+  f.read(end.data(), tail);
+  if (!f) return false;
+  end.erase(end.find_last_not_of(" \t\r\n") + 1);
+  constexpr std::string_view kEnd = "</VTKFile>";
+  return end.size() >= kEnd.size() && end.compare(end.size() - kEnd.size(), kEnd.size(), kEnd) == 0;
+}
+
 // A restart's outputs so far: the frames up to the checkpoint (hard links: frames never
 // change once written, and a link costs no space), series.csv and fragments.csv cut back to
 // their length then, the collections written again. The source folder is left as it is, so
@@ -127,12 +142,15 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
   if (fs::is_directory(from / "frames"))
     for (const auto& e : fs::directory_iterator(from / "frames"))
       if (e.path().extension() == ".vtu") pieces.push_back(e.path().filename().string());
-  auto link_frame = [&](const std::string& rel) {
-    link(rel);
-    if (fs::path(rel).extension() != ".pvtu") return;
-    const std::string stem = fs::path(rel).stem().string() + "_";
-    for (const std::string& p : pieces)
-      if (p.rfind(stem, 0) == 0) link((fs::path("frames") / p).string());
+  // A frame's files: itself, and a distributed frame's (.pvtu) pieces.
+  auto frame_files = [&](const std::string& rel) {
+    std::vector<std::string> files{rel};
+    if (fs::path(rel).extension() == ".pvtu") {
+      const std::string stem = fs::path(rel).stem().string() + "_";
+      for (const std::string& p : pieces)
+        if (p.rfind(stem, 0) == 0) files.push_back((fs::path("frames") / p).string());
+    }
+    return files;
   };
   // The checkpoint's run's files, checked before anything is linked or copied: its series as
   // far as it had written them (their CRC-32s) and every frame it lists.
@@ -147,12 +165,21 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
   };
   check("series.csv", ls.series_bytes, ls.series_crc);
   check("fragments.csv", ls.fragments_bytes, ls.fragments_crc);
+  std::vector<std::string> frames;
   for (const auto* list : {&ls.frames, &ls.joint_frames})
     for (const auto& [t, rel] : *list)
-      DSPDEM_CHECK(fs::exists(from / rel), "restart: frame '{}' of the checkpoint's run is missing",
-                   (from / rel).string());
-  for (const auto& [t, rel] : ls.frames) link_frame(rel);
-  for (const auto& [t, rel] : ls.joint_frames) link_frame(rel);
+      for (const std::string& f : frame_files(rel)) {
+        DSPDEM_CHECK(fs::exists(from / f), "restart: frame '{}' of the checkpoint's run is missing",
+                     (from / f).string());
+        // Whole to its last line (VTK's XML files end with </VTKFile>): a frame cut short passed
+        // into the restarted run's results, and failed only when drawn (a probe's).
+        DSPDEM_CHECK(ends_as_vtk_file((from / f).string()),
+                     "restart: frame '{}' of the checkpoint's run is cut short or damaged (it does not end with "
+                     "</VTKFile>)",
+                     (from / f).string());
+        frames.push_back(f);
+      }
+  for (const std::string& f : frames) link(f);
   auto cut = [&](const char* name, std::uint64_t bytes) {
     fs::copy_file(from / name, to / name, fs::copy_options::overwrite_existing);
     fs::resize_file(to / name, bytes);

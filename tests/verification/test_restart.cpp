@@ -250,9 +250,10 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
   }
 
   // The checkpoint's folder holding another run's series (a checkpoint copied into another
-  // run's folder spliced the two runs' rows), or missing a frame it lists: refused before
-  // anything is written, the folder as it was.
-  for (const std::string what : {"series", "frame"}) {
+  // run's folder spliced the two runs' rows), missing a frame it lists, or holding one cut
+  // short (it passed into the restarted run's results: a probe's): refused before anything is
+  // written, the folder as it was.
+  for (const std::string what : {"series", "frame", "cut"}) {
     const fs::path copy = root_ / ("refuse_" + what);
     fs::remove_all(copy);
     fs::copy(dir, copy, fs::copy_options::recursive);
@@ -262,8 +263,11 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
       const std::size_t row = text.find('\n') + 1;  // the row at t = 0, within what the checkpoint's run wrote
       text[text.find(',', row) + 1] = text[text.find(',', row) + 1] == '1' ? '2' : '1';  // its step's first digit
       std::ofstream(series, std::ios::binary) << text;
-    } else {
+    } else if (what == "frame") {
       fs::remove(copy / "interrupted_run" / "frames" / "frame_0000.vtu");
+    } else {
+      const fs::path last = copy / "interrupted_run" / "frames" / "frame_0000.vtu";
+      fs::resize_file(last, fs::file_size(last) - 3);
     }
     const std::string before = slurp(series);
     RunOptions o = opt;
@@ -273,8 +277,9 @@ TEST_F(Restart, RefusesAnotherCaseADamagedFileAndAnotherBuild) {
       run_case(read_case(kCase, kSets), o);
       FAIL() << what << ": the restart went on";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(what == "series" ? "is not the file the checkpoint's run wrote"
-                                                            : "frame_0000.vtu' of the checkpoint's run is missing"),
+      EXPECT_NE(std::string(e.what()).find(what == "series"  ? "is not the file the checkpoint's run wrote"
+                                           : what == "frame" ? "frame_0000.vtu' of the checkpoint's run is missing"
+                                                             : "frame_0000.vtu' of the checkpoint's run is cut short"),
                 std::string::npos)
           << e.what();
     }
