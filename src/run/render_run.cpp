@@ -190,6 +190,13 @@ int render_command(const RenderArgs& in) {
       fail("unknown view '{}' (known: stress, fragments, cracks)", v);
     }
   }
+  // The series the plots are drawn from, read before anything is drawn: a damaged one, found
+  // at the plots, left the frames drawn anew beside the plots of before (a probe's).
+  const fs::path csv = fs::path(a.run_dir) / "series.csv";
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> cols;
+  const bool plots = a.worker.empty() && fs::exists(csv);
+  if (plots) render::read_csv(csv.string(), names, cols);
   if (!a.range.empty()) {
     parse_range(a.range, "--range", o.range[0], o.range[1]);
   } else if (std::find(a.views.begin(), a.views.end(), "stress") != a.views.end()) {
@@ -285,13 +292,9 @@ int render_command(const RenderArgs& in) {
       for (const auto& f : files) log::info("  animation {}", f);
   }
   // Plots: energies and monitors against time, then the case's extra plots.
-  const fs::path csv = fs::path(a.run_dir) / "series.csv";
-  if (fs::exists(csv)) {
+  if (plots) {
     const fs::path pdir = fs::path(a.out_dir) / "images" / "plots";
     fs::create_directories(pdir);
-    std::vector<std::string> names;
-    std::vector<std::vector<double>> cols;
-    render::read_csv(csv.string(), names, cols);
     render::PlotSpec energy{"time", {"kinetic", "internal", "external_work", "damping"}, "", "energy ledger [J]"};
     energy.y_title = "energy [J]";
     if (std::find(names.begin(), names.end(), "fracture_I") != names.end())

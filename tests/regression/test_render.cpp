@@ -347,6 +347,15 @@ TEST(Render, BadInputIsNamedAndWritesNothing) {
     EXPECT_FALSE(fs::exists(out / "m.png")) << a;
   }
   EXPECT_FALSE(fs::exists(out / "images/stress")) << "a failed render wrote images";
+  // A damaged series.csv, which the plots read, is found before a frame is drawn (a probe's: a
+  // render drew the frames anew, then failed at the plots, beside the plots of before).
+  const std::string series = slurp(out / "series.csv");
+  std::ofstream(out / "series.csv", std::ios::app) << "1,2,garbage\n";
+  const Result damaged = sh(bin() + " render " + out.string() + " --no-animation");
+  EXPECT_EQ(damaged.code, 2) << damaged.out;
+  EXPECT_NE(damaged.out.find("series.csv"), std::string::npos) << damaged.out;
+  EXPECT_FALSE(fs::exists(out / "images/stress")) << "a render refused for its series drew frames";
+  std::ofstream(out / "series.csv", std::ios::trunc) << series;
   // Not a run folder.
   Result r = sh(bin() + " render " + (out / "nowhere").string());
   EXPECT_EQ(r.code, 2);
