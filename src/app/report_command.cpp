@@ -32,6 +32,15 @@ int report_command(const report::ReportArgs& args) {
                    "{}: --from-run {} is a run of the scene '{}' (its case.resolved.toml), and this case is the scene "
                    "'{}': give a run of this case, or report that run with its own case",
                    a.case_file, a.from_runs.front(), ran, given);
+    } else if (std::filesystem::exists(std::filesystem::path(a.from_runs.front()) / "summary.json")) {
+      // Every run writes its resolved case beside its summary: without it the case given here
+      // would be analysed as the run's, overrides and all, and the report's numbers read against
+      // the wrong settings (a probe's: a run's 0.1 ms frames reported as the case's 0.2 ms).
+      // (A folder without a summary is refused as not a finished run, by the scene's report.)
+      DSPDEM_CHECK(scenes::of_case(c).speed_sweep,
+                   "--from-run {}: no case.resolved.toml there, which every run writes beside its results: not a run's "
+                   "folder, or one damaged; give the folder of a run this case made",
+                   a.from_runs.front());
     }
   }
   // Each run of a sweep would refuse such a monitor at its own start; refused here, the

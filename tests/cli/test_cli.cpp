@@ -1134,6 +1134,15 @@ TEST_F(Cli, ReportFromRunNeedsAFinishedRun) {
   EXPECT_EQ(other.code, 2) << other.out;
   EXPECT_NE(other.out.find("is a run of the scene 'galvez_beam'"), std::string::npos) << other.out;
   EXPECT_FALSE(fs::exists(dir_ / "rep" / "report.md"));
+  // A run's folder without its case.resolved.toml: the case given was analysed as the run's
+  // (a probe's), its overrides and all. Refused.
+  fs::create_directories(dir_ / "no_case");
+  std::ofstream(dir_ / "no_case" / "summary.json") << "{}";
+  const Result no_case =
+      run("report " + disc + " --from-run " + (dir_ / "no_case").string() + " --out " + (dir_ / "rep").string());
+  EXPECT_EQ(no_case.code, 2) << no_case.out;
+  EXPECT_NE(no_case.out.find("no case.resolved.toml there"), std::string::npos) << no_case.out;
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / "report.md"));
 }
 
 TEST_F(Cli, ReportStudyRunsEveryVariantAndTabulatesThem) {
