@@ -264,7 +264,7 @@ TEST(ImgDiff, DamagedOrOddImagesAreNamedAndADifferenceNeverReplacesItsInput) {
   EXPECT_EQ(rg.out.find("ERR"), std::string::npos) << rg.out;
   // An RGBA image reads composited onto black: white pixels left fully transparent are the
   // black pixels of an RGB image.
-  auto png_of = [&](int colour_type, int channels, char value, char alpha) {
+  auto png_of = [&](int colour_type, int channels, char value, char alpha, int frame = 0) {
     std::string png = bytes.substr(0, 8), head(13, '\0');
     put_u32(head, 0, 320), put_u32(head, 4, 240);
     head[8] = 8, head[9] = static_cast<char>(colour_type);
@@ -272,9 +272,10 @@ TEST(ImgDiff, DamagedOrOddImagesAreNamedAndADifferenceNeverReplacesItsInput) {
     std::string px(static_cast<std::size_t>(channels), value);
     if (channels == 4) px[3] = alpha;
     std::string rows;
+    const std::string edge(static_cast<std::size_t>(channels), '\0');  // a frame's pixels: black
     for (int y = 0; y < 240; ++y) {
       rows += '\0';
-      for (int x = 0; x < 320; ++x) rows += px;
+      for (int x = 0; x < 320; ++x) rows += x < frame || x >= 320 - frame || y < frame || y >= 240 - frame ? edge : px;
     }
     uLongf len = compressBound(rows.size());
     std::string zz(len, '\0');
@@ -288,6 +289,16 @@ TEST(ImgDiff, DamagedOrOddImagesAreNamedAndADifferenceNeverReplacesItsInput) {
   const Result ra = sh(bin() + " imgdiff " + clear.string() + " " + black.string() + " --tolerance 0 --diff " +
                        (out / "c.png").string());
   EXPECT_EQ(ra.code, 0) << ra.out;
+  // Every pixel is compared, the border too: vtkImageDifference leaves two pixels at the edge
+  // uncompared (a probe's 2-pixel frame round a 64 x 64 image read as no change). A one-pixel
+  // black frame round a white image: 2 (320 + 240) - 4 = 1116 pixels of 76800, 1.4531 %.
+  const fs::path white = spit("white.png", png_of(2, 3, static_cast<char>(255), 0)),
+                 framed = spit("framed.png", png_of(2, 3, static_cast<char>(255), 0, 1));
+  const Result rf =
+      sh(bin() + " imgdiff " + white.string() + " " + framed.string() + " --diff " + (out / "f.png").string());
+  EXPECT_EQ(rf.code, 1) << rf.out;
+  EXPECT_NE(rf.out.find("1.4531 % of pixels changed"), std::string::npos) << rf.out;
+  EXPECT_NE(rf.out.find("320x240"), std::string::npos) << rf.out;
   // --diff naming an input, a folder or a place in no folder: refused, the input unchanged.
   for (const std::string& d : {a.string(), out.string(), (out / "none" / "d.png").string()}) {
     const Result r = sh(bin() + " imgdiff " + a.string() + " " + a.string() + " --diff " + d);
