@@ -13,6 +13,7 @@
 
 #include "contact/restitution.hpp"
 #include "core/error.hpp"
+#include "core/log.hpp"
 #include "io/case_config.hpp"
 #include "io/case_schema.hpp"
 
@@ -276,6 +277,11 @@ void apply_override(toml::table& root, const std::string& ov) {
   toml::table holder;
   try {
     holder = toml::parse("v = " + text, kOverrideSource);
+    // A value followed by more lines ("2e-3\nbogus = 1") read as more keys, left unread.
+    DSPDEM_CHECK(holder.size() == 1,
+                 "--set '{}': the value holds more TOML than one value (a line break, then keys or tables); give "
+                 "each key a --set of its own",
+                 log::printable(ov));
   } catch (const toml::parse_error&) {
     holder = toml::parse("v = \"\"", kOverrideSource);  // a bare word is a string
     *holder.get_as<std::string>("v") = text;

@@ -328,6 +328,11 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
       {"set_huge", good_, "--set time.end=1e400", {"1e400 is not a number TOML reads", "could not be interpreted"}},
       {"set_bare_point", good_, "--set time.end=.5", {".5 is not a number TOML reads", "expected decimal digit"}},
       {"string_for_number", good_, "--set time.end=soon", {"'end' must be a number, got the string \"soon\""}},
+      // A line break in a value: what followed read as more keys, left unread (a probe's).
+      {"set_two_lines",
+       good_,
+       "--set 'time.end=2e-3\nbogus = 1'",
+       {"bogus = 1': the value holds more TOML than one value"}},
       // A step count past any run's (past 2^63 it turned negative and the run "completed" in 0 steps).
       {"steps_end", good_, "--set time.end=1e300", {"[time] end = 1e+300 s", "more than 1e+10", "max_steps"}},
       {"steps_stiff", replace(good_, "E = 30.0e9", "E = 1.0e300"), "", {"steps, more than 1e+10", "limited by"}},
