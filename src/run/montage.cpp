@@ -42,9 +42,11 @@ Row parse_row(const std::string& spec) {
   return r;
 }
 
-// The frame of `frames` nearest to time t (t < 0: the last).
+// The frame of `frames` nearest to time t (t < 0: the last). A time past the last frame is
+// the last frame: far past it every distance rounds to the same, and the first won that tie
+// (a probe's: --time 1e15 drew t = 0).
 std::size_t nearest(const std::vector<render::FrameRef>& frames, double t) {
-  if (t < 0) return frames.size() - 1;
+  if (t < 0 || t >= frames.back().time) return frames.size() - 1;
   std::size_t best = 0;
   for (std::size_t i = 1; i < frames.size(); ++i)
     if (std::abs(frames[i].time - t) < std::abs(frames[best].time - t)) best = i;

@@ -867,6 +867,12 @@ TEST_F(Cli, RenderMontageTilesRunsByRowsAndWritesAPng) {
   EXPECT_NE(labels.code, 0);
   EXPECT_NE(labels.out.find("1 label(s) for 2 run folder(s)"), std::string::npos) << labels.out;
   EXPECT_FALSE(fs::exists(dir_ / "l.png"));
+  // A time far past the run's end is its last frame (a probe's: every distance rounded to the
+  // same, and the first frame, t = 0, won the tie).
+  const Result late =
+      run("render " + out.string() + " --montage " + (dir_ / "late.png").string() + " --time 1e15 --size 160x120");
+  ASSERT_EQ(late.code, 0) << late.out;
+  EXPECT_NE(late.out.find("its panel shows t = 0.002001 s"), std::string::npos) << late.out;
 }
 
 TEST_F(Cli, RunEndsOnceTheLoadHasDroppedAndThePiecesSeparated) {
