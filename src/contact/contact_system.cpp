@@ -331,6 +331,7 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
       if (hit) wall_pairs_.emplace_back(static_cast<Index>(w), surface_list_[i]);
     }
   }
+  if (!built_) refuse_skeletons_in_walls(x);
   const std::vector<PairKey> new_keys = pair_keys();
   if (built_) {
     // New wall pairs that overlap already push with it (no offset), and are counted.
@@ -374,42 +375,73 @@ void ContactSystem::rebuild(const Mesh& mesh, joint::JointSet& js, const Real* x
   totals_.surface_elements = ns;
 }
 
-// Two pieces born with their skeletons crossed (deeper than r_a + r_b) have no contact
-// force that pushes them apart: the narrow phase sees only overlaps of the spheres, so the
-// crossed parts go unresolved or pull the wrong way, and the spurious spring energy also
-// widens the blow-up check's budget (tests/robustness/test_hard_cases.cpp: energy x4.7 and
-// the ledger off by 1.4 in a run that completed). The skeletons are convex: they cross when
-// no axis separates them (face normals of each, cross products of their edges), and the
-// least overlap over those axes is how deep. The whole set-up is refused.
-void ContactSystem::refuse_crossed_skeletons(const Real* x) const {
-  std::vector<Vec3> axes;
+namespace {
+// How deep two convex polytopes cross: the least overlap of their spans over the axes that
+// could separate them (face normals of each, cross products of their edges), <= 0 when one
+// separates them.
+Real crossing_depth(const Poly& A, const Poly& B) {
   auto span = [](const Poly& q, const Vec3& n) {
     Real lo = INFINITY, hi = -INFINITY;
     for (int k = 0; k < q.topo->nv; ++k) lo = std::min(lo, q.v[k].dot(n)), hi = std::max(hi, q.v[k].dot(n));
     return std::pair{lo, hi};
   };
+  std::vector<Vec3> axes;
+  for (const Poly* q : {&A, &B})
+    for (const auto& t : q->topo->tris) axes.push_back((q->v[t[1]] - q->v[t[0]]).cross(q->v[t[2]] - q->v[t[0]]));
+  for (const auto& e : A.topo->edges)
+    for (const auto& f : B.topo->edges) axes.push_back((A.v[e[1]] - A.v[e[0]]).cross(B.v[f[1]] - B.v[f[0]]));
+  Real depth = INFINITY;
+  for (const Vec3& ax : axes) {
+    const Real len = ax.norm();
+    if (len < 1e-12 * (1 + ax.cwiseAbs().maxCoeff())) continue;  // parallel edges: no axis
+    const Vec3 n = ax / len;
+    const auto [alo, ahi] = span(A, n);
+    const auto [blo, bhi] = span(B, n);
+    depth = std::min(depth, std::min(ahi, bhi) - std::max(alo, blo));
+    if (depth <= 0) break;
+  }
+  return depth;
+}
+}  // namespace
+
+// Two pieces born with their skeletons crossed (deeper than r_a + r_b) have no contact
+// force that pushes them apart: the narrow phase sees only overlaps of the spheres, so the
+// crossed parts go unresolved or pull the wrong way, and the spurious spring energy also
+// widens the blow-up check's budget (tests/robustness/test_hard_cases.cpp: energy x4.7 and
+// the ledger off by 1.4 in a run that completed). The skeletons are convex: they cross when
+// no axis separates them, and the least overlap over those axes is how deep. The whole set-up
+// is refused.
+void ContactSystem::refuse_crossed_skeletons(const Real* x) const {
   for (const auto& [ea, eb] : pairs_) {
-    const Poly A = skeleton_poly(ea, x), B = skeleton_poly(eb, x);
-    axes.clear();
-    for (const Poly* q : {&A, &B})
-      for (const auto& t : q->topo->tris) axes.push_back((q->v[t[1]] - q->v[t[0]]).cross(q->v[t[2]] - q->v[t[0]]));
-    for (const auto& e : A.topo->edges)
-      for (const auto& f : B.topo->edges) axes.push_back((A.v[e[1]] - A.v[e[0]]).cross(B.v[f[1]] - B.v[f[0]]));
-    Real depth = INFINITY;
-    for (const Vec3& ax : axes) {
-      const Real len = ax.norm();
-      if (len < 1e-12 * (1 + ax.cwiseAbs().maxCoeff())) continue;  // parallel edges: no axis
-      const Vec3 n = ax / len;
-      const auto [alo, ahi] = span(A, n);
-      const auto [blo, bhi] = span(B, n);
-      depth = std::min(depth, std::min(ahi, bhi) - std::max(alo, blo));
-      if (depth <= 0) break;
-    }
+    const Real depth = crossing_depth(skeleton_poly(ea, x), skeleton_poly(eb, x));
     if (depth > 0.01 * (radius_[ea] + radius_[eb]))
       fail(
           "elements {} and {} start inside each other: their contact skeletons cross by {:.3g} m, beyond the "
           "{:.3g} m of their contact radii, and contact cannot push them apart; move the bodies apart before the run",
           elems_[ea].tag, elems_[eb].tag, depth, radius_[ea] + radius_[eb]);
+  }
+}
+
+// The same for a plane or a box wall: an element whose skeleton starts behind the plane, or
+// inside the box, beyond its contact radius has no touch that pushes it out. A body wholly
+// inside a box wall then ran as if the wall were not there (a probe's: no contact, no word).
+void ContactSystem::refuse_skeletons_in_walls(const Real* x) const {
+  for (const auto& [w, e] : wall_pairs_) {
+    const Wall& wl = walls_[w];
+    const Poly sk = skeleton_poly(e, x);
+    Real depth = -INFINITY;
+    if (wl.type == Wall::Type::Plane) {
+      const Vec3 n = wl.plane_normal();
+      for (int k = 0; k < sk.topo->nv; ++k) depth = std::max(depth, -(sk.v[k] - wl.centre).dot(n));
+    } else if (wl.type == Wall::Type::Box) {
+      depth = crossing_depth(sk, wl.box_poly());
+    }
+    if (depth > 0.01 * (radius_[e] + wl.rounding()))
+      fail(
+          "element {} starts {} wall '{}': its contact skeleton lies {:.3g} m inside, beyond its {:.3g} m contact "
+          "radius, and contact cannot push it out; place the wall outside the bodies",
+          elems_[e].tag, wl.type == Wall::Type::Plane ? "behind the plane of" : "inside the box of", wl.name, depth,
+          radius_[e] + wl.rounding());
   }
 }
 

@@ -200,6 +200,9 @@ class ContactSystem {
   /// At the first build: Error if two pieces start with their skeletons crossed (a vertex
   /// of one inside the other), which no contact force can resolve.
   void refuse_crossed_skeletons(const Real* x) const;
+  /// At the first build: Error if an element's skeleton starts behind a plane wall or inside a
+  /// box wall beyond its contact radius (a body wholly inside a box wall had no contact at all).
+  void refuse_skeletons_in_walls(const Real* x) const;
   LawParams pair_params(Index ea, Index eb, const Wall* w) const;
   /// Evaluates pair p (element pair or wall pair) at x, v into `out`.
   void evaluate_pair(Index p, const Real* x, const Real* v, Real dt, std::vector<Touch>& touches,

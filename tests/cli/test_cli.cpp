@@ -328,6 +328,18 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
       {"set_huge", good_, "--set time.end=1e400", {"1e400 is not a number TOML reads", "could not be interpreted"}},
       {"set_bare_point", good_, "--set time.end=.5", {".5 is not a number TOML reads", "expected decimal digit"}},
       {"string_for_number", good_, "--set time.end=soon", {"'end' must be a number, got the string \"soon\""}},
+      // A body inside a box wall, or behind a plane wall: no contact pushed it out, and a box
+      // holding it whole was never touched (a probe's: the run went on as if it were not there).
+      {"wall_engulfs",
+       good_ + "\n[contact]\nenabled = true\n\n[[walls]]\nname = \"b\"\ntype = \"box\"\npoint = [0.5, 0.05, "
+               "0.05]\nhalf_size = [2.0, 2.0, 2.0]\n",
+       "",
+       {"element", "starts inside the box of wall 'b'", "place the wall outside the bodies"}},
+      {"wall_behind",
+       good_ + "\n[contact]\nenabled = true\n\n[[walls]]\nname = \"p\"\ntype = \"plane\"\npoint = [0.5, 0.05, "
+               "0.05]\nnormal = [0.0, 1.0, 0.0]\n",
+       "",
+       {"starts behind the plane of wall 'p'"}},
       // A line break in a value: what followed read as more keys, left unread (a probe's).
       {"set_two_lines",
        good_,
