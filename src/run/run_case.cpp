@@ -337,8 +337,19 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     const joint::Ties ties = joint::build_ties(model.joints, fem.n_nodes);
     crit = stable_step(model, per_element, &ties);
   }
-  if (crit.element < 0 && !(c.dt > 0))
+  if (crit.element < 0 && !(c.dt > 0)) {
+    // A deformable element whose own step came out zero or not a number (a density, an E or a
+    // damping far out of range) limits nothing either: named, not said to be rigid (a probe's).
+    for (Index e = 0; e < fem.n_elements; ++e)
+      if (!(per_element[static_cast<std::size_t>(e)] > 0)) {
+        const Material& m = model.materials[fem.elem_material[e]];
+        fail(
+            "{}: element {} has a critical step of {:g} s, which no step can meet: its material '{}' (density {:g} "
+            "kg/m^3, E {:g} Pa, damping_beta {:g} s) holds a value far out of range",
+            c.path, fem.elem_tag[e], per_element[static_cast<std::size_t>(e)], m.name, m.density, m.E, m.beta);
+      }
     fail("{}: nothing limits the time step (only rigid bodies, and no contact): set [time] dt", c.path);
+  }
   auto limiter_text = [&](const StableStep& s) {
     return fmt::format("{} {} (body '{}')",
                        s.limiter == "joint"     ? "a joint of element"
@@ -381,7 +392,8 @@ int run_case(const CaseConfig& c, const RunOptions& opt) {
     if (s0 == 0 && !(q <= kMostSteps) && c.max_steps <= 0)
       fail(
           "{}: [time] end = {:.6g} s from t = {:.6g} s at a step of {:.4g} s ({}) is {:.3g} steps, more than "
-          "{:.0e}: check the end, the step and the materials that set it (E, density), or bound the run by [time] "
+          "{:.0e}: check the end, the step and the materials that set it (E, density, damping_beta), or bound the run "
+          "by [time] "
           "max_steps",
           c.path, c.t_end, t0, h, c.dt > 0 && h == c.dt ? "[time] dt" : "limited by " + limiter_text(crit), q,
           kMostSteps);

@@ -340,6 +340,16 @@ TEST_F(Cli, BadInputsFailClearlyAndKeepEarlierResults) {
                "0.05]\nnormal = [0.0, 1.0, 0.0]\n",
        "",
        {"starts behind the plane of wall 'p'"}},
+      // A step lost to rounding was said to come of "only rigid bodies" (a probe's): a damping
+      // so large that the step's formula cancelled, a density so small that it overflowed.
+      {"damping_beta_huge",
+       good_,
+       "--set materials.concrete.damping_beta=1e300",
+       {"more than 1e+10", "limited by element", "(E, density, damping_beta)"}},
+      {"density_tiny",
+       good_,
+       "--set materials.concrete.density=1e-300",
+       {"has a critical step of", "material 'concrete' (density 1e-300 kg/m^3"}},
       // A line break in a value: what followed read as more keys, left unread (a probe's).
       {"set_two_lines",
        good_,
