@@ -438,10 +438,10 @@ void ContactSystem::refuse_skeletons_in_walls(const Real* x) const {
     }
     if (depth > 0.01 * (radius_[e] + wl.rounding()))
       fail(
-          "element {} starts {} wall '{}': its contact skeleton lies {:.3g} m inside, beyond its {:.3g} m contact "
-          "radius, and contact cannot push it out; place the wall outside the bodies",
-          elems_[e].tag, wl.type == Wall::Type::Plane ? "behind the plane of" : "inside the box of", wl.name, depth,
-          radius_[e] + wl.rounding());
+          "element {} starts {} wall '{}': its contact skeleton (the element less its {:.3g} m contact radius) lies "
+          "{:.3g} m inside, and contact cannot push it out; place the wall outside the bodies",
+          elems_[e].tag, wl.type == Wall::Type::Plane ? "behind the plane of" : "inside the box of", wl.name,
+          radius_[e] + wl.rounding(), depth);
   }
 }
 

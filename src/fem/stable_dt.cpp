@@ -18,11 +18,12 @@ Real max_frequency(const Eigen::Matrix<Real, N, N>& K, const Eigen::Matrix<Real,
 
 Real damped_step(Real w, Real beta) {
   const Real xi = 0.5 * beta * w;
-  // sqrt(1 + xi^2) - xi cancels to nothing for a large xi, and past xi^2's overflow read as
-  // an infinite step (a damping_beta of 1e300: "nothing limits the time step", a probe's):
-  // there its limit 1 / (2 xi), within 1 / (4 xi^2) of it. The dampings of real cases give xi
-  // of order 1, where the form is exact to rounding (and their steps keep their bits).
-  if (xi > 1e7) return (2.0 / w) * (0.5 / xi);
+  // sqrt(1 + xi^2) - xi loses digits to cancellation as xi grows (about xi^2 eps of them), and
+  // past xi^2's overflow read as an infinite step (a damping_beta of 1e300: "nothing limits
+  // the time step", a probe's). Above xi = 1e4 it is taken as 1 / (hypot(1, xi) + xi), the same
+  // quantity without the cancellation. The dampings of real cases give xi of order 1, below the
+  // switch: their steps keep their bits.
+  if (xi > 1e4) return (2.0 / w) / (std::hypot(1.0, xi) + xi);
   return (2.0 / w) * (std::sqrt(1.0 + xi * xi) - xi);
 }
 

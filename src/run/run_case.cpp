@@ -13,9 +13,11 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <string_view>
 
 #include "core/error.hpp"
+#include "core/file.hpp"
 #include "core/folder_lock.hpp"
 #include "core/log.hpp"
 #include "core/signals.hpp"
@@ -137,18 +139,18 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
     fs::create_hard_link(from / rel, to / rel, ec);
     if (ec) fs::copy_file(from / rel, to / rel, fs::copy_options::overwrite_existing);
   };
-  // A distributed run's frame is a .pvtu and its processes' pieces, <stem>_<piece>.vtu.
-  std::vector<std::string> pieces;
-  if (fs::is_directory(from / "frames"))
-    for (const auto& e : fs::directory_iterator(from / "frames"))
-      if (e.path().extension() == ".vtu") pieces.push_back(e.path().filename().string());
-  // A frame's files: itself, and a distributed frame's (.pvtu) pieces.
+  // A frame's files: itself, and a distributed frame's (.pvtu) pieces, as it lists them
+  // (<Piece Source="...">, beside it): listed from the folder instead, a piece gone was not
+  // missed (a review's).
   auto frame_files = [&](const std::string& rel) {
     std::vector<std::string> files{rel};
-    if (fs::path(rel).extension() == ".pvtu") {
-      const std::string stem = fs::path(rel).stem().string() + "_";
-      for (const std::string& p : pieces)
-        if (p.rfind(stem, 0) == 0) files.push_back((fs::path("frames") / p).string());
+    if (fs::path(rel).extension() == ".pvtu" && fs::exists(from / rel)) {
+      const std::string text = read_file((from / rel).string(), "frame");
+      static const std::regex piece(R"re(<Piece\s+Source\s*=\s*"([^"]+)")re");
+      for (auto it = std::sregex_iterator(text.begin(), text.end(), piece); it != std::sregex_iterator(); ++it)
+        files.push_back((fs::path(rel).parent_path() / (*it)[1].str()).string());
+      DSPDEM_CHECK(files.size() > 1, "restart: frame '{}' of the checkpoint's run lists no pieces",
+                   (from / rel).string());
     }
     return files;
   };
@@ -169,6 +171,9 @@ void restore_outputs(const fs::path& from, const fs::path& to, const LoopState& 
   for (const auto* list : {&ls.frames, &ls.joint_frames})
     for (const auto& [t, rel] : *list)
       for (const std::string& f : frame_files(rel)) {
+        DSPDEM_CHECK(fs::path(f).lexically_normal().parent_path() == "frames",
+                     "restart: frame '{}' of the checkpoint's run names a piece outside frames/: '{}'",
+                     (from / rel).string(), f);
         DSPDEM_CHECK(fs::exists(from / f), "restart: frame '{}' of the checkpoint's run is missing",
                      (from / f).string());
         // Whole to its last line (VTK's XML files end with </VTKFile>): a frame cut short passed
